@@ -1,0 +1,68 @@
+#pragma once
+// Plain sensor data, as every source delivers it to core/: the CARMEN reader, the simulator,
+// the device drivers and the LCM replay. No I/O types appear here.
+
+#include <cmath>
+#include <limits>
+#include <variant>
+#include <vector>
+
+#include "core/common/time.h"
+#include "core/geometry/se2.h"
+
+namespace atlas {
+
+// A laser range that carries no return (no echo, dazzle, out of range). Test with IsReturn().
+inline constexpr float kNoReturn = std::numeric_limits<float>::infinity();
+inline bool IsReturn(float range) { return std::isfinite(range); }
+
+// Cumulative wheel odometry: the dead-reckoned pose of the base in its odometry frame, as the
+// base reports it at `stamp`. Consumers use differences of consecutive samples only.
+struct OdometrySample {
+  Time stamp{};
+  Pose2 pose;
+};
+
+// One planar laser scan. Beam i has bearing angle_min + i * angle_increment in the sensor
+// frame (counter-clockwise, radians). `sensor_pose` is the sensor's mounting pose on the robot.
+struct LaserScan {
+  Time stamp{};
+  float angle_min = 0.0f;
+  float angle_increment = 0.0f;
+  float max_range = 0.0f;     // metres; the sensor's maximum
+  std::vector<float> ranges;  // metres, or kNoReturn
+  Pose2 sensor_pose;          // the sensor on the robot
+};
+
+// Sonar returns fired since the previous reading. Ranges in metres; a transducer that saw
+// nothing within its maximum range reports kNoReturn. Geometry (mounting pose, beam width) is
+// configuration, looked up by transducer index.
+struct SonarReturn {
+  int transducer = 0;
+  float range = kNoReturn;
+};
+struct SonarReading {
+  Time stamp{};
+  std::vector<SonarReturn> returns;
+};
+
+// Mounting of one sonar transducer on the robot.
+struct SonarTransducer {
+  Pose2 pose;                   // x, y (m) and heading (rad) on the robot
+  double beam_width = 0.4363;   // full cone angle, radians (25 degrees)
+  double max_range = 5.0;       // metres
+};
+
+// Ground truth or a reference trajectory (simulator, corrected logs), never fed to the atlas.
+struct TruthSample {
+  Time stamp{};
+  Pose2 pose;
+};
+
+using SensorEvent = std::variant<OdometrySample, LaserScan, SonarReading>;
+
+inline Time StampOf(const SensorEvent& e) {
+  return std::visit([](const auto& v) { return v.stamp; }, e);
+}
+
+}  // namespace atlas
