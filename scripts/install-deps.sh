@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages atlasd needs to build, test and run. Does nothing when they
+# are all installed already. Safe to run from any directory.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libeigen3-dev                 # linear algebra (core/)
+  liblcm-dev liblcm-bin liblcm-java  # LCM: messages, lcm-gen, lcm-logger, lcm.jar
+  default-jdk-headless          # javac/jar for the LCM Java types; runs atlas-spy
+  libjchart2d-java              # charts used by lcm.spy.Spy
+  libcairo2-dev                 # pictures (PNG, SVG)
+  zlib1g-dev                    # gzip CARMEN logs
+  libtomlplusplus-dev           # the configuration file
+  libsqlite3-dev                # the persistent atlas store
+  libsystemd-dev                # sd_notify
+  libceres-dev                  # offline global refinement
+  libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev      # libFuzzer targets
+  iproute2 util-linux           # private network namespaces for the hardware-in-loop tests
+  xvfb xauth                    # lcm-spy under a virtual display
+  systemd                       # systemd-analyze verify
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q >&2
+$sudo apt-get install -y -q --no-install-recommends "${missing[@]}" >&2

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Every test of atlasd, from any working directory:
+#   1. release build, unit tests;
+#   2. AddressSanitizer + UndefinedBehaviorSanitizer build, unit tests;
+#   3. libFuzzer build (clang), a short run of every fuzzer over its seed corpus;
+#   4. hardware-in-loop tests (label "hil"), real processes over real UDP multicast inside a
+#      private network namespace, so that no packet leaves the machine.
+# Prints one closing line "total: N passed, M failed" and exits non-zero on any failure.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+"$ROOT/scripts/install-deps.sh"
+
+JOBS=$(nproc)
+FUZZ_SECONDS=${ATLAS_FUZZ_SECONDS:-15}
+passed=0
+failed=0
+
+configure_and_build() {  # dir, cmake args...
+  local dir=$1
+  shift
+  echo "== build $(basename "$dir")" >&2
+  cmake -S "$ROOT" -B "$dir" "$@" >"$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; return 1; }
+  cmake --build "$dir" -j "$JOBS"
+}
+
+tally() {  # adds the counts of a ctest log to the totals
+  local log=$1 line bad total
+  line=$(grep -E 'tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -n 1 || true)
+  if [ -z "$line" ]; then
+    grep -q 'No tests were found' "$log" && return 0
+    echo "ctest printed no summary" >&2
+    failed=$((failed + 1))
+    return 0
+  fi
+  bad=$(sed -E 's/.* ([0-9]+) tests? failed out of ([0-9]+).*/\1/' <<<"$line")
+  total=$(sed -E 's/.* failed out of ([0-9]+).*/\1/' <<<"$line")
+  passed=$((passed + total - bad))
+  failed=$((failed + bad))
+}
+
+run_ctest() {  # dir, ctest args...
+  local dir=$1 log
+  shift
+  log=$(mktemp)
+  ctest --test-dir "$dir" --output-on-failure -j "$JOBS" --timeout 600 "$@" 2>&1 | tee "$log" || true
+  tally "$log"
+  rm -f "$log"
+}
+
+mkdir -p "$ROOT/build"
+
+# 1. Release.
+configure_and_build "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo
+run_ctest "$ROOT/build/release" -LE hil
+
+# 2. Sanitizers.
+configure_and_build "$ROOT/build/sanitize" -DCMAKE_BUILD_TYPE=Debug -DATLAS_SANITIZE=ON \
+  -DATLAS_BENCHMARKS=OFF
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  run_ctest "$ROOT/build/sanitize" -LE hil
+
+# 3. Fuzzers: a short run of each (long runs are done by hand; see README).
+CC=clang CXX=clang++ configure_and_build "$ROOT/build/fuzz" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DATLAS_FUZZ=ON -DATLAS_BENCHMARKS=OFF
+shopt -s nullglob
+for fuzzer in "$ROOT"/build/fuzz/bin/*_fuzzer; do
+  name=$(basename "$fuzzer")
+  corpus=$(find "$ROOT" -path "$ROOT/build" -prune -o -type d -name "${name}_corpus" -print | head -n 1)
+  work=$(mktemp -d)
+  echo "== fuzz $name for ${FUZZ_SECONDS}s" >&2
+  if "$fuzzer" -max_total_time="$FUZZ_SECONDS" -print_final_stats=1 "$work" ${corpus:+"$corpus"} \
+      >"$work.log" 2>&1; then
+    passed=$((passed + 1))
+    grep -E 'stat::number_of_executed_units' "$work.log" >&2 || true
+  else
+    failed=$((failed + 1))
+    tail -n 40 "$work.log" >&2
+  fi
+  rm -rf "$work" "$work.log"
+done
+
+# 4. Hardware-in-loop tests in a private network namespace.
+if ctest --test-dir "$ROOT/build/release" -N -L hil | grep -q 'Total Tests: [1-9]'; then
+  hil_log=$(mktemp)
+  unshare -n bash -c '
+    set -e
+    ip link set lo up
+    ip link set lo multicast on
+    ip route add 224.0.0.0/4 dev lo
+    export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
+    ctest --test-dir "$1" --output-on-failure -j 1 --timeout 900 -L hil
+  ' hil "$ROOT/build/release" 2>&1 | tee "$hil_log" || true
+  tally "$hil_log"
+  rm -f "$hil_log"
+fi
+
+echo "total: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
