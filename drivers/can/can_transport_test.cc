@@ -1,0 +1,95 @@
+#include "drivers/can/can_transport.h"
+
+#include <gtest/gtest.h>
+#include <linux/can.h>
+#include <stdlib.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <string>
+
+namespace atlas {
+namespace {
+
+TEST(CanTransportTest, SocketCanOnAKernelWithoutCanSaysSoPlainly) {
+  auto t = MakeCanTransport("can0");
+  std::string err;
+  if (t->Open(&err)) GTEST_SKIP() << "this kernel has CAN and a can0 interface";
+  // This build machine's kernel has no CAN: socket() fails with EAFNOSUPPORT.
+  if (err.find("EAFNOSUPPORT") == std::string::npos)
+    GTEST_SKIP() << "kernel has CAN support; got: " << err;
+  EXPECT_NE(err.find("this kernel has no CAN support"), std::string::npos) << err;
+  EXPECT_NE(err.find("can0"), std::string::npos) << err;
+}
+
+TEST(CanTransportTest, ErrnoTextsForTheInterfaceProblems) {
+  EXPECT_NE(CanErrnoText("can0", ENODEV).find("no such interface (ENODEV)"), std::string::npos);
+  EXPECT_NE(CanErrnoText("can0", ENETDOWN).find("is down (ENETDOWN)"), std::string::npos);
+  EXPECT_NE(CanErrnoText("can0", ENETDOWN).find("ip link set can0 up"), std::string::npos);
+}
+
+TEST(CanTransportTest, FakeBusWithNobodyListening) {
+  auto t = MakeCanTransport("unix:/nonexistent/atlas_bus");
+  std::string err;
+  EXPECT_FALSE(t->Open(&err));
+  EXPECT_NE(err.find("nobody is listening"), std::string::npos) << err;
+  EXPECT_NE(err.find("unix:/nonexistent/atlas_bus"), std::string::npos) << err;
+}
+
+// A bare SOCK_SEQPACKET listener: frames arrive whole, odd-sized datagrams are rejected, and the
+// listener going away is kGone.
+TEST(CanTransportTest, FakeBusDatagrams) {
+  char dir[] = "/tmp/atlas_can_XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  const std::string path = std::string(dir) + "/bus";
+  const int srv = socket(AF_UNIX, SOCK_SEQPACKET, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  strcpy(addr.sun_path, path.c_str());
+  ASSERT_EQ(bind(srv, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)), 0);
+  ASSERT_EQ(listen(srv, 4), 0);
+
+  auto t = MakeCanTransport("unix:" + path);
+  std::string err;
+  ASSERT_TRUE(t->Open(&err)) << err;
+  const int peer = accept(srv, nullptr, nullptr);
+  ASSERT_GE(peer, 0);
+  EXPECT_EQ(t->Read(10).status, CanRead::kTimeout);
+
+  struct can_frame f{};
+  f.can_id = 0x311;
+  f.can_dlc = 8;
+  const uint8_t payload[8] = {0x00, 0x00, 0x03, 0xE8, 0xFF, 0xFF, 0xFF, 0xFE};
+  memcpy(f.data, payload, 8);
+  ASSERT_EQ(send(peer, &f, sizeof(f), 0), 16);
+  CanReadResult r = t->Read(500);
+  ASSERT_EQ(r.status, CanRead::kFrame) << r.error;
+  EXPECT_EQ(r.frame.id, 0x311u);
+  EXPECT_EQ(r.frame.dlc, 8);
+  EXPECT_EQ(memcmp(r.frame.data.data(), payload, 8), 0);
+
+  ASSERT_EQ(send(peer, payload, 5, 0), 5);
+  EXPECT_EQ(t->Read(500).status, CanRead::kBadFrame);
+  uint8_t big[40] = {};
+  ASSERT_EQ(send(peer, big, sizeof(big), 0), 40);
+  EXPECT_EQ(t->Read(500).status, CanRead::kBadFrame);
+
+  CanFrame out;
+  out.id = 0x221;
+  out.dlc = 8;
+  ASSERT_TRUE(t->Write(out, &err)) << err;
+  struct can_frame in{};
+  ASSERT_EQ(recv(peer, &in, sizeof(in), 0), 16);
+  EXPECT_EQ(in.can_id, 0x221u);
+
+  close(peer);
+  EXPECT_EQ(t->Read(500).status, CanRead::kGone);
+  close(srv);
+  unlink(path.c_str());
+  rmdir(dir);
+}
+
+}  // namespace
+}  // namespace atlas
