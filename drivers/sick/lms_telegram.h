@@ -1,0 +1,116 @@
+#pragma once
+// SICK LMS 2xx telegrams (shared/specs/devices.md, section 1): CRC16, framing and an
+// incremental stream decoder. Pure: bytes in, telegram views out; no file descriptors.
+//
+// Frame, both directions:
+//   STX(0x02) | ADDR | LEN lo | LEN hi | CMD | DATA ... | [STATUS, replies only] | CRC lo | CRC hi
+// LEN counts CMD + DATA (+ STATUS) and is at most 812. A telegram is a reply (it carries a
+// STATUS byte) when ADDR has bit 7 set (scanner -> host is 0x80). Before a reply the scanner
+// sends one ACK (0x06) or NAK (0x15) byte.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "drivers/framing/byte_window.h"
+
+namespace atlas::sick {
+
+inline constexpr uint8_t kStx = 0x02;
+inline constexpr uint8_t kAck = 0x06;
+inline constexpr uint8_t kNak = 0x15;
+inline constexpr uint8_t kHostAddress = 0x00;
+inline constexpr uint8_t kScannerAddress = 0x80;
+inline constexpr std::size_t kMaxLen = 812;    // LEN field maximum
+inline constexpr std::size_t kHeaderSize = 4;  // STX ADDR LEN(2)
+inline constexpr std::size_t kMaxTelegramSize = kHeaderSize + kMaxLen + 2;
+
+// The spec's CRC16 over `bytes` (every byte from STX to the last one before the CRC).
+uint16_t Crc16(std::span<const uint8_t> bytes);
+
+// One checked telegram. Spans point into the decoder's window (or the caller's buffer) and stay
+// valid until the next Feed() of the decoder that produced them.
+struct TelegramView {
+  uint8_t address = 0;
+  uint8_t command = 0;
+  std::span<const uint8_t> data;  // between CMD and STATUS (or CRC)
+  std::optional<uint8_t> status;  // replies only (ADDR bit 7 set and LEN >= 2)
+  std::span<const uint8_t> raw;   // the whole telegram, STX to CRC hi
+  bool is_reply() const { return (address & 0x80) != 0; }
+};
+
+// Whole telegram, CRC included. `status` must be given for replies (address bit 7 set) and
+// omitted for host commands. data.size() + 1 (+ 1) must not exceed kMaxLen (asserted).
+std::vector<uint8_t> EncodeTelegram(uint8_t address, uint8_t command, std::span<const uint8_t> data,
+                                    std::optional<uint8_t> status = std::nullopt);
+
+enum class TelegramParse { kOk, kTooShort, kNoStx, kBadLength, kBadCrc, kTrailingBytes };
+// Checks exactly one whole telegram in `bytes` (no ACK byte in front).
+TelegramParse ParseTelegram(std::span<const uint8_t> bytes, TelegramView* out);
+
+// What the stream decoder found: a checked telegram, or a lone ACK / NAK byte.
+enum class StreamEventKind { kTelegram, kAck, kNak };
+struct StreamEvent {
+  StreamEventKind kind = StreamEventKind::kTelegram;
+  TelegramView telegram;  // kTelegram only
+};
+
+// Counters of the stream decoder. Every byte fed is accounted exactly once:
+//   bytes_fed == telegram_bytes + acks + naks + garbage_bytes + buffered()
+// A rejected frame start (bad length or bad CRC) counts one event in bad_length / bad_crc,
+// and its STX byte counts as garbage; decoding resumes at the next byte, so a real telegram
+// hidden behind a false STX is still found.
+struct StreamCounters {
+  uint64_t bytes_fed = 0;
+  uint64_t telegrams = 0;
+  uint64_t telegram_bytes = 0;
+  uint64_t acks = 0;
+  uint64_t naks = 0;
+  uint64_t bad_crc = 0;
+  uint64_t bad_length = 0;  // LEN == 0, LEN > 812, or a reply too short for its STATUS
+  uint64_t garbage_bytes = 0;
+};
+
+// Incremental decoder over a byte stream cut at arbitrary places. Resynchronises on STX,
+// checks LEN <= 812 and the CRC. Memory is bounded by a fixed window.
+//
+//   decoder.FeedAll(bytes, [&](const StreamEvent& e) { ... });
+// or, without a callback:
+//   while (!bytes.empty()) {
+//     bytes = bytes.subspan(decoder.Feed(bytes));
+//     while (auto e = decoder.Next()) { ... }
+//   }
+class StreamDecoder {
+ public:
+  static constexpr std::size_t kWindow = 2 * kMaxTelegramSize;
+
+  // Takes as many bytes as fit in the window; returns how many (0 only when bytes is empty or
+  // the window is full, which Next() until nullopt resolves).
+  std::size_t Feed(std::span<const uint8_t> bytes);
+  // The next event, or nullopt if more bytes are needed. The event's spans stay valid until the
+  // next Feed().
+  std::optional<StreamEvent> Next();
+
+  template <typename OnEvent>
+  void FeedAll(std::span<const uint8_t> bytes, OnEvent&& on_event) {
+    while (!bytes.empty()) {
+      bytes = bytes.subspan(Feed(bytes));
+      while (auto e = Next()) on_event(*e);
+    }
+  }
+
+  // Bytes held back because they may start a telegram not yet complete.
+  std::size_t buffered() const { return window_.size(); }
+  const StreamCounters& counters() const { return counters_; }
+  // Drops buffered bytes (e.g. after the line was reopened at another rate); counts them as
+  // garbage.
+  void Reset();
+
+ private:
+  ByteWindow<kWindow> window_;
+  StreamCounters counters_;
+};
+
+}  // namespace atlas::sick
