@@ -54,28 +54,20 @@ PacketParse ParsePacket(std::span<const uint8_t> bytes, PacketView* out) {
   return PacketParse::kOk;
 }
 
-std::size_t StreamDecoder::Feed(std::span<const uint8_t> bytes) {
-  const std::size_t n = window_.Append(bytes);
-  counters_.bytes_fed += n;
-  return n;
-}
-
 std::optional<PacketView> StreamDecoder::Next() {
   while (window_.size() > 0) {
     const std::span<const uint8_t> b = window_.data();
     if (b[0] != kHeader0 || (b.size() >= 2 && b[1] != kHeader1)) {
       std::size_t skip = 1;
       while (skip < b.size() && b[skip] != kHeader0) ++skip;
-      counters_.garbage_bytes += skip;
-      window_.Consume(skip);
+      SkipGarbage(skip);
       continue;
     }
     if (b.size() < 3) return std::nullopt;
     const std::size_t count = b[2];
     if (count < kMinCount) {
       ++counters_.bad_count;
-      counters_.garbage_bytes += 2;
-      window_.Consume(2);
+      SkipGarbage(2);
       continue;
     }
     const std::size_t total = 3 + count;
@@ -83,8 +75,7 @@ std::optional<PacketView> StreamDecoder::Next() {
     const std::span<const uint8_t> whole = b.first(total);
     if (!ChecksumMatches(whole)) {
       ++counters_.bad_checksum;
-      counters_.garbage_bytes += 2;
-      window_.Consume(2);
+      SkipGarbage(2);
       continue;
     }
     ++counters_.packets;
@@ -93,11 +84,6 @@ std::optional<PacketView> StreamDecoder::Next() {
     return ViewOf(whole);
   }
   return std::nullopt;
-}
-
-void StreamDecoder::Reset() {
-  counters_.garbage_bytes += window_.size();
-  window_.Clear();
 }
 
 }  // namespace atlas::p2os

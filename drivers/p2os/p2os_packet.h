@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "drivers/framing/byte_window.h"
+#include "drivers/framing/framed_stream_decoder.h"
 
 namespace atlas::p2os {
 
@@ -51,31 +51,14 @@ struct StreamCounters {
 };
 
 // Incremental decoder over a byte stream cut at arbitrary places; resynchronises on FA FB.
+// Memory is bounded by a fixed window. From the base: Feed(bytes) -> bytes taken,
+// FeedAll(bytes, on_packet), buffered(), counters(), Reset().
 //   decoder.FeedAll(bytes, [&](const PacketView& p) { ... });
-class StreamDecoder {
+class StreamDecoder
+    : public FramedStreamDecoder<StreamDecoder, StreamCounters, 2 * kMaxPacketSize> {
  public:
-  static constexpr std::size_t kWindow = 2 * kMaxPacketSize;
-
-  // Takes as many bytes as fit in the window; returns how many.
-  std::size_t Feed(std::span<const uint8_t> bytes);
   // The next checked packet, or nullopt when more bytes are needed. Spans valid until Feed().
   std::optional<PacketView> Next();
-
-  template <typename OnPacket>
-  void FeedAll(std::span<const uint8_t> bytes, OnPacket&& on_packet) {
-    while (!bytes.empty()) {
-      bytes = bytes.subspan(Feed(bytes));
-      while (auto p = Next()) on_packet(*p);
-    }
-  }
-
-  std::size_t buffered() const { return window_.size(); }
-  const StreamCounters& counters() const { return counters_; }
-  void Reset();  // drops buffered bytes, counted as garbage
-
- private:
-  ByteWindow<kWindow> window_;
-  StreamCounters counters_;
 };
 
 }  // namespace atlas::p2os

@@ -88,12 +88,6 @@ TelegramParse ParseTelegram(std::span<const uint8_t> bytes, TelegramView* out) {
   return TelegramParse::kOk;
 }
 
-std::size_t StreamDecoder::Feed(std::span<const uint8_t> bytes) {
-  const std::size_t n = window_.Append(bytes);
-  counters_.bytes_fed += n;
-  return n;
-}
-
 std::optional<StreamEvent> StreamDecoder::Next() {
   while (window_.size() > 0) {
     const std::span<const uint8_t> b = window_.data();
@@ -107,16 +101,14 @@ std::optional<StreamEvent> StreamDecoder::Next() {
     if (b[0] != kStx) {
       std::size_t skip = 1;
       while (skip < b.size() && b[skip] != kStx && b[skip] != kAck && b[skip] != kNak) ++skip;
-      counters_.garbage_bytes += skip;
-      window_.Consume(skip);
+      SkipGarbage(skip);
       continue;
     }
     if (b.size() < kHeaderSize) return std::nullopt;
     const std::size_t len = LenField(b);
     if (!LenValid(b[1], len)) {
       ++counters_.bad_length;
-      ++counters_.garbage_bytes;
-      window_.Consume(1);
+      SkipGarbage(1);
       continue;
     }
     const std::size_t total = kHeaderSize + len + 2;
@@ -124,8 +116,7 @@ std::optional<StreamEvent> StreamDecoder::Next() {
     const std::span<const uint8_t> whole = b.first(total);
     if (!CrcMatches(whole)) {
       ++counters_.bad_crc;
-      ++counters_.garbage_bytes;
-      window_.Consume(1);
+      SkipGarbage(1);
       continue;
     }
     StreamEvent e;
@@ -137,11 +128,6 @@ std::optional<StreamEvent> StreamDecoder::Next() {
     return e;
   }
   return std::nullopt;
-}
-
-void StreamDecoder::Reset() {
-  counters_.garbage_bytes += window_.size();
-  window_.Clear();
 }
 
 }  // namespace atlas::sick

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "drivers/framing/byte_window.h"
+#include "drivers/framing/framed_stream_decoder.h"
 
 namespace atlas::sick {
 
@@ -74,7 +74,8 @@ struct StreamCounters {
 };
 
 // Incremental decoder over a byte stream cut at arbitrary places. Resynchronises on STX,
-// checks LEN <= 812 and the CRC. Memory is bounded by a fixed window.
+// checks LEN <= 812 and the CRC. Memory is bounded by a fixed window. From the base:
+// Feed(bytes) -> bytes taken, FeedAll(bytes, on_event), buffered(), counters(), Reset().
 //
 //   decoder.FeedAll(bytes, [&](const StreamEvent& e) { ... });
 // or, without a callback:
@@ -82,35 +83,12 @@ struct StreamCounters {
 //     bytes = bytes.subspan(decoder.Feed(bytes));
 //     while (auto e = decoder.Next()) { ... }
 //   }
-class StreamDecoder {
+class StreamDecoder
+    : public FramedStreamDecoder<StreamDecoder, StreamCounters, 2 * kMaxTelegramSize> {
  public:
-  static constexpr std::size_t kWindow = 2 * kMaxTelegramSize;
-
-  // Takes as many bytes as fit in the window; returns how many (0 only when bytes is empty or
-  // the window is full, which Next() until nullopt resolves).
-  std::size_t Feed(std::span<const uint8_t> bytes);
   // The next event, or nullopt if more bytes are needed. The event's spans stay valid until the
   // next Feed().
   std::optional<StreamEvent> Next();
-
-  template <typename OnEvent>
-  void FeedAll(std::span<const uint8_t> bytes, OnEvent&& on_event) {
-    while (!bytes.empty()) {
-      bytes = bytes.subspan(Feed(bytes));
-      while (auto e = Next()) on_event(*e);
-    }
-  }
-
-  // Bytes held back because they may start a telegram not yet complete.
-  std::size_t buffered() const { return window_.size(); }
-  const StreamCounters& counters() const { return counters_; }
-  // Drops buffered bytes (e.g. after the line was reopened at another rate); counts them as
-  // garbage.
-  void Reset();
-
- private:
-  ByteWindow<kWindow> window_;
-  StreamCounters counters_;
 };
 
 }  // namespace atlas::sick
