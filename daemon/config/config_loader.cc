@@ -1,0 +1,472 @@
+#include "daemon/config/config_loader.h"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <fstream>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include "daemon/config/config_schema.h"
+
+namespace atlas {
+namespace {
+
+std::string Join(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+template <typename T>
+std::string FormatNumber(T v) {
+  if constexpr (std::is_integral_v<T>) {
+    return std::to_string(v);
+  } else {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+}
+
+std::string TypeName(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
+  }
+}
+
+// The value checks shared by the file reader and Validate(); empty string = acceptable.
+template <typename T>
+std::string RangeProblem(T v, T lo, T hi) {
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(v)) return "must be a finite number, got " + FormatNumber(v);
+  }
+  if (v < lo || v > hi) {
+    return "must be between " + FormatNumber(lo) + " and " + FormatNumber(hi) + ", got " +
+           FormatNumber(v);
+  }
+  return "";
+}
+
+template <typename T, typename List>
+std::string OneOfProblem(T v, const List& allowed) {
+  std::string list;
+  for (T a : allowed) {
+    if (std::fabs(static_cast<double>(v) - static_cast<double>(a)) < 1e-9) return "";
+    list += (list.empty() ? "" : ", ") + FormatNumber(a);
+  }
+  return "must be one of " + list + ", got " + FormatNumber(v);
+}
+
+template <typename E, size_t N>
+std::string EnumNameList(const config::EnumNames<E, N>& names) {
+  std::string list;
+  for (const auto& [name, value] : names) {
+    list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+  }
+  return list;
+}
+
+// Visits the schema against a parsed TOML document, filling DaemonOptions and errors.
+class TomlReader {
+ public:
+  TomlReader(const toml::table& root, std::string file, std::vector<ConfigError>* errors)
+      : file_(std::move(file)), errors_(errors) {
+    frames_.push_back(Frame{&root, "", {}});
+  }
+
+  // Reports the unknown keys of the top level; call after VisitOptions().
+  void Finish() { ReportUnknown(frames_.front()); }
+
+  template <typename F>
+  void Section(const char* name, F body) {
+    const toml::node* n = Take(name);
+    if (n == nullptr) return;
+    if (!n->is_table()) {
+      Error(name, n->source(), "expected a table of keys, got " + TypeName(*n));
+      return;
+    }
+    frames_.push_back(Frame{n->as_table(), Join(frames_.back().prefix, name), {}});
+    body();
+    ReportUnknown(frames_.back());
+    frames_.pop_back();
+  }
+
+  void Bool(const char* key, bool& v) {
+    if (const toml::node* n = TakeOfType(key, toml::node_type::boolean, "a boolean")) {
+      v = n->as_boolean()->get();
+    }
+  }
+
+  void Int(const char* key, int& v, int lo, int hi) {
+    int64_t x;
+    if (const toml::node* n = TakeInt(key, &x)) {
+      if (Check(key, *n, RangeProblem<int64_t>(x, lo, hi))) v = static_cast<int>(x);
+    }
+  }
+
+  void IntOneOf(const char* key, int& v, std::initializer_list<int> allowed) {
+    int64_t x;
+    if (const toml::node* n = TakeInt(key, &x)) {
+      if (Check(key, *n, OneOfProblem<int64_t>(x, allowed))) {
+        v = static_cast<int>(x);
+      }
+    }
+  }
+
+  void Double(const char* key, double& v, double lo, double hi) {
+    double x;
+    if (const toml::node* n = TakeDouble(key, &x)) {
+      if (Check(key, *n, RangeProblem(x, lo, hi))) v = x;
+    }
+  }
+
+  void DoubleOneOf(const char* key, double& v, std::initializer_list<double> allowed) {
+    double x;
+    if (const toml::node* n = TakeDouble(key, &x)) {
+      if (Check(key, *n, OneOfProblem(x, allowed))) v = x;
+    }
+  }
+
+  void String(const char* key, std::string& v, config::StringCheck check) {
+    if (const toml::node* n = TakeOfType(key, toml::node_type::string, "a string")) {
+      const std::string& s = n->as_string()->get();
+      if (Check(key, *n, check(s))) v = s;
+    }
+  }
+
+  template <typename E, size_t N>
+  void Enum(const char* key, E& v, const config::EnumNames<E, N>& names) {
+    const toml::node* n = TakeOfType(key, toml::node_type::string, "a string");
+    if (n == nullptr) return;
+    const std::string& s = n->as_string()->get();
+    for (const auto& [name, value] : names) {
+      if (s == name) {
+        v = value;
+        return;
+      }
+    }
+    Error(key, n->source(), "must be one of " + EnumNameList(names) + ", got \"" + s + "\"");
+  }
+
+  void IntList(const char* key, std::vector<int>& v, int lo, int hi, size_t max_size) {
+    const toml::node* n = TakeOfType(key, toml::node_type::array, "an array of integers");
+    if (n == nullptr) return;
+    const toml::array& a = *n->as_array();
+    if (a.size() > max_size) {
+      Error(key, n->source(), "must have at most " + std::to_string(max_size) + " elements");
+      return;
+    }
+    std::vector<int> out;
+    bool good = true;
+    for (size_t i = 0; i < a.size(); ++i) {
+      const std::string element = std::string(key) + "[" + std::to_string(i) + "]";
+      if (!a[i].is_integer()) {
+        Error(element, a[i].source(), "expected an integer, got " + TypeName(a[i]));
+        good = false;
+        continue;
+      }
+      const int64_t x = a[i].as_integer()->get();
+      const std::string problem = RangeProblem<int64_t>(x, lo, hi);
+      if (!problem.empty()) {
+        Error(element, a[i].source(), problem);
+        good = false;
+        continue;
+      }
+      out.push_back(static_cast<int>(x));
+    }
+    if (good) v = std::move(out);
+  }
+
+  void Error(const std::string& key, const toml::source_region& where, const std::string& message) {
+    errors_->push_back(ConfigError{file_, static_cast<int>(where.begin.line),
+                                   static_cast<int>(where.begin.column),
+                                   Join(frames_.back().prefix, key), message});
+  }
+
+ private:
+  struct Frame {
+    const toml::table* table;
+    std::string prefix;
+    std::set<std::string> taken;
+  };
+
+  const toml::node* Take(const char* key) {
+    Frame& f = frames_.back();
+    f.taken.insert(key);
+    return f.table->get(key);
+  }
+
+  const toml::node* TakeOfType(const char* key, toml::node_type type, const char* expected) {
+    const toml::node* n = Take(key);
+    if (n == nullptr) return nullptr;
+    if (n->type() != type) {
+      Error(key, n->source(), std::string("expected ") + expected + ", got " + TypeName(*n));
+      return nullptr;
+    }
+    return n;
+  }
+
+  const toml::node* TakeInt(const char* key, int64_t* x) {
+    const toml::node* n = TakeOfType(key, toml::node_type::integer, "an integer");
+    if (n != nullptr) *x = n->as_integer()->get();
+    return n;
+  }
+
+  // Integers are accepted where a floating-point number is expected (track_width_m = 1).
+  const toml::node* TakeDouble(const char* key, double* x) {
+    const toml::node* n = Take(key);
+    if (n == nullptr) return nullptr;
+    if (n->is_floating_point()) {
+      *x = n->as_floating_point()->get();
+    } else if (n->is_integer()) {
+      *x = static_cast<double>(n->as_integer()->get());
+    } else {
+      Error(key, n->source(), "expected a number, got " + TypeName(*n));
+      return nullptr;
+    }
+    return n;
+  }
+
+  bool Check(const char* key, const toml::node& n, const std::string& problem) {
+    if (problem.empty()) return true;
+    Error(key, n.source(), problem);
+    return false;
+  }
+
+  void ReportUnknown(const Frame& f) {
+    for (const auto& [k, node] : *f.table) {
+      const std::string name(k.str());
+      if (f.taken.count(name) != 0) continue;
+      errors_->push_back(ConfigError{
+          file_, static_cast<int>(k.source().begin.line), static_cast<int>(k.source().begin.column),
+          Join(f.prefix, name), node.is_table() ? "unknown section" : "unknown key"});
+    }
+  }
+
+  std::string file_;
+  std::vector<ConfigError>* errors_;
+  std::vector<Frame> frames_;
+};
+
+// Visits the schema against values already in DaemonOptions (for Validate()).
+class ValueChecker {
+ public:
+  explicit ValueChecker(std::vector<std::string>* problems) : problems_(problems) {}
+
+  template <typename F>
+  void Section(const char* name, F body) {
+    const std::string saved = prefix_;
+    prefix_ = Join(prefix_, name);
+    body();
+    prefix_ = saved;
+  }
+  void Bool(const char*, bool&) {}
+  void Int(const char* key, int& v, int lo, int hi) { Note(key, RangeProblem(v, lo, hi)); }
+  void IntOneOf(const char* key, int& v, std::initializer_list<int> allowed) {
+    Note(key, OneOfProblem(v, allowed));
+  }
+  void Double(const char* key, double& v, double lo, double hi) {
+    Note(key, RangeProblem(v, lo, hi));
+  }
+  void DoubleOneOf(const char* key, double& v, std::initializer_list<double> allowed) {
+    Note(key, OneOfProblem(v, allowed));
+  }
+  void String(const char* key, std::string& v, config::StringCheck check) { Note(key, check(v)); }
+  template <typename E, size_t N>
+  void Enum(const char* key, E& v, const config::EnumNames<E, N>& names) {
+    for (const auto& entry : names) {
+      if (entry.second == v) return;
+    }
+    Note(key, "must be one of " + EnumNameList(names));
+  }
+  void IntList(const char* key, std::vector<int>& v, int lo, int hi, size_t max_size) {
+    if (v.size() > max_size)
+      Note(key, "must have at most " + std::to_string(max_size) + " elements");
+    for (int x : v) Note(key, RangeProblem(x, lo, hi));
+  }
+
+ private:
+  void Note(const char* key, const std::string& problem) {
+    if (!problem.empty()) problems_->push_back(Join(prefix_, key) + ": " + problem);
+  }
+
+  std::string prefix_;
+  std::vector<std::string>* problems_;
+};
+
+ConfigResult LoadFromTable(const toml::table& root, const std::string& file) {
+  ConfigResult result;
+  TomlReader reader(root, file, &result.errors);
+  config::VisitOptions(reader, result.options);
+  reader.Finish();
+  if (!result.ok()) return result;  // cross-field rules only make sense on valid fields
+  config::CrossCheck(result.options, [&](const std::string& key, const std::string& message) {
+    const toml::node_view<const toml::node> n = root.at_path(key);
+    const toml::source_region where = n ? n.node()->source() : toml::source_region{};
+    result.errors.push_back(ConfigError{file, static_cast<int>(where.begin.line),
+                                        static_cast<int>(where.begin.column), key, message});
+  });
+  return result;
+}
+
+}  // namespace
+
+namespace config {
+
+std::string CheckNonEmpty(const std::string& s) { return s.empty() ? "must not be empty" : ""; }
+
+std::string CheckDevicePath(const std::string& s) {
+  if (s.empty() || s[0] != '/') return "must be an absolute device path like /dev/ttyUSB0";
+  return "";
+}
+
+std::string CheckCanInterface(const std::string& s) {
+  if (s.rfind("unix:", 0) == 0) {
+    return s.size() > 5 && s[5] == '/' ? "" : "unix: must be followed by an absolute socket path";
+  }
+  // IFNAMSIZ is 16 with the terminating NUL.
+  if (s.empty() || s.size() > 15 || s.find_first_of("/ \t:") != std::string::npos) {
+    return "must be a CAN interface name like can0 (at most 15 characters) or unix:PATH, got \"" +
+           s + "\"";
+  }
+  return "";
+}
+
+std::string CheckLcmUrl(const std::string& s) {
+  for (const char* scheme : {"udpm://", "memq://", "file://", "tcpq://"}) {
+    if (s.rfind(scheme, 0) == 0) return "";
+  }
+  return "must be an LCM URL (udpm://, memq://, file:// or tcpq://), got \"" + s + "\"";
+}
+
+std::string CheckChannelName(const std::string& s) {
+  if (s.empty() || s.size() > 63) return "must have 1 to 63 characters";
+  for (char c : s) {
+    if (c <= ' ' || c > '~') return "must be printable ASCII without spaces, got \"" + s + "\"";
+  }
+  return "";
+}
+
+std::string CheckAbsolutePath(const std::string& s) {
+  return !s.empty() && s[0] == '/' ? "" : "must be an absolute path, got \"" + s + "\"";
+}
+
+void CrossCheck(const DaemonOptions& o,
+                const std::function<void(const std::string&, const std::string&)>& report) {
+  if (o.laser.angular_resolution_deg < 0.5 && o.laser.angular_range_deg != 100) {
+    report("laser.angular_resolution_deg", "0.25 degrees needs laser.angular_range_deg = 100");
+  }
+  if (o.laser.unit == LaserUnit::kMillimetre && o.laser.max_range_m > 8.191) {
+    report("laser.max_range_m", "with unit \"mm\" the scanner measures at most 8.191 m");
+  }
+  if (o.sonar.enabled && o.laser.enabled && o.sonar.device == o.laser.device) {
+    report("sonar.device", "is the same device as laser.device");
+  }
+  const bool realtime = o.scheduling.policy != SchedPolicy::kOther;
+  if (realtime && o.scheduling.priority < 1) {
+    report("scheduling.priority", "must be 1..99 with policy \"fifo\" or \"rr\"");
+  } else if (!realtime && o.scheduling.priority != 0) {
+    report("scheduling.priority", "must be 0 with policy \"other\"");
+  }
+  std::set<int> cpus;
+  for (int c : o.scheduling.cpu_affinity) {
+    if (!cpus.insert(c).second) {
+      report("scheduling.cpu_affinity", "lists CPU " + std::to_string(c) + " twice");
+    }
+  }
+  const LcmChannels& c = o.lcm.channels;
+  const std::pair<const char*, const std::string*> channels[] = {
+      {"pose", &c.pose},           {"local_map", &c.local_map},
+      {"graph", &c.graph},         {"hypotheses", &c.hypotheses},
+      {"health", &c.health},       {"raw_odometry", &c.raw_odometry},
+      {"raw_laser", &c.raw_laser}, {"raw_sonar", &c.raw_sonar}};
+  for (size_t i = 0; i < std::size(channels); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if (*channels[i].second == *channels[j].second) {
+        report(std::string("lcm.channels.") + channels[i].first,
+               "is the same channel as lcm.channels." + std::string(channels[j].first));
+      }
+    }
+  }
+}
+
+}  // namespace config
+
+std::string DaemonOptions::Validate() const {
+  std::vector<std::string> problems;
+  DaemonOptions copy = *this;  // the visitor takes mutable references; nothing is changed
+  ValueChecker checker(&problems);
+  config::VisitOptions(checker, copy);
+  config::CrossCheck(*this, [&](const std::string& key, const std::string& message) {
+    problems.push_back(key + ": " + message);
+  });
+  std::string out;
+  for (const std::string& p : problems) out += (out.empty() ? "" : "\n") + p;
+  return out;
+}
+
+std::string ConfigError::ToString() const {
+  std::string s = file;
+  if (line > 0) s += ":" + std::to_string(line) + ":" + std::to_string(column);
+  s += ": ";
+  if (!key.empty()) s += key + ": ";
+  return s + message;
+}
+
+ConfigResult LoadConfigString(std::string_view toml_text, const std::string& source_name) {
+  try {
+    const toml::table root = toml::parse(toml_text, source_name);
+    return LoadFromTable(root, source_name);
+  } catch (const toml::parse_error& e) {
+    ConfigResult result;
+    result.errors.push_back(ConfigError{source_name, static_cast<int>(e.source().begin.line),
+                                        static_cast<int>(e.source().begin.column), "",
+                                        "not valid TOML: " + std::string(e.description())});
+    return result;
+  }
+}
+
+ConfigResult LoadConfigFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    ConfigResult result;
+    result.errors.push_back(
+        ConfigError{path, 0, 0, "", "cannot open the configuration file (check the path)"});
+    return result;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return LoadConfigString(text.str(), path);
+}
+
+int CheckConfigCommand(const std::string& path, std::ostream& out, std::ostream& err) {
+  const ConfigResult r = LoadConfigFile(path);
+  if (!r.ok()) {
+    for (const ConfigError& e : r.errors) err << e.ToString() << "\n";
+    err << path << ": " << r.errors.size() << " error(s); see config/atlasd.toml for every key\n";
+    return kExitConfigError;
+  }
+  out << path << ": configuration is valid\n";
+  return 0;
+}
+
+}  // namespace atlas

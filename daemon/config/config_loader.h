@@ -1,0 +1,52 @@
+#pragma once
+// Reads atlasd's TOML configuration file into DaemonOptions.
+//
+// Contract:
+// - A key absent from the file keeps its default (daemon_options.h).
+// - Unknown keys or sections, wrong types, values out of range and broken cross-field rules are
+//   errors. Every error names the key (dotted: "laser.baud") and the file, line and column of
+//   the offending key or value. All errors are collected, not only the first.
+// - A file that is not valid TOML gives one error at the position the parser stopped.
+// - Never throws; options are meaningful only when errors is empty.
+//
+// `atlasd --check-config FILE` and `atlas-check-config FILE` call CheckConfigCommand(), which
+// exits 78 (EX_CONFIG from <sysexits.h>) on any error; systemd's RestartPreventExitStatus=78
+// then stops restarting a daemon whose configuration is broken.
+
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "daemon/config/daemon_options.h"
+
+namespace atlas {
+
+inline constexpr int kExitConfigError = 78;  // EX_CONFIG
+
+struct ConfigError {
+  std::string file;
+  int line = 0;  // 1-based; 0 when the error has no position (e.g. the file cannot be read)
+  int column = 0;
+  std::string key;  // dotted key, empty for file-level errors
+  std::string message;
+
+  // "FILE:LINE:COLUMN: KEY: MESSAGE" (parts without a value are left out).
+  std::string ToString() const;
+};
+
+struct ConfigResult {
+  DaemonOptions options;
+  std::vector<ConfigError> errors;
+  bool ok() const { return errors.empty(); }
+};
+
+ConfigResult LoadConfigFile(const std::string& path);
+// source_name is used as the file name in errors.
+ConfigResult LoadConfigString(std::string_view toml_text, const std::string& source_name);
+
+// Loads path; prints each error on err (one per line) and returns kExitConfigError, or prints
+// "PATH: configuration is valid" on out and returns 0.
+int CheckConfigCommand(const std::string& path, std::ostream& out, std::ostream& err);
+
+}  // namespace atlas

@@ -1,0 +1,285 @@
+#include "daemon/config/config_loader.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <toml++/toml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "daemon/config/config_schema.h"
+
+namespace atlas {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Lists every schema key with its value as text, so that two DaemonOptions can be compared and
+// the shipped file can be checked against the schema.
+class KeyDump {
+ public:
+  std::map<std::string, std::string> values;
+
+  template <typename F>
+  void Section(const char* name, F body) {
+    const std::string saved = prefix_;
+    prefix_ = Key(name);
+    body();
+    prefix_ = saved;
+  }
+  void Bool(const char* k, bool& v) { values[Key(k)] = v ? "true" : "false"; }
+  void Int(const char* k, int& v, int, int) { values[Key(k)] = std::to_string(v); }
+  void IntOneOf(const char* k, int& v, std::initializer_list<int>) {
+    values[Key(k)] = std::to_string(v);
+  }
+  void Double(const char* k, double& v, double, double) { values[Key(k)] = std::to_string(v); }
+  void DoubleOneOf(const char* k, double& v, std::initializer_list<double>) {
+    values[Key(k)] = std::to_string(v);
+  }
+  void String(const char* k, std::string& v, config::StringCheck) { values[Key(k)] = v; }
+  template <typename E, size_t N>
+  void Enum(const char* k, E& v, const config::EnumNames<E, N>&) {
+    values[Key(k)] = std::to_string(static_cast<int>(v));
+  }
+  void IntList(const char* k, std::vector<int>& v, int, int, size_t) {
+    std::string s;
+    for (int x : v) s += std::to_string(x) + ",";
+    values[Key(k)] = s;
+  }
+
+ private:
+  std::string Key(const char* k) const { return prefix_.empty() ? k : prefix_ + "." + k; }
+  std::string prefix_;
+};
+
+std::map<std::string, std::string> Dump(DaemonOptions o) {
+  KeyDump d;
+  config::VisitOptions(d, o);
+  return d.values;
+}
+
+std::vector<std::filesystem::path> ShippedConfigFiles() {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(ATLAS_SOURCE_DIR "/config")) {
+    if (e.path().extension() == ".toml") files.push_back(e.path());
+  }
+  return files;
+}
+
+// The single error of r, which must name key at line.
+void ExpectOneError(const ConfigResult& r, const std::string& key, int line,
+                    const std::string& message_part) {
+  ASSERT_EQ(r.errors.size(), 1u) << (r.errors.empty() ? "" : r.errors[0].ToString());
+  EXPECT_EQ(r.errors[0].key, key);
+  EXPECT_EQ(r.errors[0].line, line);
+  EXPECT_EQ(r.errors[0].file, "test.toml");
+  EXPECT_THAT(r.errors[0].message, HasSubstr(message_part));
+  EXPECT_THAT(r.errors[0].ToString(), HasSubstr("test.toml:" + std::to_string(line) + ":"));
+  EXPECT_THAT(r.errors[0].ToString(), HasSubstr(key));
+}
+
+TEST(ConfigLoader, EveryShippedFileIsValid) {
+  const auto files = ShippedConfigFiles();
+  ASSERT_FALSE(files.empty()) << "no config/*.toml found";
+  for (const auto& f : files) {
+    const ConfigResult r = LoadConfigFile(f.string());
+    for (const ConfigError& e : r.errors) ADD_FAILURE() << e.ToString();
+    EXPECT_EQ(r.options.Validate(), "") << f;
+  }
+}
+
+TEST(ConfigLoader, ShippedFileSetsEveryKeyToItsDefault) {
+  const std::string path = ATLAS_SOURCE_DIR "/config/atlasd.toml";
+  const toml::table root = toml::parse_file(path);
+  for (const auto& [key, value] : Dump(DaemonOptions{})) {
+    EXPECT_TRUE(root.at_path(key)) << key << " is not in " << path;
+  }
+  const ConfigResult r = LoadConfigFile(path);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(Dump(r.options), Dump(DaemonOptions{}))
+      << "config/atlasd.toml says it shows the defaults of daemon_options.h";
+}
+
+// Every key line of a shipped file sits in a block (no blank line) that starts with a comment.
+TEST(ConfigLoader, EveryShippedKeyIsCommented) {
+  for (const auto& f : ShippedConfigFiles()) {
+    std::ifstream in(f);
+    std::string line;
+    bool block_has_comment = false;
+    int n = 0;
+    while (std::getline(in, line)) {
+      ++n;
+      const size_t first = line.find_first_not_of(" \t");
+      if (first == std::string::npos) {
+        block_has_comment = false;
+      } else if (line[first] == '#') {
+        block_has_comment = true;
+      } else if (line[first] != '[') {
+        EXPECT_TRUE(block_has_comment) << f << ":" << n << ": key without a comment: " << line;
+      }
+    }
+  }
+}
+
+TEST(ConfigLoader, EmptyFileGivesDefaults) {
+  const ConfigResult r = LoadConfigString("", "test.toml");
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(Dump(r.options), Dump(DaemonOptions{}));
+}
+
+TEST(ConfigLoader, ReadsValues) {
+  const ConfigResult r = LoadConfigString(R"(
+[laser]
+baud = 38400
+angular_range_deg = 100
+angular_resolution_deg = 0.25
+unit = "cm"
+max_range_m = 30
+[laser.mount]
+theta_deg = 90
+[odometry]
+interface = "unix:/tmp/fakecan"
+track_width_m = 1
+[sonar]
+enabled = true
+ring = "b21_24"
+[lcm]
+republish_raw = true
+[lcm.channels]
+pose = "MY_POSE"
+[scheduling]
+policy = "fifo"
+priority = 40
+cpu_affinity = [1]
+mlockall = true
+)",
+                                          "test.toml");
+  for (const ConfigError& e : r.errors) ADD_FAILURE() << e.ToString();
+  const DaemonOptions& o = r.options;
+  EXPECT_EQ(o.laser.baud, 38400);
+  EXPECT_EQ(o.laser.angular_range_deg, 100);
+  EXPECT_DOUBLE_EQ(o.laser.angular_resolution_deg, 0.25);
+  EXPECT_EQ(o.laser.unit, LaserUnit::kCentimetre);
+  EXPECT_DOUBLE_EQ(o.laser.max_range_m, 30.0);
+  EXPECT_DOUBLE_EQ(o.laser.mount.theta_deg, 90.0);
+  EXPECT_DOUBLE_EQ(o.laser.mount.x_m, 0.1);  // default kept
+  EXPECT_EQ(o.odometry.interface, "unix:/tmp/fakecan");
+  EXPECT_DOUBLE_EQ(o.odometry.track_width_m, 1.0);  // an integer where a number is expected
+  EXPECT_TRUE(o.sonar.enabled);
+  EXPECT_EQ(o.sonar.ring, SonarRing::kB21_24);
+  EXPECT_TRUE(o.lcm.republish_raw);
+  EXPECT_EQ(o.lcm.channels.pose, "MY_POSE");
+  EXPECT_EQ(o.lcm.channels.health, "ATLAS_HEALTH");
+  EXPECT_EQ(o.scheduling.policy, SchedPolicy::kFifo);
+  EXPECT_EQ(o.scheduling.priority, 40);
+  EXPECT_EQ(o.scheduling.cpu_affinity, std::vector<int>{1});
+  EXPECT_TRUE(o.scheduling.mlockall);
+}
+
+TEST(ConfigLoader, UnknownKeyNamesKeyAndLine) {
+  ExpectOneError(LoadConfigString("[laser]\nbaud = 9600\nbuad = 9600\n", "test.toml"), "laser.buad",
+                 3, "unknown key");
+  ExpectOneError(LoadConfigString("\n\n[lasr]\nbaud = 9600\n", "test.toml"), "lasr", 3,
+                 "unknown section");
+  ExpectOneError(LoadConfigString("[lcm.channels]\n\nposes = \"X\"\n", "test.toml"),
+                 "lcm.channels.poses", 3, "unknown key");
+}
+
+TEST(ConfigLoader, WrongTypeNamesKeyAndLine) {
+  ExpectOneError(LoadConfigString("[odometry]\n\ntrack_width_m = \"wide\"\n", "test.toml"),
+                 "odometry.track_width_m", 3, "expected a number, got a string");
+  ExpectOneError(LoadConfigString("[atlas]\nmap_capacity = 2.5\n", "test.toml"),
+                 "atlas.map_capacity", 2, "expected an integer");
+  ExpectOneError(LoadConfigString("[sonar]\nenabled = 1\n", "test.toml"), "sonar.enabled", 2,
+                 "expected a boolean");
+  ExpectOneError(LoadConfigString("laser = 3\n", "test.toml"), "laser", 1, "expected a table");
+  ExpectOneError(LoadConfigString("[scheduling]\ncpu_affinity = [0, \"1\"]\n", "test.toml"),
+                 "scheduling.cpu_affinity[1]", 2, "expected an integer");
+}
+
+TEST(ConfigLoader, OutOfRangeNamesKeyAndLine) {
+  ExpectOneError(LoadConfigString("[atlas]\nquality_alpha = 1.5\n", "test.toml"),
+                 "atlas.quality_alpha", 2, "must be between 0 and 1, got 1.5");
+  ExpectOneError(LoadConfigString("[laser]\nbaud = 115200\n", "test.toml"), "laser.baud", 2,
+                 "must be one of 9600, 19200, 38400, 500000");
+  ExpectOneError(LoadConfigString("[laser]\nunit = \"inch\"\n", "test.toml"), "laser.unit", 2,
+                 "must be one of \"cm\", \"mm\"");
+  ExpectOneError(LoadConfigString("[atlas]\nmax_sigma_x = nan\n", "test.toml"), "atlas.max_sigma_x",
+                 2, "finite");
+  ExpectOneError(LoadConfigString("[odometry]\ninterface = \"can0/x\"\n", "test.toml"),
+                 "odometry.interface", 2, "CAN interface name");
+  ExpectOneError(LoadConfigString("[state]\ndirectory = \"var/lib\"\n", "test.toml"),
+                 "state.directory", 2, "absolute");
+  ExpectOneError(LoadConfigString("[atlas]\nmap_capacity = 99999999999\n", "test.toml"),
+                 "atlas.map_capacity", 2, "got 99999999999");
+}
+
+TEST(ConfigLoader, CrossFieldRulesNameKeyAndLine) {
+  ExpectOneError(LoadConfigString("[scheduling]\npolicy = \"fifo\"\npriority = 0\n", "test.toml"),
+                 "scheduling.priority", 3, "1..99");
+  ExpectOneError(LoadConfigString("[laser]\nangular_resolution_deg = 0.25\n", "test.toml"),
+                 "laser.angular_resolution_deg", 2, "angular_range_deg = 100");
+  ExpectOneError(LoadConfigString("[lcm.channels]\nraw_laser = \"ATLAS_POSE\"\n", "test.toml"),
+                 "lcm.channels.raw_laser", 2, "same channel as lcm.channels.pose");
+}
+
+TEST(ConfigLoader, CollectsEveryError) {
+  const ConfigResult r = LoadConfigString(R"([laser]
+baud = 1
+[atlas]
+quality_alpha = -1
+max_hypotheses = "many"
+[nonsense]
+x = 1
+)",
+                                          "test.toml");
+  ASSERT_EQ(r.errors.size(), 4u);
+  std::map<std::string, int> line_of;
+  for (const ConfigError& e : r.errors) line_of[e.key] = e.line;
+  EXPECT_EQ(line_of["laser.baud"], 2);
+  EXPECT_EQ(line_of["atlas.quality_alpha"], 4);
+  EXPECT_EQ(line_of["atlas.max_hypotheses"], 5);
+  EXPECT_EQ(line_of["nonsense"], 6);
+}
+
+TEST(ConfigLoader, InvalidTomlGivesThePosition) {
+  const ConfigResult r = LoadConfigString("[laser]\nbaud = = 3\n", "test.toml");
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].line, 2);
+  EXPECT_THAT(r.errors[0].message, HasSubstr("not valid TOML"));
+}
+
+TEST(ConfigLoader, MissingFileIsAnError) {
+  const ConfigResult r = LoadConfigFile("/nonexistent/atlasd.toml");
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_THAT(r.errors[0].ToString(), HasSubstr("/nonexistent/atlasd.toml: cannot open"));
+}
+
+TEST(ConfigLoader, ValidateChecksProgrammaticOptions) {
+  DaemonOptions o;
+  EXPECT_EQ(o.Validate(), "");
+  o.atlas.max_hypotheses = 0;
+  o.lcm.channels.graph = "has space";
+  const std::string v = o.Validate();
+  EXPECT_THAT(v, HasSubstr("atlas.max_hypotheses: must be between 1 and 64, got 0"));
+  EXPECT_THAT(v, HasSubstr("lcm.channels.graph: must be printable ASCII"));
+}
+
+TEST(ConfigLoader, CheckConfigCommandExits78AndNamesTheKey) {
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir());
+  const std::string bad = (dir / "atlas_bad_config.toml").string();
+  std::ofstream(bad) << "[loop]\nstep_budget_ms = 0\n";
+  std::ostringstream out, err;
+  EXPECT_EQ(CheckConfigCommand(bad, out, err), kExitConfigError);
+  EXPECT_EQ(kExitConfigError, 78);
+  EXPECT_THAT(err.str(), HasSubstr(bad + ":2:18: loop.step_budget_ms: must be between 0.1"));
+  std::ostringstream out2, err2;
+  EXPECT_EQ(CheckConfigCommand(ATLAS_SOURCE_DIR "/config/atlasd.toml", out2, err2), 0);
+  EXPECT_THAT(out2.str(), HasSubstr("configuration is valid"));
+  std::filesystem::remove(bad);
+}
+
+}  // namespace
+}  // namespace atlas

@@ -1,0 +1,152 @@
+#pragma once
+// Every option of atlasd, as read from one TOML file (config/atlasd.toml documents each key).
+//
+// One plain struct per module, all gathered in DaemonOptions. Defaults here are the defaults of
+// the daemon: a key absent from the file keeps its default. Units are in the field names
+// (_m metres, _deg degrees, _s seconds, _ms milliseconds); angles without a unit suffix are
+// radians. The modules that consume these (drivers, atlas, local maps, the loop) copy the fields
+// they need into their own options structs.
+//
+// The key of every field in the file is "<section>.<field>", e.g. laser.baud, laser.mount.x_m,
+// lcm.channels.pose; config_schema.h is the single list of keys, types and ranges.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace atlas {
+
+// A sensor's pose on the robot, in the robot (base) frame.
+struct MountPose {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double theta_deg = 0.0;
+};
+
+enum class LaserUnit { kCentimetre, kMillimetre };
+
+// SICK LMS-2xx on a serial line (specs/devices.md, section 1).
+struct LaserOptions {
+  bool enabled = true;
+  std::string device = "/dev/ttyUSB0";
+  int baud = 500000;                    // 9600, 19200, 38400 or 500000
+  int angular_range_deg = 180;          // 180 or 100
+  double angular_resolution_deg = 1.0;  // 1.0, 0.5 or 0.25 (0.25 only with 100 degrees)
+  LaserUnit unit = LaserUnit::kMillimetre;
+  double max_range_m = 8.0;
+  MountPose mount{0.1, 0.0, 0.0};
+  int queue_capacity = 8;  // scans between the reader thread and the loop
+};
+
+// AgileX base odometry on CAN (specs/devices.md, section 2).
+struct OdometryOptions {
+  // A SocketCAN interface name ("can0") or "unix:PATH" for the fake bus.
+  std::string interface = "can0";
+  double track_width_m = 0.58;
+  // A wheel-distance change faster than this is a counter discontinuity, not motion.
+  double max_speed_mps = 3.0;
+  int queue_capacity = 64;  // odometry samples between the reader thread and the loop
+};
+
+enum class SonarRing { kP3dx16, kB21_24 };
+
+// Pioneer P2OS sonar ring on a serial line (specs/devices.md, section 3).
+struct SonarOptions {
+  bool enabled = false;
+  std::string device = "/dev/ttyS0";
+  int baud = 9600;  // 9600, 19200, 38400, 57600 or 115200
+  SonarRing ring = SonarRing::kP3dx16;
+  double range_factor_mm = 1.0;  // millimetres per controller range unit
+  int queue_capacity = 32;
+};
+
+// Odometry error model: standard deviations that grow with the motion.
+struct OdometryNoiseOptions {
+  double translation_sigma_per_m = 0.05;  // metres of error per metre driven
+  double rotation_sigma_per_rad = 0.05;   // radians of error per radian turned
+  double rotation_sigma_per_m = 0.01;     // radians of heading error per metre driven
+};
+
+struct LaserNoiseOptions {
+  double range_sigma_m = 0.02;
+  double bearing_sigma_deg = 0.1;
+};
+
+struct NoiseOptions {
+  OdometryNoiseOptions odometry;
+  LaserNoiseOptions laser;
+};
+
+// The Atlas framework's parameters (paper, Sections I-A and III). Generic on purpose: the atlas
+// and local-map modules fill their own options structs from these fields.
+struct AtlasParameters {
+  int map_capacity = 30;              // features a local map may hold (map capacity, Section I-A)
+  int max_hypotheses = 8;             // juvenile + mature hypotheses alive at once
+  int probation_steps = 20;           // steps a juvenile hypothesis has to mature (Section III-E)
+  double quality_alpha = 0.5;         // alpha of the quality metric q, eq. 5
+  double max_sigma_x = 1.0;           // sigma_x of eq. 5, metres
+  double max_sigma_y = 1.0;           // sigma_y of eq. 5, metres
+  double max_sigma_theta = 0.35;      // sigma_theta of eq. 5, radians
+  int frames_examined_per_step = 4;   // work budget: map-frames tried for transitions per step
+  int match_candidates_per_step = 2;  // work budget: map-matching candidates per step
+};
+
+// LCM channel names (at most 63 characters, no whitespace, all different).
+struct LcmChannels {
+  std::string pose = "ATLAS_POSE";
+  std::string local_map = "ATLAS_LOCAL_MAP";
+  std::string graph = "ATLAS_GRAPH";
+  std::string hypotheses = "ATLAS_HYPOTHESES";
+  std::string health = "ATLAS_HEALTH";
+  std::string raw_odometry = "ATLAS_RAW_ODOMETRY";
+  std::string raw_laser = "ATLAS_RAW_LASER";
+  std::string raw_sonar = "ATLAS_RAW_SONAR";
+};
+
+struct LcmOptions {
+  // ttl=0 keeps the multicast on this host; set ttl=1 to reach the robot's LAN.
+  std::string url = "udpm://239.255.76.67:7667?ttl=0";
+  bool republish_raw = false;
+  double health_period_s = 1.0;
+  double graph_period_s = 1.0;
+  double local_map_period_s = 0.2;
+  LcmChannels channels;
+};
+
+struct LoopOptions {
+  double step_budget_ms = 10.0;  // fixed work budget of one atlas step
+  int max_pending_scans = 2;     // older scans are dropped (and counted) beyond this
+};
+
+struct StateOptions {
+  std::string directory = "/var/lib/atlasd";  // must be absolute
+  double save_period_s = 2.0;                 // snapshot batch period of the store writer
+  int writer_queue_capacity = 4;              // snapshot batches waiting for the writer
+};
+
+enum class SchedPolicy { kOther, kFifo, kRoundRobin };
+
+struct SchedulingOptions {
+  SchedPolicy policy = SchedPolicy::kOther;
+  int priority = 0;               // 0 for "other", 1..99 for "fifo" and "rr"
+  std::vector<int> cpu_affinity;  // empty: any CPU
+  bool mlockall = false;
+};
+
+struct DaemonOptions {
+  LaserOptions laser;
+  OdometryOptions odometry;
+  SonarOptions sonar;
+  NoiseOptions noise;
+  AtlasParameters atlas;
+  LcmOptions lcm;
+  LoopOptions loop;
+  StateOptions state;
+  SchedulingOptions scheduling;
+
+  // Empty when every field is in range and the fields agree with each other; otherwise one
+  // line per problem, each naming the key ("laser.baud: must be one of ...").
+  std::string Validate() const;
+};
+
+}  // namespace atlas
