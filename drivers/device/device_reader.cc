@@ -1,0 +1,109 @@
+#include "drivers/device/device_reader.h"
+
+#include <algorithm>
+
+namespace atlas {
+
+std::string ReconnectOptions::Validate() const {
+  if (initial_backoff <= Duration::zero()) return "reconnect: initial_backoff must be > 0";
+  if (max_backoff < initial_backoff) return "reconnect: max_backoff must be >= initial_backoff";
+  if (max_attempts < 0) return "reconnect: max_attempts must be >= 0";
+  if (stall_timeout <= Duration::zero()) return "reconnect: stall_timeout must be > 0";
+  if (reopen_after_silence < stall_timeout)
+    return "reconnect: reopen_after_silence must be >= stall_timeout";
+  return "";
+}
+
+Duration BackoffDelay(const ReconnectOptions& options, int failures) {
+  Duration d = options.initial_backoff;
+  for (int i = 1; i < failures && d < options.max_backoff; ++i) d *= 2;
+  return std::min(d, options.max_backoff);
+}
+
+DeviceReader::DeviceReader(std::string device, const ReconnectOptions& options)
+    : health_(std::move(device)), reconnect_(options) {}
+
+DeviceReader::~DeviceReader() { Stop(); }
+
+void DeviceReader::Start() {
+  if (thread_.joinable()) return;
+  stop_.store(false, std::memory_order_release);
+  thread_ = std::thread([this] { Loop(); });
+}
+
+void DeviceReader::Stop() {
+  {
+    std::lock_guard<std::mutex> lock(sleep_mutex_);
+    stop_.store(true, std::memory_order_release);
+  }
+  sleep_cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+DriverHealth DeviceReader::Health() const {
+  DriverHealth h = health_.Snapshot();
+  h.drops = QueueDrops();
+  return h;
+}
+
+bool DeviceReader::SleepFor(Duration d) {
+  std::unique_lock<std::mutex> lock(sleep_mutex_);
+  return !sleep_cv_.wait_for(lock, d, [this] { return Stopping(); });
+}
+
+bool DeviceReader::TrackSilence(bool got_data, Time now) {
+  if (got_data || last_data_ == Time{}) {
+    last_data_ = now;
+    if (stalled_) health_.SetState(DriverState::kRunning);
+    stalled_ = false;
+    return false;
+  }
+  const Duration silent = now - last_data_;
+  if (!stalled_ && silent >= reconnect_.stall_timeout) {
+    stalled_ = true;
+    health_.stalls.fetch_add(1, std::memory_order_relaxed);
+    health_.SetState(DriverState::kStalled);
+    health_.SetError("no data for " + std::to_string(ToSeconds(silent)).substr(0, 4) + " s");
+  }
+  return silent >= reconnect_.reopen_after_silence;
+}
+
+void DeviceReader::Loop() {
+  int failures = 0;
+  bool ever_connected = false;
+  while (!Stopping()) {
+    health_.SetState(ever_connected ? DriverState::kReconnecting : DriverState::kConnecting);
+    std::string error;
+    if (!Connect(&error)) {
+      Disconnect();
+      ++failures;
+      health_.connect_failures.fetch_add(1, std::memory_order_relaxed);
+      health_.SetError(error);
+      if (reconnect_.max_attempts > 0 && failures >= reconnect_.max_attempts) {
+        health_.SetState(DriverState::kFailed);
+        return;
+      }
+      if (!SleepFor(BackoffDelay(reconnect_, failures))) break;
+      continue;
+    }
+    if (ever_connected) health_.reconnects.fetch_add(1, std::memory_order_relaxed);
+    ever_connected = true;
+    failures = 0;
+    last_data_ = Time{};
+    stalled_ = false;
+    health_.SetState(DriverState::kRunning);
+    const SessionEnd end = ReadUntilGone(&error);
+    Disconnect();
+    if (end == SessionEnd::kStopped) break;
+    health_.disconnects.fetch_add(1, std::memory_order_relaxed);
+    health_.SetError(error);
+    health_.SetState(DriverState::kReconnecting);
+    // The first reopen is immediate only after a backoff step: a device that closes at once
+    // after every open must not make us spin.
+    ++failures;
+    if (!SleepFor(BackoffDelay(reconnect_, failures))) break;
+  }
+  health_.SetState(DriverState::kStopped);
+}
+
+}  // namespace atlas

@@ -1,0 +1,56 @@
+#pragma once
+// The AgileX odometry reader thread (shared/specs/devices.md, section 2): frames from a
+// CanTransport (SocketCAN "can0" or the fake bus "unix:PATH"), decoded by drivers/agilex,
+// 0x311 wheel distances integrated by WheelOdometryIntegrator (discontinuities skipped and
+// counted), each integrated step pushed as an OdometrySample stamped at arrival (the kernel's
+// SO_TIMESTAMP on SocketCAN). 0x211 system state and CAN error frames are reported in the
+// health, never fatal. A closed bus / ENETDOWN ends the session; the transport is reopened
+// with capped backoff. The integrator keeps its counters across a reconnect, so the pose goes
+// on where it was (a base reboot shows up as one discontinuity).
+
+#include <memory>
+#include <string>
+
+#include "core/common/sensor_types.h"
+#include "drivers/agilex/agilex_messages.h"
+#include "drivers/agilex/wheel_odometry.h"
+#include "drivers/can/can_transport.h"
+#include "drivers/device/device_reader.h"
+#include "drivers/queue/spsc_queue.h"
+
+namespace atlas {
+
+struct OdometryReaderOptions {
+  std::string interface_name = "can0";  // or "unix:PATH"
+  agilex::WheelOdometryOptions odometry;
+  size_t queue_capacity = 256;
+  ReconnectOptions reconnect;
+  std::string Validate() const;
+};
+
+class OdometryReader final : public DeviceReader {
+ public:
+  explicit OdometryReader(const OdometryReaderOptions& options);  // options must be valid
+  ~OdometryReader() override;
+
+  bool Pop(OdometrySample* sample) { return queue_.Pop(sample); }
+  SpscQueue<OdometrySample>& queue() { return queue_; }
+
+ protected:
+  bool Connect(std::string* error) override;
+  SessionEnd ReadUntilGone(std::string* error) override;
+  void Disconnect() override;
+  uint64_t QueueDrops() const override { return queue_.Dropped(); }
+
+ private:
+  void HandleFrame(const CanReadResult& r);
+
+  OdometryReaderOptions options_;
+  std::unique_ptr<CanTransport> transport_;
+  agilex::WheelOdometryIntegrator integrator_;
+  SpscQueue<OdometrySample> queue_;
+  agilex::SystemState last_system_{};
+  bool have_system_ = false;
+};
+
+}  // namespace atlas

@@ -1,0 +1,171 @@
+#include "drivers/device/sonar_reader.h"
+
+#include <algorithm>
+
+namespace atlas {
+
+std::string SonarReaderOptions::Validate() const {
+  if (device.empty()) return "sonar: device path is empty";
+  if (probe_rates.empty()) return "sonar " + device + ": probe_rates is empty";
+  for (int r : probe_rates)
+    if (!IsSupportedBaud(r)) return "sonar " + device + ": bad probe rate " + std::to_string(r);
+  if (std::string e = sonar.Validate(); !e.empty()) return "sonar " + device + ": " + e;
+  if (pulse_period <= Duration::zero() || pulse_period > std::chrono::seconds(1))
+    return "sonar " + device + ": pulse_period must be in (0, 1 s] (the controller's watchdog)";
+  if (reply_timeout <= Duration::zero() || truncation_gap <= Duration::zero())
+    return "sonar " + device + ": timeouts must be > 0";
+  if (queue_capacity == 0) return "sonar " + device + ": queue_capacity must be > 0";
+  return reconnect.Validate();
+}
+
+SonarReader::SonarReader(const SonarReaderOptions& options)
+    : DeviceReader("sonar " + options.device, options.reconnect),
+      options_(options),
+      queue_(options.queue_capacity) {}
+
+SonarReader::~SonarReader() { Stop(); }
+
+void SonarReader::Disconnect() { port_.Close(); }
+
+void SonarReader::SyncCounters() {
+  const p2os::StreamCounters& c = decoder_.counters();
+  health_.bytes.store(c.bytes_fed, std::memory_order_relaxed);
+  health_.bad_crc.store(c.bad_checksum, std::memory_order_relaxed);
+  health_.bad_length.store(c.bad_count, std::memory_order_relaxed);
+  health_.garbage_bytes.store(c.garbage_bytes, std::memory_order_relaxed);
+}
+
+bool SonarReader::Send(const std::vector<uint8_t>& packet, std::string* error) {
+  SerialResult w = port_.WriteAll(packet.data(), packet.size(), 500);
+  if (w.status != SerialIo::kData) {
+    *error = w.error;
+    return false;
+  }
+  return true;
+}
+
+template <typename Accept>
+bool SonarReader::Exchange(const std::vector<uint8_t>& packet, Accept&& accept,
+                           std::string* error) {
+  if (!Send(packet, error)) return false;
+  const Time deadline = Now() + options_.reply_timeout;
+  uint8_t buf[512];
+  bool done = false;
+  while (!done && !Stopping()) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Now());
+    if (left.count() <= 0) break;
+    SerialResult r = port_.Read(buf, sizeof(buf), static_cast<int>(left.count()));
+    if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
+      *error = r.error;
+      return false;
+    }
+    if (r.status != SerialIo::kData) continue;
+    decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), [&](const p2os::PacketView& p) {
+      if (!done && accept(p)) done = true;
+    });
+  }
+  SyncCounters();
+  if (!done) *error = "no reply";
+  return done;
+}
+
+bool SonarReader::Connect(std::string* error) {
+  const std::string who = "sonar " + options_.device;
+  decoder_.Reset();
+  bool synced = false;
+  for (int rate : options_.probe_rates) {
+    if (Stopping()) return false;
+    if (!port_.Open({options_.device, rate, true}, error)) return false;
+    std::string why;
+    if (Exchange(p2os::EncodeSync(0), [](const p2os::PacketView& p) { return p2os::SyncEcho(p) == 0; },
+                 &why)) {
+      synced = true;
+      break;
+    }
+    if (!port_.is_open()) {
+      *error = why;
+      return false;
+    }
+  }
+  if (!synced) {
+    std::string rates;
+    for (int r : options_.probe_rates) rates += (rates.empty() ? "" : ", ") + std::to_string(r);
+    *error = who + ": no SYNC0 echo at " + rates + " baud: is the controller on and connected?";
+    return false;
+  }
+  std::string why;
+  if (!Exchange(p2os::EncodeSync(1), [](const p2os::PacketView& p) { return p2os::SyncEcho(p) == 1; },
+                &why)) {
+    *error = who + ": SYNC1: " + why;
+    return false;
+  }
+  std::optional<p2os::RobotIdentity> id;
+  if (!Exchange(
+          p2os::EncodeSync(2),
+          [&](const p2os::PacketView& p) { return (id = p2os::DecodeSync2Reply(p)).has_value(); },
+          &why)) {
+    *error = who + ": SYNC2: " + why;
+    return false;
+  }
+  health_.SetDeviceStatus("robot " + id->name + " (" + id->robot_class + " " + id->subclass + ")");
+  if (!Send(p2os::EncodeOpen(), &why) || !Send(p2os::EncodeSonarOn(), &why)) {
+    *error = who + ": OPEN / sonar on: " + why;
+    return false;
+  }
+  last_pulse_ = Now();
+  return true;
+}
+
+void SonarReader::HandlePacket(const p2os::PacketView& p, Time stamp) {
+  if (!p2os::IsStandardSipType(p.payload[0])) return;  // SYNC echoes, other SIP types
+  if (p2os::DecodeStandardSip(p, &sip_) != p2os::SipDecode::kOk) {
+    health_.bad_messages.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  health_.CountMessage(stamp);
+  p2os::ToSonarReading(sip_, stamp, options_.sonar, &reading_);
+  if (reading_.returns.empty()) return;
+  queue_.Push(std::move(reading_));
+  health_.samples.fetch_add(1, std::memory_order_relaxed);
+  reading_ = SonarReading{};
+}
+
+DeviceReader::SessionEnd SonarReader::ReadUntilGone(std::string* error) {
+  uint8_t buf[2048];
+  const int gap_ms = static_cast<int>(std::max<int64_t>(
+      1, std::chrono::duration_cast<std::chrono::milliseconds>(options_.truncation_gap).count()));
+  while (!Stopping()) {
+    const Time before = Now();
+    if (before - last_pulse_ >= options_.pulse_period) {
+      if (!Send(p2os::EncodePulse(), error)) return SessionEnd::kGone;
+      pulses_.fetch_add(1, std::memory_order_relaxed);
+      last_pulse_ = before;
+    }
+    const int timeout = decoder_.buffered() > 0 ? gap_ms : 50;
+    SerialResult r = port_.Read(buf, sizeof(buf), timeout);
+    const Time now = Now();
+    if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
+      *error = r.error;
+      SyncCounters();
+      return SessionEnd::kGone;
+    }
+    if (r.status == SerialIo::kTimeout && decoder_.buffered() > 0) {
+      health_.truncated.fetch_add(1, std::memory_order_relaxed);
+      decoder_.Reset();
+    }
+    if (r.status == SerialIo::kData) {
+      decoder_.FeedAll(std::span<const uint8_t>(buf, r.n),
+                       [&](const p2os::PacketView& p) { HandlePacket(p, now); });
+    }
+    SyncCounters();
+    if (TrackSilence(r.status == SerialIo::kData, now)) {
+      *error = "sonar " + options_.device + ": silent for " +
+               std::to_string(ToSeconds(reconnect_.reopen_after_silence)).substr(0, 4) +
+               " s; handshaking again";
+      return SessionEnd::kGone;
+    }
+  }
+  return SessionEnd::kStopped;
+}
+
+}  // namespace atlas
