@@ -1,11 +1,15 @@
 #include <gtest/gtest.h>
-#include <lcm/lcm-cpp.hpp>
 
 #include <cmath>
+#include <lcm/lcm-cpp.hpp>
 #include <limits>
 #include <vector>
 
+#include "atlas/atlas_graph_t.hpp"
+#include "atlas/health_t.hpp"
+#include "atlas/hypotheses_t.hpp"
 #include "atlas/laser_scan_t.hpp"
+#include "atlas/local_map_t.hpp"
 #include "atlas/odometry_t.hpp"
 #include "atlas/pose_t.hpp"
 #include "atlas/sonar_t.hpp"
@@ -60,6 +64,132 @@ TEST(LcmTypes, PoseOdometrySonarRoundTrip) {
   const auto so = RoundTrip(s);
   ASSERT_EQ(so.num_returns, 2);
   EXPECT_EQ(so.transducer[1], 15);
+}
+
+TEST(LcmTypes, LocalMapRoundTrip) {
+  atlas::local_map_t m{};
+  m.utime = 99;
+  m.frame_id = 3;
+  m.capacity = 30;
+  m.robot_theta = -0.5;
+  for (int i = 0; i < 2; ++i) {
+    atlas::line_segment_t l{};
+    l.id = 10 + i;
+    l.rho = 1.0 + i;
+    l.alpha = -3.0 + i;
+    l.covariance[3] = 0.01 * (i + 1);
+    l.x1 = 4.5;
+    m.lines.push_back(l);
+  }
+  m.num_lines = 2;
+  const auto out = RoundTrip(m);
+  EXPECT_EQ(out.frame_id, 3);
+  EXPECT_DOUBLE_EQ(out.robot_theta, -0.5);
+  ASSERT_EQ(out.num_lines, 2);
+  EXPECT_EQ(out.lines[1].id, 11);
+  EXPECT_DOUBLE_EQ(out.lines[1].rho, 2.0);
+  EXPECT_DOUBLE_EQ(out.lines[1].alpha, -2.0);
+  EXPECT_DOUBLE_EQ(out.lines[1].covariance[3], 0.02);
+  EXPECT_DOUBLE_EQ(out.lines[0].x1, 4.5);
+}
+
+TEST(LcmTypes, AtlasGraphRoundTrip) {
+  atlas::atlas_graph_t g{};
+  g.step = 1234;
+  g.dominant_frame_id = 1;
+  for (int i = 0; i < 3; ++i) {
+    atlas::atlas_frame_t f{};
+    f.id = i;
+    f.num_features = 5 * i;
+    f.projected = i != 2;
+    f.x = i * 10.0;
+    g.frames.push_back(f);
+  }
+  g.num_frames = 3;
+  atlas::atlas_edge_t e{};
+  e.frame_from = 0;
+  e.frame_to = 1;
+  e.x = 9.5;
+  e.theta = 0.1;
+  e.covariance[8] = 0.003;
+  e.kind = atlas::atlas_edge_t::KIND_REFINED;
+  e.origin = atlas::atlas_edge_t::KIND_MAP_MATCH;
+  e.refinements = 4;
+  g.edges.push_back(e);
+  g.num_edges = 1;
+  const auto out = RoundTrip(g);
+  EXPECT_EQ(out.step, 1234);
+  EXPECT_EQ(out.dominant_frame_id, 1);
+  ASSERT_EQ(out.num_frames, 3);
+  EXPECT_EQ(out.frames[2].num_features, 10);
+  EXPECT_FALSE(out.frames[2].projected);
+  EXPECT_TRUE(out.frames[1].projected);
+  ASSERT_EQ(out.num_edges, 1);
+  EXPECT_EQ(out.edges[0].frame_to, 1);
+  EXPECT_DOUBLE_EQ(out.edges[0].covariance[8], 0.003);
+  EXPECT_EQ(out.edges[0].kind, 2);
+  EXPECT_EQ(out.edges[0].origin, 1);
+  EXPECT_EQ(out.edges[0].refinements, 4);
+}
+
+TEST(LcmTypes, HypothesesRoundTrip) {
+  atlas::hypotheses_t h{};
+  h.dominant_id = 17;
+  const int8_t states[] = {atlas::hypothesis_t::STATE_JUVENILE, atlas::hypothesis_t::STATE_DOMINANT,
+                           atlas::hypothesis_t::STATE_RETIRED};
+  for (int i = 0; i < 3; ++i) {
+    atlas::hypothesis_t x{};
+    x.id = 16 + i;
+    x.frame_id = i;
+    x.state = states[i];
+    x.q = 0.25 * i;
+    x.covariance[0] = 0.5;
+    h.hypotheses.push_back(x);
+  }
+  h.num_hypotheses = 3;
+  const auto out = RoundTrip(h);
+  EXPECT_EQ(out.dominant_id, 17);
+  ASSERT_EQ(out.num_hypotheses, 3);
+  EXPECT_EQ(out.hypotheses[1].state, 2);  // STATE_DOMINANT
+  EXPECT_EQ(out.hypotheses[2].state, 3);
+  EXPECT_DOUBLE_EQ(out.hypotheses[2].q, 0.5);
+  EXPECT_DOUBLE_EQ(out.hypotheses[0].covariance[0], 0.5);
+}
+
+TEST(LcmTypes, HealthRoundTrip) {
+  atlas::health_t h{};
+  h.steps = 5000;
+  h.period_steps = 75;
+  h.step_time_median_us = 420.5f;
+  h.step_time_p99_us = 1900.0f;
+  h.overruns = 2;
+  h.resident_memory_bytes = int64_t{3} << 30;
+  h.status = "ok: 12 frames";
+  atlas::driver_health_t laser{};
+  laser.name = "laser";
+  laser.device = "/dev/ttyUSB0";
+  laser.state = atlas::driver_health_t::STATE_RECONNECTING;
+  laser.queue_depth = 3;
+  laser.queue_capacity = 8;
+  laser.queue_drops = 1;
+  laser.bad_crc = 7;
+  laser.last_error = "read: device went away";
+  atlas::driver_health_t odometry{};
+  odometry.name = "odometry";
+  odometry.discontinuities = 1;
+  h.drivers = {laser, odometry};
+  h.num_drivers = 2;
+  const auto out = RoundTrip(h);
+  EXPECT_EQ(out.steps, 5000);
+  EXPECT_FLOAT_EQ(out.step_time_p99_us, 1900.0f);
+  EXPECT_EQ(out.resident_memory_bytes, int64_t{3} << 30);
+  EXPECT_EQ(out.status, "ok: 12 frames");
+  ASSERT_EQ(out.num_drivers, 2);
+  EXPECT_EQ(out.drivers[0].state, 4);
+  EXPECT_EQ(out.drivers[0].bad_crc, 7);
+  EXPECT_EQ(out.drivers[0].last_error, "read: device went away");
+  EXPECT_EQ(out.drivers[1].name, "odometry");
+  EXPECT_EQ(out.drivers[1].discontinuities, 1);
 }
 
 TEST(LcmTypes, PublishAndReceiveInProcess) {
