@@ -1,0 +1,341 @@
+#include "daemon/store/atlas_store.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "daemon/store/atlas_store_writer.h"
+
+namespace atlas {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// A fresh directory per test, removed afterwards.
+class StoreDir : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(testing::TempDir()) /
+           ("atlas_store_" + std::to_string(getpid()) + "_" +
+            testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string db() const { return (dir_ / AtlasStore::kFileName).string(); }
+
+  fs::path dir_;
+};
+
+// A byte image with NULs and every byte value, distinct per (id, version).
+std::string Blob(int id, int version) {
+  std::string s(200 + (id * 37 + version) % 900, '\0');
+  for (size_t i = 0; i < s.size(); ++i)
+    s[i] = static_cast<char>((i * 7 + id * 13 + version) & 0xff);
+  return s;
+}
+
+StoredEdge Edge(int from, int to, double x) {
+  StoredEdge e;
+  e.frame_from = from;
+  e.frame_to = to;
+  e.x = x;
+  e.y = -x / 2;
+  e.theta = 0.25;
+  for (int i = 0; i < 9; ++i) e.covariance[i] = 0.001 * (i + 1) + x;
+  e.kind = 2;
+  return e;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void SetSchemaVersion(const std::string& db, int version) {
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(db.c_str(), &raw), SQLITE_OK);
+  ASSERT_EQ(
+      sqlite3_exec(raw, ("UPDATE schema_version SET version = " + std::to_string(version)).c_str(),
+                   nullptr, nullptr, nullptr),
+      SQLITE_OK);
+  sqlite3_close(raw);
+}
+
+TEST_F(StoreDir, SaveLoadRoundTrip) {
+  {
+    AtlasStore store;
+    const StoreOpenResult r = store.Open(dir_.string());
+    ASSERT_EQ(r.status, StoreOpenStatus::kCreated) << r.message;
+    AtlasSnapshot first;
+    first.frames = {{0, Blob(0, 0), 0}, {1, Blob(1, 0), 0}};
+    first.edges = {Edge(0, 1, 3.5)};
+    first.metadata["next_frame_id"] = "2";
+    std::string error;
+    ASSERT_TRUE(store.Save(first, &error)) << error;
+    AtlasSnapshot second;
+    second.frames = {{1, Blob(1, 1), 0}, {2, Blob(2, 0), 0}};
+    second.edges = {Edge(1, 2, -1.0), Edge(0, 1, 4.0)};
+    ASSERT_TRUE(store.Save(second, &error)) << error;
+  }
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  ASSERT_EQ(r.status, StoreOpenStatus::kOpened) << r.message;
+  StoredAtlas atlas;
+  std::string error;
+  ASSERT_TRUE(store.Load(&atlas, &error)) << error;
+  ASSERT_EQ(atlas.frames.size(), 3u);
+  EXPECT_EQ(atlas.frames[0].blob, Blob(0, 0));
+  EXPECT_EQ(atlas.frames[1].blob, Blob(1, 1));  // updated by the second batch
+  EXPECT_EQ(atlas.frames[2].blob, Blob(2, 0));
+  EXPECT_GT(atlas.frames[2].updated_at, 1'600'000'000'000'000);  // Unix microseconds
+  ASSERT_EQ(atlas.edges.size(), 2u);
+  EXPECT_EQ(atlas.edges[0].frame_from, 0);
+  EXPECT_DOUBLE_EQ(atlas.edges[0].x, 4.0);  // replaced
+  EXPECT_DOUBLE_EQ(atlas.edges[0].y, -2.0);
+  EXPECT_EQ(atlas.edges[0].covariance, Edge(0, 1, 4.0).covariance);
+  EXPECT_EQ(atlas.edges[1].frame_to, 2);
+  EXPECT_EQ(atlas.edges[1].kind, 2);
+  EXPECT_EQ(atlas.metadata["next_frame_id"], "2");
+  EXPECT_EQ(atlas.metadata["batch_sequence"], "2");
+}
+
+TEST_F(StoreDir, NotADatabaseIsRefusedAndMovedAsideNeverOverwritten) {
+  fs::create_directories(dir_);
+  std::string garbage(5000, 'x');
+  garbage.replace(0, 20, "this is not sqlite!\n");
+  std::ofstream(db(), std::ios::binary) << garbage;
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  ASSERT_EQ(r.status, StoreOpenStatus::kMovedAsideCorrupt) << r.message;
+  EXPECT_THAT(r.message, HasSubstr("not an SQLite database"));
+  EXPECT_THAT(r.message, HasSubstr("moved it aside to " + r.moved_to));
+  EXPECT_THAT(r.moved_to, HasSubstr(db() + ".corrupt-"));
+  EXPECT_EQ(ReadFile(r.moved_to), garbage);  // untouched
+  // The store now works on a fresh, empty file.
+  StoredAtlas atlas;
+  std::string error;
+  ASSERT_TRUE(store.Load(&atlas, &error)) << error;
+  EXPECT_TRUE(atlas.frames.empty());
+  AtlasSnapshot b;
+  b.frames = {{0, Blob(0, 0), 0}};
+  EXPECT_TRUE(store.Save(b, &error)) << error;
+}
+
+TEST_F(StoreDir, DamagedPagesAreRefusedAndMovedAside) {
+  {
+    AtlasStore store;
+    ASSERT_TRUE(store.Open(dir_.string()).ok());
+    AtlasSnapshot b;
+    for (int i = 0; i < 200; ++i) b.frames.push_back({i, Blob(i, 0), 0});
+    std::string error;
+    ASSERT_TRUE(store.Save(b, &error)) << error;
+  }  // closing checkpoints the WAL into the main file
+  std::string bytes = ReadFile(db());
+  ASSERT_GT(bytes.size(), 16u * 4096);
+  for (size_t i = 2 * 4096; i < 12 * 4096; i += 4096) bytes.replace(i, 64, 64, '\x5a');
+  std::ofstream(db(), std::ios::binary | std::ios::trunc) << bytes;
+
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  ASSERT_EQ(r.status, StoreOpenStatus::kMovedAsideCorrupt) << r.message;
+  EXPECT_THAT(r.message, HasSubstr("refused the atlas store"));
+  EXPECT_EQ(ReadFile(r.moved_to), bytes);
+}
+
+TEST_F(StoreDir, NewerVersionIsRefusedAndMovedAside) {
+  {
+    AtlasStore store;
+    ASSERT_TRUE(store.Open(dir_.string()).ok());
+    AtlasSnapshot b;
+    b.frames = {{7, Blob(7, 0), 0}};
+    std::string error;
+    ASSERT_TRUE(store.Save(b, &error));
+  }
+  SetSchemaVersion(db(), AtlasStore::kSchemaVersion + 1);
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  ASSERT_EQ(r.status, StoreOpenStatus::kMovedAsideNewer) << r.message;
+  EXPECT_THAT(r.message, HasSubstr("written by a newer atlasd (schema version " +
+                                   std::to_string(AtlasStore::kSchemaVersion + 1)));
+  EXPECT_THAT(r.moved_to, HasSubstr(".newer-"));
+  StoredAtlas atlas;
+  std::string error;
+  ASSERT_TRUE(store.Load(&atlas, &error));
+  EXPECT_TRUE(atlas.frames.empty());
+  // The refused file still holds its atlas.
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(r.moved_to.c_str(), &raw), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(raw, "SELECT id FROM frames", -1, &st, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(st, 0), 7);
+  sqlite3_finalize(st);
+  sqlite3_close(raw);
+}
+
+TEST_F(StoreDir, ForeignDatabaseIsRefused) {
+  fs::create_directories(dir_);
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(db().c_str(), &raw), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(raw, "CREATE TABLE t (a)", nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(raw);
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  EXPECT_EQ(r.status, StoreOpenStatus::kMovedAsideCorrupt);
+  EXPECT_THAT(r.message, HasSubstr("not an atlasd store"));
+}
+
+TEST_F(StoreDir, UnusableDirectoryFailsWithAMessage) {
+  fs::create_directories(dir_);
+  std::ofstream(dir_ / "file") << "x";
+  AtlasStore store;
+  const StoreOpenResult r = store.Open((dir_ / "file" / "sub").string());
+  EXPECT_EQ(r.status, StoreOpenStatus::kFailed);
+  EXPECT_THAT(r.message, HasSubstr("cannot create the state directory"));
+  EXPECT_FALSE(store.is_open());
+}
+
+// Logical batch k (1, 2, ...) adds frame k, edge (k-1, k) and rewrites frame 0 and
+// metadata "last" to k. A consistent store after any crash holds exactly batches 1..last.
+AtlasSnapshot Batch(int k) {
+  AtlasSnapshot b;
+  b.frames = {{k, Blob(k, 0), 0}, {0, Blob(0, k), 0}};
+  b.edges = {Edge(k - 1, k, k)};
+  b.metadata["last"] = std::to_string(k);
+  return b;
+}
+
+void ExpectConsistentPrefix(const StoredAtlas& a, int last) {
+  ASSERT_EQ(a.frames.size(), static_cast<size_t>(last + 1));
+  EXPECT_EQ(a.frames[0].blob, Blob(0, last));
+  for (int k = 1; k <= last; ++k) {
+    ASSERT_EQ(a.frames[k].id, k);
+    ASSERT_EQ(a.frames[k].blob, Blob(k, 0)) << "frame " << k;
+  }
+  ASSERT_EQ(a.edges.size(), static_cast<size_t>(last));
+  for (int k = 1; k <= last; ++k) {
+    ASSERT_EQ(a.edges[k - 1].frame_to, k);
+    ASSERT_EQ(a.edges[k - 1].covariance, Edge(k - 1, k, k).covariance);
+  }
+}
+
+// Writes logical batches forever, directly or through the writer thread; never returns.
+[[noreturn]] void WriteUntilKilled(const std::string& dir, bool through_writer) {
+  AtlasStore store;
+  if (!store.Open(dir).ok()) _exit(2);
+  StoredAtlas a;
+  std::string error;
+  if (!store.Load(&a, &error)) _exit(3);
+  int k = a.metadata.count("last") ? std::stoi(a.metadata["last"]) : 0;
+  if (through_writer) {
+    AtlasStoreWriter writer(&store, 4);
+    writer.Start();
+    while (true) {
+      writer.Submit(Batch(++k));
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
+  while (true) {
+    if (!store.Save(Batch(++k), &error)) _exit(4);
+  }
+}
+
+TEST_F(StoreDir, SigkillAtRandomMomentsLeavesAConsistentPrefix) {
+  std::mt19937 rng(20261122);
+  std::uniform_int_distribution<int> delay_ms(15, 120);
+  int last = 0;
+  for (int round = 0; round < 10; ++round) {
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) WriteUntilKilled(dir_.string(), round % 2 == 1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    ASSERT_EQ(kill(child, SIGKILL), 0);
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status))
+        << "the writer exited by itself with status " << WEXITSTATUS(status);
+
+    AtlasStore store;
+    const StoreOpenResult r = store.Open(dir_.string());
+    // Open() ran integrity_check; kCreated only if the child was killed before it wrote.
+    ASSERT_TRUE(r.status == StoreOpenStatus::kOpened || r.status == StoreOpenStatus::kCreated)
+        << r.message;
+    StoredAtlas a;
+    std::string error;
+    ASSERT_TRUE(store.Load(&a, &error)) << error;
+    const int now = a.metadata.count("last") ? std::stoi(a.metadata["last"]) : 0;
+    EXPECT_GE(now, last) << "a committed batch was lost";
+    last = now;
+    ExpectConsistentPrefix(a, last);
+  }
+  EXPECT_GT(last, 20) << "the children wrote too little for the test to mean anything";
+  RecordProperty("batches_committed", last);
+}
+
+TEST_F(StoreDir, WriterSavesInOrderAndMergesWhenFull) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir_.string()).ok());
+  {
+    AtlasStoreWriter writer(&store, 3);
+    // Not started yet: the queue fills up, and the two oldest batches are merged.
+    int coalesced = 0;
+    for (int k = 1; k <= 6; ++k) {
+      coalesced += writer.Submit(Batch(k)) == SubmitResult::kCoalesced;
+    }
+    EXPECT_EQ(coalesced, 3);
+    StoreWriterStats s = writer.Stats();
+    EXPECT_EQ(s.queued, 3u);
+    EXPECT_EQ(s.coalesced, 3u);
+    writer.Start();
+    ASSERT_TRUE(writer.Flush(std::chrono::seconds(10)));
+    s = writer.Stats();
+    EXPECT_EQ(s.saved, 3u);
+    EXPECT_EQ(s.errors, 0u);
+    EXPECT_EQ(writer.Submit(Batch(7)), SubmitResult::kQueued);
+  }  // the destructor writes batch 7 before joining
+  StoredAtlas a;
+  std::string error;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  ExpectConsistentPrefix(a, 7);
+  EXPECT_EQ(a.metadata["batch_sequence"], "4");
+}
+
+TEST_F(StoreDir, WriterKeepsAFailedBatchAndCountsTheError) {
+  AtlasStore closed;  // never opened: every save fails
+  AtlasStoreWriter writer(&closed, 2, std::chrono::seconds(30));
+  writer.Start();
+  writer.Submit(Batch(1));
+  for (int i = 0; i < 500 && writer.Stats().errors == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  const StoreWriterStats s = writer.Stats();
+  EXPECT_EQ(s.errors, 1u);
+  EXPECT_EQ(s.saved, 0u);
+  EXPECT_EQ(s.queued, 1u);  // kept for a retry
+  EXPECT_THAT(s.last_error, HasSubstr("not open"));
+  const auto t0 = std::chrono::steady_clock::now();
+  writer.Stop();  // does not wait out the retry interval
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
+  EXPECT_EQ(writer.Submit(Batch(2)), SubmitResult::kStopped);
+}
+
+TEST(AtlasSnapshot, MergeLaterReplacesByKey) {
+  AtlasSnapshot a = Batch(1);
+  a.MergeLater(Batch(2));
+  ASSERT_EQ(a.frames.size(), 3u);  // frames 1, 0 (version 2), 2
+  EXPECT_EQ(a.frames[1].blob, Blob(0, 2));
+  EXPECT_EQ(a.edges.size(), 2u);
+  EXPECT_EQ(a.metadata["last"], "2");
+}
+
+}  // namespace
+}  // namespace atlas
