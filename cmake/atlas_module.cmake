@@ -45,10 +45,21 @@ function(atlas_module)
   if(fuzz_cc AND ATLAS_FUZZ)
     foreach(f ${fuzz_cc})
       get_filename_component(fname ${f} NAME_WE)
-      add_executable(${fname} ${f})
+      # The module's sources are compiled into the target so that they carry the fuzzer's
+      # coverage instrumentation and the sanitizers (the plain library has neither).
+      add_executable(${fname} ${f} ${lib_cc})
       target_compile_options(${fname} PRIVATE -fsanitize=fuzzer,address,undefined)
       target_link_options(${fname} PRIVATE -fsanitize=fuzzer,address,undefined)
-      target_link_libraries(${fname} PRIVATE ${M_NAME})
+      target_link_libraries(${fname} PRIVATE ${M_DEPS} Eigen3::Eigen)
+      # A short run over the seed corpus (fuzz_corpus/ beside the source, read only; new inputs
+      # go to the build tree) is part of ctest, label "fuzz".
+      if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/fuzz_corpus)
+        file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/${fname}_corpus)
+        add_test(NAME ${fname}_short
+                 COMMAND ${fname} -runs=20000 ${CMAKE_CURRENT_BINARY_DIR}/${fname}_corpus
+                         ${CMAKE_CURRENT_SOURCE_DIR}/fuzz_corpus)
+        set_tests_properties(${fname}_short PROPERTIES LABELS fuzz TIMEOUT 120)
+      endif()
     endforeach()
   endif()
 endfunction()
