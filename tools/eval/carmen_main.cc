@@ -1,0 +1,219 @@
+// atlas-carmen: inspects CARMEN logs with the atlasd reader: event counts, dead-reckoned and
+// reference trajectories, synthesised odometry for corrected logs. See --help.
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "drivers/carmen/carmen_log.h"
+#include "drivers/carmen/reference_odometry.h"
+#include "tools/eval/trajectory_files.h"
+
+namespace atlas::eval {
+namespace {
+
+constexpr const char* kHelp = R"(Usage: atlas-carmen [options] LOG...
+
+Reads CARMEN logs (plain or gzip) with the atlasd reader (FLASER, ROBOTLASER1, RAWLASER1..4,
+ODOM; other messages are counted and ignored).
+
+Modes (default --count):
+  --count              print the lines per message type and the events per type of each LOG
+  --dump-odometry      write the dead-reckoned trajectory (odometry pose at each scan) of one
+                       LOG as a trajectory file (docs/formats.md) to stdout, or to -o FILE
+  --dump-reference     write the reference trajectory (pose at each scan) of one corrected LOG
+
+Reading:
+  --corrected          a "corrected" log: the line order is the clock and the poses are the
+                       reference trajectory, not odometry (implied by --dump-reference)
+  --line-period S      seconds per line for the line-order clock (default 0.05)
+  --max-range M        ranges >= M metres are no-return (default: the line's own maximum, or
+                       80 m for FLASER; aces-corrected clamps at 50)
+  --skip-bad-lines     count malformed lines instead of stopping at the first
+
+Synthesised odometry (with --corrected and --dump-odometry):
+  --seed N             random seed (default 1)
+  --track-width M      nominal track width (default 0.4)
+  --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
+  --left-scale E       left wheel scale error (default 0.001)
+  --right-scale E      right wheel scale error (default -0.001)
+  --track-width-error E  relative track width error (default 0.005)
+
+Other:
+  -o FILE              output file for the dump modes (default stdout)
+  --json               --count as JSON lines, one object per LOG
+  -h, --help           this text
+
+Exit status: 0 done, 1 a log could not be read (message on stderr), 2 bad command line.
+)";
+
+int Usage(const std::string& what) {
+  std::fprintf(stderr, "atlas-carmen: %s\nTry 'atlas-carmen --help'.\n", what.c_str());
+  return 2;
+}
+
+bool ParseDouble(const char* s, double& out) {
+  char* end = nullptr;
+  out = std::strtod(s, &end);
+  return end != s && *end == '\0' && std::isfinite(out);
+}
+
+void PrintCounts(const std::string& path, const carmen::CarmenLog& log, bool json) {
+  if (json) {
+    std::string types;
+    for (const auto& [name, n] : log.lines_by_message) {
+      types += (types.empty() ? "" : ", ") + JsonString(name) + ": " + std::to_string(n);
+    }
+    std::printf(
+        "{\"log\": %s, \"lines\": %lld, \"lines_by_message\": {%s}, \"comment_or_blank\": %lld, "
+        "\"bad_lines\": %lld, \"laser_events\": %lld, \"odometry_events\": %lld, "
+        "\"reference_poses\": %zu, \"out_of_order_lines\": %lld, \"beams\": %lld, "
+        "\"no_return_beams\": %lld, \"largest_range\": %.3f, \"largest_range_count\": %lld}\n",
+        JsonString(path).c_str(), static_cast<long long>(log.lines), types.c_str(),
+        static_cast<long long>(log.comment_or_blank_lines), static_cast<long long>(log.bad_lines),
+        static_cast<long long>(log.laser_events), static_cast<long long>(log.odometry_events),
+        log.reference.size(), static_cast<long long>(log.out_of_order_lines),
+        static_cast<long long>(log.beams), static_cast<long long>(log.no_return_beams),
+        log.largest_range, static_cast<long long>(log.largest_range_count));
+    return;
+  }
+  std::printf("%s\n  lines %lld:", path.c_str(), static_cast<long long>(log.lines));
+  for (const auto& [name, n] : log.lines_by_message) {
+    std::printf(" %s %lld,", name.c_str(), static_cast<long long>(n));
+  }
+  std::printf(" comment/blank %lld, malformed %lld\n",
+              static_cast<long long>(log.comment_or_blank_lines),
+              static_cast<long long>(log.bad_lines));
+  std::printf("  events: laser %lld, odometry %lld; reference poses %zu; out-of-order lines %lld\n",
+              static_cast<long long>(log.laser_events), static_cast<long long>(log.odometry_events),
+              log.reference.size(), static_cast<long long>(log.out_of_order_lines));
+  if (!log.events.empty()) {
+    std::printf("  stamps %.6f .. %.6f s\n", ToSeconds(StampOf(log.events.front().event)),
+                ToSeconds(StampOf(log.events.back().event)));
+  }
+  std::printf("  beams %lld, no-return %lld; largest range %.2f m (%lld beams)\n",
+              static_cast<long long>(log.beams), static_cast<long long>(log.no_return_beams),
+              log.largest_range, static_cast<long long>(log.largest_range_count));
+  for (const std::string& r : log.bad_line_reasons) std::printf("  malformed: %s\n", r.c_str());
+}
+
+bool WriteOutput(const std::string& path, const std::string& text) {
+  std::FILE* f = path.empty() ? stdout : std::fopen(path.c_str(), "w");
+  if (f == nullptr) {
+    std::perror(("atlas-carmen: " + path).c_str());
+    return false;
+  }
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (!path.empty() && std::fclose(f) != 0) return false;
+  return ok;
+}
+
+int Main(int argc, char** argv) {
+  enum class Mode { kCount, kDumpOdometry, kDumpReference } mode = Mode::kCount;
+  carmen::CarmenLogOptions options;
+  WheelOdometryNoiseOptions noise;
+  uint64_t seed = 1;
+  bool corrected = false, json = false;
+  std::string output;
+  std::vector<std::string> logs;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "--count") {
+      mode = Mode::kCount;
+    } else if (a == "--dump-odometry") {
+      mode = Mode::kDumpOdometry;
+    } else if (a == "--dump-reference") {
+      mode = Mode::kDumpReference;
+      corrected = true;
+    } else if (a == "--corrected") {
+      corrected = true;
+    } else if (a == "--skip-bad-lines") {
+      options.skip_bad_lines = true;
+    } else if (a == "--json") {
+      json = true;
+    } else if (a == "-o") {
+      if (i + 1 >= argc) return Usage("-o needs a file name");
+      output = argv[++i];
+    } else if (a == "--line-period" || a == "--max-range" || a == "--seed" ||
+               a == "--track-width" || a == "--wheel-noise" || a == "--left-scale" ||
+               a == "--right-scale" || a == "--track-width-error") {
+      double d = 0.0;
+      if (i + 1 >= argc || !ParseDouble(argv[i + 1], d)) return Usage(a + " needs a number");
+      ++i;
+      if (a == "--line-period") options.line_period_s = d;
+      if (a == "--max-range") options.max_range_m = d;
+      if (a == "--seed") {
+        if (d < 0 || d != std::floor(d)) return Usage("--seed needs a non-negative integer");
+        seed = static_cast<uint64_t>(d);
+      }
+      if (a == "--track-width") noise.track_width_m = d;
+      if (a == "--wheel-noise") noise.wheel_noise_per_m = d;
+      if (a == "--left-scale") noise.left_scale_error = d;
+      if (a == "--right-scale") noise.right_scale_error = d;
+      if (a == "--track-width-error") noise.track_width_error = d;
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("unknown option " + a);
+    } else {
+      logs.push_back(a);
+    }
+  }
+  if (logs.empty()) return Usage("no LOG given");
+  if (mode != Mode::kCount && logs.size() != 1) return Usage("the dump modes take one LOG");
+  if (corrected) {
+    options.clock = carmen::Clock::kLineOrder;
+    options.reference_trajectory = true;
+  }
+  if (std::string bad = options.Validate(); !bad.empty()) return Usage(bad);
+  if (std::string bad = noise.Validate(); !bad.empty()) return Usage(bad);
+
+  int status = 0;
+  for (const std::string& path : logs) {
+    if (logs.size() > 1 || mode != Mode::kCount) {
+      std::fprintf(stderr, "atlas-carmen: reading %s ...\n", path.c_str());
+    }
+    carmen::CarmenReadResult r = carmen::ReadCarmenLog(path, options);
+    if (!r.ok()) {
+      std::fprintf(stderr, "atlas-carmen: %s\n", r.error.c_str());
+      status = 1;
+      continue;
+    }
+    if (mode == Mode::kCount) {
+      PrintCounts(path, r.log, json);
+    } else if (mode == Mode::kDumpReference) {
+      const TimedTrajectory t = ReferenceAtScans(r.log);
+      if (t.empty()) {
+        std::fprintf(stderr, "atlas-carmen: %s has no laser line with a pose\n", path.c_str());
+        return 1;
+      }
+      if (!WriteOutput(output, FormatTrajectory(
+                                   t, "reference trajectory of " + path + " (line-order clock)"))) {
+        return 1;
+      }
+    } else {
+      std::string comment = "dead reckoning of " + path;
+      TimedTrajectory t;
+      if (corrected) {
+        t = OdometryAtScans(carmen::EventsWithSynthesizedOdometry(r.log, noise, seed));
+        comment += " (odometry synthesised from the reference, seed " + std::to_string(seed) +
+                   ", line-order clock)";
+      } else {
+        t = OdometryAtScans(r.log.events);
+      }
+      if (t.empty()) {
+        std::fprintf(stderr, "atlas-carmen: %s: no scan has odometry around it\n", path.c_str());
+        return 1;
+      }
+      if (!WriteOutput(output, FormatTrajectory(t, comment))) return 1;
+    }
+  }
+  return status;
+}
+
+}  // namespace
+}  // namespace atlas::eval
+
+int main(int argc, char** argv) { return atlas::eval::Main(argc, argv); }

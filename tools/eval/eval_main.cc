@@ -1,0 +1,206 @@
+// atlas-eval: scores a trajectory against ground-truth relations (Freiburg SLAM benchmark) or
+// against a reference trajectory. See --help and docs/formats.md.
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "core/eval/reference_score.h"
+#include "core/eval/relations_metric.h"
+#include "tools/eval/trajectory_files.h"
+
+namespace atlas::eval {
+namespace {
+
+constexpr const char* kHelp = R"(Usage:
+  atlas-eval --relations RELATIONS TRAJECTORY         score against ground-truth relations
+  atlas-eval --reference REFERENCE TRAJECTORY         score against a reference trajectory
+  atlas-eval --relations RELATIONS --dead-reckon LOG  score a CARMEN log's dead reckoning
+
+TRAJECTORY and REFERENCE are trajectory files: one pose per line, "timestamp x y theta"
+(seconds, metres, radians), '#' comments; plain or gzip (docs/formats.md). RELATIONS is a
+Freiburg SLAM-benchmark relations file "t1 t2 x y z roll pitch yaw".
+
+Relations metric (Kuemmerle et al. 2009): for each relation, delta = P(t1) (-) P(t2),
+error = relation (-) delta; translational |error.xy| in m, rotational |error.yaw| in deg;
+mean +- standard deviation and the squared versions over the matched relations.
+Reference scoring: relative pose error over pose pairs a fixed distance (--segment) or a fixed
+number of poses (--step) apart, and absolute error after the best rigid alignment.
+
+Options:
+  --relations FILE     relations file to score against
+  --reference FILE     reference trajectory file to score against
+  --dead-reckon LOG    use the odometry of a CARMEN log (at each scan) as the trajectory
+  --tolerance S        stamp matching tolerance in seconds (default 0.001)
+  --segment M          reference scoring: RPE pairs M metres of travel apart (default 1.0)
+  --step N             reference scoring: RPE pairs N poses apart (instead of --segment)
+  --json               print a JSON object instead of text
+  -h, --help           this text
+
+Exit status: 0 scored, 1 bad input (message on stderr), 2 bad command line.
+)";
+
+int Usage(const std::string& what) {
+  std::fprintf(stderr, "atlas-eval: %s\nTry 'atlas-eval --help'.\n", what.c_str());
+  return 2;
+}
+
+bool ParseDouble(const char* s, double& out) {
+  char* end = nullptr;
+  out = std::strtod(s, &end);
+  return end != s && *end == '\0' && std::isfinite(out);
+}
+
+int Fail(const std::string& error) {
+  std::fprintf(stderr, "atlas-eval: %s\n", error.c_str());
+  return 1;
+}
+
+int Main(int argc, char** argv) {
+  std::string relations_path, reference_path, log_path, trajectory_path;
+  double tolerance_s = 0.001;
+  ReferenceScoreOptions ref_options;
+  bool json = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&](const char* name) -> const char* {
+      if (i + 1 >= argc) return nullptr;
+      (void)name;
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "--json") {
+      json = true;
+    } else if (a == "--relations" || a == "--reference" || a == "--dead-reckon" ||
+               a == "--tolerance" || a == "--segment" || a == "--step") {
+      const char* v = value(a.c_str());
+      if (v == nullptr) return Usage(a + " needs a value");
+      double d = 0.0;
+      if (a == "--relations") {
+        relations_path = v;
+      } else if (a == "--reference") {
+        reference_path = v;
+      } else if (a == "--dead-reckon") {
+        log_path = v;
+      } else if (!ParseDouble(v, d)) {
+        return Usage(a + " needs a number, got '" + v + "'");
+      } else if (a == "--tolerance") {
+        tolerance_s = d;
+      } else if (a == "--segment") {
+        ref_options.segment_length_m = d;
+        ref_options.step_count = 0;
+      } else {
+        if (d != std::floor(d) || d < 1 || d > 1e9) return Usage("--step needs a count >= 1");
+        ref_options.step_count = static_cast<int>(d);
+        ref_options.segment_length_m = 0.0;
+      }
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("unknown option " + a);
+    } else if (trajectory_path.empty()) {
+      trajectory_path = a;
+    } else {
+      return Usage("more than one trajectory given: " + trajectory_path + ", " + a);
+    }
+  }
+  if (relations_path.empty() == reference_path.empty()) {
+    return Usage("give exactly one of --relations and --reference");
+  }
+  if (trajectory_path.empty() == log_path.empty()) {
+    return Usage("give either a trajectory file or --dead-reckon LOG");
+  }
+  if (!(tolerance_s >= 0.0)) return Usage("--tolerance must be >= 0");
+  ref_options.match_tolerance = Duration(static_cast<int64_t>(tolerance_s * 1e9));
+  if (std::string bad = ref_options.Validate(); !bad.empty()) return Usage(bad);
+
+  // The estimate.
+  TimedTrajectory estimate;
+  std::string estimate_name;
+  if (!log_path.empty()) {
+    std::fprintf(stderr, "atlas-eval: reading %s ...\n", log_path.c_str());
+    carmen::CarmenReadResult r = carmen::ReadCarmenLog(log_path, {});
+    if (!r.ok()) return Fail(r.error);
+    estimate = OdometryAtScans(r.log.events);
+    estimate_name = "dead reckoning of " + log_path;
+  } else {
+    TextFile f = ReadTextFile(trajectory_path);
+    if (!f.error.empty()) return Fail(f.error);
+    TrajectoryParse p = ParseTrajectory(f.text, trajectory_path);
+    if (!p.error.empty()) return Fail(p.error);
+    estimate = std::move(p.trajectory);
+    estimate_name = trajectory_path;
+  }
+
+  if (!relations_path.empty()) {
+    TextFile f = ReadTextFile(relations_path);
+    if (!f.error.empty()) return Fail(f.error);
+    RelationsParse p = ParseRelations(f.text, relations_path);
+    if (!p.error.empty()) return Fail(p.error);
+    const RelationsScore s =
+        ScoreRelations(p.relations, BetweenPosesOf(estimate, ref_options.match_tolerance));
+    if (json) {
+      std::printf(
+          "{\"estimate\": %s, \"relations\": %s, \"poses\": %zu, \"matched\": %lld, "
+          "\"unmatched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s}\n",
+          JsonString(estimate_name).c_str(), JsonString(relations_path).c_str(), estimate.size(),
+          static_cast<long long>(s.matched), static_cast<long long>(s.unmatched),
+          StatsJson(s.translation_m).c_str(), StatsJson(s.rotation_deg).c_str());
+    } else {
+      std::printf("estimate:   %s (%zu poses)\nrelations:  %s\n", estimate_name.c_str(),
+                  estimate.size(), relations_path.c_str());
+      std::printf("matched %lld of %lld relations (%lld unmatched, tolerance %.4g s)\n",
+                  static_cast<long long>(s.matched),
+                  static_cast<long long>(s.matched + s.unmatched),
+                  static_cast<long long>(s.unmatched), tolerance_s);
+      std::fputs(FormatStats("translational", "m", s.translation_m).c_str(), stdout);
+      std::fputs(FormatStats("rotational", "deg", s.rotation_deg).c_str(), stdout);
+    }
+    return s.matched > 0 ? 0 : Fail("no relation matched the trajectory's stamps");
+  }
+
+  TextFile f = ReadTextFile(reference_path);
+  if (!f.error.empty()) return Fail(f.error);
+  TrajectoryParse p = ParseTrajectory(f.text, reference_path);
+  if (!p.error.empty()) return Fail(p.error);
+  const ReferenceScore s = ScoreAgainstReference(estimate, p.trajectory, ref_options);
+  char pairing[64];
+  if (ref_options.step_count > 0) {
+    std::snprintf(pairing, sizeof pairing, "%d poses", ref_options.step_count);
+  } else {
+    std::snprintf(pairing, sizeof pairing, "%.3g m", ref_options.segment_length_m);
+  }
+  if (json) {
+    std::printf(
+        "{\"estimate\": %s, \"reference\": %s, \"poses\": %zu, \"matched\": %lld, "
+        "\"unmatched\": %lld, \"rpe_pairing\": %s, \"rpe_pairs\": %lld, "
+        "\"rpe_translation_m\": %s, \"rpe_rotation_deg\": %s, \"ate_translation_m\": %s, "
+        "\"ate_rotation_deg\": %s, \"alignment\": [%.6g, %.6g, %.6g]}\n",
+        JsonString(estimate_name).c_str(), JsonString(reference_path).c_str(), estimate.size(),
+        static_cast<long long>(s.matched), static_cast<long long>(s.unmatched),
+        JsonString(pairing).c_str(), static_cast<long long>(s.pairs),
+        StatsJson(s.rpe_translation_m).c_str(), StatsJson(s.rpe_rotation_deg).c_str(),
+        StatsJson(s.ate_translation_m).c_str(), StatsJson(s.ate_rotation_deg).c_str(),
+        s.alignment.x, s.alignment.y, s.alignment.theta);
+  } else {
+    std::printf("estimate:   %s (%zu poses)\nreference:  %s (%zu poses)\n", estimate_name.c_str(),
+                estimate.size(), reference_path.c_str(), p.trajectory.size());
+    std::printf("matched %lld poses (%lld unmatched, tolerance %.4g s)\n",
+                static_cast<long long>(s.matched), static_cast<long long>(s.unmatched),
+                tolerance_s);
+    std::printf("relative pose error over %lld pairs %s apart:\n", static_cast<long long>(s.pairs),
+                pairing);
+    std::fputs(FormatStats("  translational", "m", s.rpe_translation_m).c_str(), stdout);
+    std::fputs(FormatStats("  rotational", "deg", s.rpe_rotation_deg).c_str(), stdout);
+    std::printf("absolute error after alignment (%.3f m, %.3f m, %.2f deg):\n", s.alignment.x,
+                s.alignment.y, s.alignment.theta * 180.0 / M_PI);
+    std::fputs(FormatStats("  translational", "m", s.ate_translation_m).c_str(), stdout);
+    std::fputs(FormatStats("  rotational", "deg", s.ate_rotation_deg).c_str(), stdout);
+  }
+  return s.matched > 0 ? 0 : Fail("no pose of the trajectory matched a reference stamp");
+}
+
+}  // namespace
+}  // namespace atlas::eval
+
+int main(int argc, char** argv) { return atlas::eval::Main(argc, argv); }

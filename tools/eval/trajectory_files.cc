@@ -1,0 +1,191 @@
+#include "tools/eval/trajectory_files.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace atlas::eval {
+namespace {
+
+// Splits a line into whitespace-separated numbers; false with `error` set on a bad field.
+bool ParseNumbers(std::string_view line, std::vector<double>& out, std::string& error) {
+  out.clear();
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    const size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+    if (i == start) break;
+    std::string_view w = line.substr(start, i - start);
+    if (w[0] == '+') w.remove_prefix(1);
+    double v = 0.0;
+    auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc() || ptr != w.data() + w.size() || !std::isfinite(v)) {
+      error = "field " + std::to_string(out.size() + 1) + " is '" +
+              std::string(line.substr(start, i - start)) + "', not a number";
+      return false;
+    }
+    out.push_back(v);
+  }
+  return true;
+}
+
+// Calls `row(line_number, numbers)` for every non-comment, non-blank line; stops at the first
+// error and returns "<source>:<line>: <what>".
+template <typename Row>
+std::string ForEachRow(std::string_view text, const std::string& source, size_t fields,
+                       const char* format, Row row) {
+  std::vector<double> numbers;
+  std::string error;
+  size_t line_number = 0;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_number;
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos || line[first] == '#') continue;
+    const std::string where = source + ":" + std::to_string(line_number) + ": ";
+    if (!ParseNumbers(line, numbers, error)) return where + error;
+    if (numbers.size() != fields) {
+      return where + "expected " + std::to_string(fields) + " numbers (" + format + "), found " +
+             std::to_string(numbers.size());
+    }
+    row(numbers);
+  }
+  return {};
+}
+
+}  // namespace
+
+TextFile ReadTextFile(const std::string& path) {
+  TextFile out;
+  errno = 0;
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (f == nullptr) {
+    out.error = path + ": cannot open (" + std::strerror(errno != 0 ? errno : ENOMEM) + ")";
+    return out;
+  }
+  char buf[1 << 16];
+  int n;
+  while ((n = gzread(f, buf, sizeof buf)) > 0) out.text.append(buf, static_cast<size_t>(n));
+  if (n < 0) {
+    int zerr = 0;
+    out.error = path + ": read error (" + gzerror(f, &zerr) + ")";
+  }
+  gzclose(f);
+  return out;
+}
+
+TrajectoryParse ParseTrajectory(std::string_view text, const std::string& source) {
+  TrajectoryParse out;
+  std::vector<TimedPose> poses;
+  out.error = ForEachRow(text, source, 4, "timestamp x y theta", [&](const auto& v) {
+    poses.push_back(TimedPose{FromSeconds(v[0]), Pose2{v[1], v[2], WrapAngle(v[3])}});
+  });
+  if (out.error.empty() && poses.empty()) out.error = source + ": no poses";
+  out.trajectory = TimedTrajectory(std::move(poses));
+  return out;
+}
+
+RelationsParse ParseRelations(std::string_view text, const std::string& source) {
+  RelationsParse out;
+  out.error = ForEachRow(text, source, 8, "t1 t2 x y z roll pitch yaw", [&](const auto& v) {
+    out.relations.push_back(
+        Relation{FromSeconds(v[0]), FromSeconds(v[1]), Pose2{v[2], v[3], WrapAngle(v[7])}});
+  });
+  if (out.error.empty() && out.relations.empty()) out.error = source + ": no relations";
+  return out;
+}
+
+std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::string& comment) {
+  std::string out = "# " + comment + "\n# timestamp x y theta\n";
+  char buf[128];
+  for (const TimedPose& p : trajectory.poses()) {
+    std::snprintf(buf, sizeof buf, "%.6f\t%.6f\t%.6f\t%.6f\n", ToSeconds(p.stamp), p.pose.x,
+                  p.pose.y, p.pose.theta);
+    out += buf;
+  }
+  return out;
+}
+
+TimedTrajectory OdometryAtScans(const std::vector<carmen::CarmenEvent>& events) {
+  std::vector<OdometrySample> odometry;
+  for (const carmen::CarmenEvent& e : events) {
+    if (const auto* o = std::get_if<OdometrySample>(&e.event)) odometry.push_back(*o);
+  }
+  std::vector<TimedPose> poses;
+  for (const carmen::CarmenEvent& e : events) {
+    const auto* scan = std::get_if<LaserScan>(&e.event);
+    if (scan == nullptr) continue;
+    const Time t = scan->stamp;
+    // The last sample at or before t.
+    auto after = std::upper_bound(odometry.begin(), odometry.end(), t,
+                                  [](Time x, const OdometrySample& o) { return x < o.stamp; });
+    if (after == odometry.begin()) continue;
+    const OdometrySample& a = *std::prev(after);
+    if (a.stamp == t) {
+      poses.push_back(TimedPose{t, a.pose});
+      continue;
+    }
+    if (after == odometry.end()) continue;
+    const OdometrySample& b = *after;
+    const double f = ToSeconds(t - a.stamp) / ToSeconds(b.stamp - a.stamp);
+    const Pose2 p{a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
+                  WrapAngle(a.pose.theta + f * WrapAngle(b.pose.theta - a.pose.theta))};
+    poses.push_back(TimedPose{t, p});
+  }
+  return TimedTrajectory(std::move(poses));
+}
+
+TimedTrajectory ReferenceAtScans(const carmen::CarmenLog& log) {
+  std::vector<TimedPose> poses;
+  for (const carmen::ReferencePose& r : log.reference) {
+    if (r.at_laser) poses.push_back(TimedPose{r.truth.stamp, r.truth.pose});
+  }
+  return TimedTrajectory(std::move(poses));
+}
+
+std::string FormatStats(const char* name, const char* unit, const ErrorStats& s) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "%-14s %8.4f +- %8.4f %-3s (squared %9.4f +- %9.4f, rmse %8.4f, max %8.4f)\n", name,
+                s.mean, s.stddev, unit, s.mean_squared, s.stddev_squared, s.rmse, s.max);
+  return buf;
+}
+
+std::string StatsJson(const ErrorStats& s) {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "{\"count\": %lld, \"mean\": %.6g, \"stddev\": %.6g, \"mean_squared\": %.6g, "
+                "\"stddev_squared\": %.6g, \"rmse\": %.6g, \"max\": %.6g}",
+                static_cast<long long>(s.count), s.mean, s.stddev, s.mean_squared, s.stddev_squared,
+                s.rmse, s.max);
+  return buf;
+}
+
+std::string JsonString(std::string_view s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace atlas::eval

@@ -1,0 +1,57 @@
+#pragma once
+// The text files of atlas-eval and atlas-carmen (docs/formats.md), and trajectories derived
+// from CARMEN logs. Parsers take text and a source name for messages; ReadTextFile() is the
+// only function here that touches the file system.
+//
+//   trajectory file   one pose per line: "timestamp x y theta" (seconds, metres, radians),
+//                     separated by spaces or tabs; '#' comments and blank lines ignored.
+//   relations file    Freiburg SLAM benchmark: "t1 t2 x y z roll pitch yaw", the pose at t2 in
+//                     the frame of the pose at t1 (z, roll and pitch are ignored).
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/eval/reference_score.h"
+#include "core/eval/relations_metric.h"
+#include "core/eval/timed_trajectory.h"
+#include "drivers/carmen/carmen_log.h"
+
+namespace atlas::eval {
+
+struct TextFile {
+  std::string text;
+  std::string error;  // empty when read
+};
+// Reads a whole file, plain or gzip-compressed.
+TextFile ReadTextFile(const std::string& path);
+
+struct TrajectoryParse {
+  TimedTrajectory trajectory;
+  std::string error;  // "<source>:<line>: <what>"; empty when valid
+};
+TrajectoryParse ParseTrajectory(std::string_view text, const std::string& source);
+
+struct RelationsParse {
+  std::vector<Relation> relations;
+  std::string error;
+};
+RelationsParse ParseRelations(std::string_view text, const std::string& source);
+
+// "timestamp x y theta" lines with a header comment; timestamps to the microsecond.
+std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::string& comment);
+
+// The odometry pose at the stamp of every laser scan among `events` (time-ordered), linearly
+// interpolated between the odometry samples around it (heading along the shorter arc). Scans
+// before the first or after the last odometry sample are left out.
+TimedTrajectory OdometryAtScans(const std::vector<carmen::CarmenEvent>& events);
+
+// The reference poses of a log's laser lines (read with reference_trajectory set).
+TimedTrajectory ReferenceAtScans(const carmen::CarmenLog& log);
+
+// Human-readable and JSON summaries.
+std::string FormatStats(const char* name, const char* unit, const ErrorStats& s);
+std::string StatsJson(const ErrorStats& s);
+std::string JsonString(std::string_view s);
+
+}  // namespace atlas::eval
