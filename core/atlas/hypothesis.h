@@ -1,0 +1,150 @@
+#pragma once
+// Competing map-frame hypotheses (paper, Sections III-B and III-E, Fig. 4).
+//
+// A hypothesis is the claim "the robot is in map-frame F at pose x". Each frame carries at most
+// one hypothesis and the total count is bounded (the Atlas enforces both). States:
+//   juvenile  seeded by traversal (eq. 10-11) in a retired frame; processes scans against its
+//             map but may not extend it (Update(..., allow_new_features = false)). It works on a
+//             private clone of the frame's map, so a juvenile that is deleted leaves the frame's
+//             map untouched; on maturation the clone replaces the frame's map.
+//   mature    extends its map; the mature hypothesis with the best q is the dominant one, the
+//             output of the framework.
+//   retired   a mature hypothesis that failed. Its frame keeps the map; the frame may later be
+//             reactivated by a juvenile.
+// Transitions (pure functions below, applied by the Atlas once per step):
+//   juvenile -> deleted    w (eq. 12) could not be solved after the bootstrap scans, or at the
+//                          end of probation its q does not beat every mature hypothesis;
+//   juvenile -> mature     at the end of probation its q beats every mature hypothesis (or no
+//                          mature hypothesis exists);
+//   mature   -> retired    q stayed below q_fail for fail_steps consecutive steps while another
+//                          mature hypothesis exists (if it is the only one, Genesis first).
+//
+// Quality metric q, eq. 5:
+//   q = alpha (1 - det(Sigma_x) / det(Sigma_*)) + (1 - alpha) eta_a / ||Z^k||,
+// with det(Sigma_*) = sigma_x^2 sigma_y^2 sigma_theta^2. The first term is clamped at 0 (a pose
+// less certain than the acceptable maximum contributes nothing). "Recent observations" Z^k are
+// the last `window` scans: eta_a and ||Z|| are sums over the window. A window without any
+// observation has explanation `empty_explanation` (default 0: a featureless stretch counts as
+// unexplained, as the paper's q "tends to zero" when measurements stop matching).
+
+#include <Eigen/LU>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/atlas/atlas_graph.h"
+#include "core/common/sensor_types.h"
+#include "core/localmap/local_map.h"
+
+namespace atlas {
+
+struct QualityOptions {
+  double alpha = 0.5;
+  double sigma_x = 0.5;      // metres: maximum acceptable robot uncertainty, eq. 5
+  double sigma_y = 0.5;      // metres
+  double sigma_theta = 0.2;  // radians
+  int window = 5;            // scans in Z^k
+  double empty_explanation = 0.0;
+  std::string Validate() const;  // empty when valid
+};
+
+// eq. 5. `explanation` is eta_a / ||Z^k|| in [0, 1].
+double QualityMetric(const Mat3& robot_cov, double explanation, const QualityOptions& options);
+
+// The last `window` (observations, matched) pairs. Fixed capacity.
+class QualityWindow {
+ public:
+  explicit QualityWindow(int window = 5) : capacity_(window) {}
+  void Add(const ScanUpdate& u);
+  void Clear();
+  int Observations() const { return observations_; }
+  int Matched() const { return matched_; }
+  int Size() const { return size_; }
+  // eta_a / ||Z^k||, or `empty` when the window holds no observation.
+  double Explanation(double empty) const;
+  struct Entry {
+    int observations = 0;
+    int matched = 0;
+  };
+  const std::vector<Entry>& Ring() const { return ring_; }
+  int Head() const { return head_; }
+  void Restore(int capacity, std::vector<Entry> ring, int head, int size);
+
+ private:
+  int capacity_;
+  std::vector<Entry> ring_;
+  int head_ = 0;
+  int size_ = 0;
+  int observations_ = 0;
+  int matched_ = 0;
+};
+
+enum class HypothesisState : uint8_t { kJuvenile = 0, kMature = 1, kRetired = 2 };
+const char* HypothesisStateName(HypothesisState s);
+
+// One scan kept for the bootstrap function w (eq. 12).
+struct BootstrapScan {
+  Pose2 odometry_delta;  // motion from the previous scan to this one, robot frame
+  LaserScan scan;
+  ScanUpdate update;  // what the seeded juvenile made of it
+};
+
+enum class BootstrapOutcome { kSolved, kFailed };
+struct BootstrapResult {
+  BootstrapOutcome outcome = BootstrapOutcome::kFailed;
+  UncertainPose pose;  // the robot pose at the last scan of Z, in the map's frame
+};
+
+// w of eq. 12: solves for the robot pose in `map` from the scans Z alone, independently of the
+// seed. `map` is the juvenile's map (its robot pose is the seed, which w must not rely on).
+class PoseBootstrapper {
+ public:
+  virtual ~PoseBootstrapper() = default;
+  virtual BootstrapResult Solve(const LocalMap& map, const std::vector<BootstrapScan>& z) const = 0;
+};
+
+struct Hypothesis {
+  int64_t id = 0;
+  FrameId frame = kNoFrame;
+  HypothesisState state = HypothesisState::kJuvenile;
+  bool dominant = false;
+  int64_t born_step = 0;
+  int steps = 0;          // scans processed
+  double q = 0.0;         // eq. 5 after the latest scan
+  int failing_steps = 0;  // consecutive steps with q < q_fail
+  QualityWindow window;
+  ScanUpdate last_update;
+  // Juvenile only: private copy of the frame's map, and the bootstrap state.
+  std::unique_ptr<LocalMap> trial_map;
+  bool bootstrapped = false;
+  std::vector<BootstrapScan> z;
+};
+
+struct LifecycleOptions {
+  // Probation (III-E, left open by the paper): scans a juvenile processes before it is judged.
+  // Default 8 scans, at least bootstrap_scans + 3: w needs its scans, then q needs a few scans
+  // of the bootstrapped pose so that the window reflects w's solution, not the seed. At ~5
+  // scans/s this is under 2 s of travel (< 1 m), short against a frame's extent.
+  int probation_scans = 8;
+  // Scans accumulated before w is solved (eq. 12).
+  int bootstrap_scans = 4;
+  double q_fail = 0.35;  // a mature hypothesis below this is failing
+  int fail_steps = 3;    // ... for this many consecutive scans
+  std::string Validate() const;
+};
+
+enum class JuvenileVerdict { kContinue, kMature, kDelete };
+
+// Judges a juvenile after its latest scan. `best_mature_q` is the best q among mature
+// hypotheses (negative when there is none). `bootstrap_failed` is w's outcome this step.
+JuvenileVerdict JudgeJuvenile(const Hypothesis& h, double best_mature_q, bool bootstrap_failed,
+                              const LifecycleOptions& options);
+
+// Updates h.failing_steps from h.q and returns true when a mature hypothesis is failing.
+bool UpdateFailing(Hypothesis* h, const LifecycleOptions& options);
+
+// The index of the dominant hypothesis (best q among mature ones; ties to the older), or -1.
+int DominantIndex(const std::vector<Hypothesis>& hypotheses);
+
+}  // namespace atlas

@@ -1,0 +1,129 @@
+#include "core/atlas/hypothesis.h"
+
+#include <gtest/gtest.h>
+
+namespace atlas {
+namespace {
+
+TEST(QualityMetric, Eq5) {
+  QualityOptions o;
+  o.alpha = 0.3;
+  o.sigma_x = 0.5;
+  o.sigma_y = 0.4;
+  o.sigma_theta = 0.1;
+  const double det_star = 0.25 * 0.16 * 0.01;
+  const Mat3 cov = Vec3(0.05, 0.04, 0.002).asDiagonal();
+  const double expect = 0.3 * (1 - 0.05 * 0.04 * 0.002 / det_star) + 0.7 * 0.75;
+  EXPECT_NEAR(QualityMetric(cov, 0.75, o), expect, 1e-12);
+  // Too uncertain: first term clamps at 0.
+  EXPECT_NEAR(QualityMetric(Mat3::Identity() * 10, 1.0, o), 0.7, 1e-12);
+  EXPECT_NEAR(QualityMetric(Mat3::Zero(), 1.0, o), 1.0, 1e-12);
+}
+
+TEST(QualityWindow, SlidesOverTheLastScans) {
+  QualityWindow w(3);
+  EXPECT_EQ(w.Explanation(0.25), 0.25);
+  w.Add({10, 10, 0, false});
+  w.Add({10, 5, 0, false});
+  w.Add({10, 0, 0, false});
+  EXPECT_NEAR(w.Explanation(0), 0.5, 1e-12);
+  w.Add({10, 0, 0, false});  // the first (10 of 10) drops out
+  EXPECT_NEAR(w.Explanation(0), 5.0 / 30.0, 1e-12);
+  w.Add({4, 9, 0, false});  // matched clamped to observations
+  EXPECT_EQ(w.Matched(), 4);
+  EXPECT_EQ(w.Observations(), 24);
+  QualityWindow r(1);
+  r.Restore(3, w.Ring(), w.Head(), w.Size());
+  EXPECT_EQ(r.Matched(), w.Matched());
+  EXPECT_EQ(r.Observations(), w.Observations());
+}
+
+Hypothesis Juvenile(int steps, double q, bool bootstrapped) {
+  Hypothesis h;
+  h.state = HypothesisState::kJuvenile;
+  h.steps = steps;
+  h.q = q;
+  h.bootstrapped = bootstrapped;
+  return h;
+}
+
+TEST(HypothesisStateMachine, JuvenileWaitsOutProbation) {
+  LifecycleOptions o;
+  o.bootstrap_scans = 3;
+  o.probation_scans = 6;
+  for (int s = 0; s < 6; ++s)
+    EXPECT_EQ(JudgeJuvenile(Juvenile(s, 0.99, true), 0.1, false, o), JuvenileVerdict::kContinue);
+}
+
+TEST(HypothesisStateMachine, JuvenileKilledWhenBootstrapFails) {
+  LifecycleOptions o;
+  EXPECT_EQ(JudgeJuvenile(Juvenile(2, 0.99, false), 0.1, true, o), JuvenileVerdict::kDelete);
+}
+
+TEST(HypothesisStateMachine, JuvenileMaturesOnlyWhenBeatingEveryMature) {
+  LifecycleOptions o;
+  o.bootstrap_scans = 3;
+  o.probation_scans = 6;
+  EXPECT_EQ(JudgeJuvenile(Juvenile(6, 0.8, true), 0.7, false, o), JuvenileVerdict::kMature);
+  EXPECT_EQ(JudgeJuvenile(Juvenile(6, 0.7, true), 0.7, false, o), JuvenileVerdict::kDelete);
+  EXPECT_EQ(JudgeJuvenile(Juvenile(6, 0.6, true), 0.7, false, o), JuvenileVerdict::kDelete);
+  // Without any mature hypothesis (best q negative) a bootstrapped juvenile matures.
+  EXPECT_EQ(JudgeJuvenile(Juvenile(6, 0.0, true), -1.0, false, o), JuvenileVerdict::kMature);
+  // Never bootstrapped: deleted at the end of probation however good q looks.
+  EXPECT_EQ(JudgeJuvenile(Juvenile(6, 0.99, false), 0.1, false, o), JuvenileVerdict::kDelete);
+}
+
+TEST(HypothesisStateMachine, MatureFailsAfterConsecutiveBadSteps) {
+  LifecycleOptions o;
+  o.q_fail = 0.4;
+  o.fail_steps = 3;
+  Hypothesis h;
+  h.state = HypothesisState::kMature;
+  h.q = 0.3;
+  EXPECT_FALSE(UpdateFailing(&h, o));
+  EXPECT_FALSE(UpdateFailing(&h, o));
+  h.q = 0.5;  // one good step resets the count
+  EXPECT_FALSE(UpdateFailing(&h, o));
+  h.q = 0.3;
+  EXPECT_FALSE(UpdateFailing(&h, o));
+  EXPECT_FALSE(UpdateFailing(&h, o));
+  EXPECT_TRUE(UpdateFailing(&h, o));
+  Hypothesis j;  // juveniles never "fail" this way
+  j.q = 0.0;
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(UpdateFailing(&j, o));
+}
+
+TEST(HypothesisStateMachine, DominantIsBestMature) {
+  std::vector<Hypothesis> hs(4);
+  hs[0].state = HypothesisState::kMature;
+  hs[0].q = 0.6;
+  hs[0].id = 1;
+  hs[1].state = HypothesisState::kJuvenile;  // juveniles never dominate
+  hs[1].q = 0.99;
+  hs[1].id = 2;
+  hs[2].state = HypothesisState::kMature;
+  hs[2].q = 0.7;
+  hs[2].id = 3;
+  hs[3].state = HypothesisState::kRetired;
+  hs[3].q = 0.95;
+  hs[3].id = 4;
+  EXPECT_EQ(DominantIndex(hs), 2);
+  hs[0].q = 0.7;  // tie goes to the older
+  EXPECT_EQ(DominantIndex(hs), 0);
+  hs[0].state = hs[2].state = HypothesisState::kJuvenile;
+  EXPECT_EQ(DominantIndex(hs), -1);
+}
+
+TEST(Options, Validate) {
+  EXPECT_EQ(QualityOptions{}.Validate(), "");
+  EXPECT_EQ(LifecycleOptions{}.Validate(), "");
+  QualityOptions q;
+  q.alpha = 1.5;
+  EXPECT_NE(q.Validate(), "");
+  LifecycleOptions l;
+  l.probation_scans = l.bootstrap_scans;
+  EXPECT_NE(l.Validate(), "");
+}
+
+}  // namespace
+}  // namespace atlas

@@ -1,0 +1,358 @@
+#include "core/atlas/map_match.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+namespace atlas {
+
+std::string MapMatchOptions::Validate() const {
+  if (max_lines < 2 || max_lines > 64) return "map_match.max_lines must lie in [2, 64]";
+  if (min_support < 2) return "map_match.min_support must be at least 2";
+  if (min_lead < 1) return "map_match.min_lead must be at least 1";
+  if (!(parallel_tolerance > 0 && parallel_tolerance < std::numbers::pi / 2))
+    return "map_match.parallel_tolerance must lie in (0, pi/2)";
+  if (!(pair_angle_tolerance > 0)) return "map_match.pair_angle_tolerance must be positive";
+  if (!(line_gate_chi2 > 0 && prior_gate_chi2 > 0)) return "map_match gates must be positive";
+  if (!(sigma_rho_floor >= 0 && sigma_alpha_floor >= 0))
+    return "map_match sigma floors must be non-negative";
+  if (!(distinct_translation > 0 && distinct_rotation > 0))
+    return "map_match distinct thresholds must be positive";
+  if (gauss_newton_iterations < 1) return "map_match.gauss_newton_iterations must be >= 1";
+  return "";
+}
+
+const char* MapMatchResultName(MapMatchResult r) {
+  switch (r) {
+    case MapMatchResult::kAccepted:
+      return "accepted";
+    case MapMatchResult::kRejected:
+      return "rejected";
+    case MapMatchResult::kAmbiguous:
+      return "ambiguous";
+  }
+  return "unknown";
+}
+
+const char* MapMatchReasonName(MapMatchReason r) {
+  switch (r) {
+    case MapMatchReason::kMatched:
+      return "matched";
+    case MapMatchReason::kTooFewLines:
+      return "too-few-lines";
+    case MapMatchReason::kTooLittleSupport:
+      return "too-little-support";
+    case MapMatchReason::kDegenerate:
+      return "degenerate";
+    case MapMatchReason::kOutsidePrior:
+      return "outside-prior";
+    case MapMatchReason::kRepetitive:
+      return "repetitive";
+    case MapMatchReason::kRivalTransform:
+      return "rival-transform";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Mat2 = Eigen::Matrix2d;
+using Mat23 = Eigen::Matrix<double, 2, 3>;
+
+struct Line {
+  double rho = 0, alpha = 0;
+  Mat2 cov = Mat2::Zero();
+  Vec2 p = Vec2::Zero(), q = Vec2::Zero();
+};
+
+std::vector<Line> Prepare(const std::vector<MapLine>& lines, const MapMatchOptions& o) {
+  std::vector<std::pair<double, int>> order;
+  for (int i = 0; i < static_cast<int>(lines.size()); ++i) {
+    const MapLine& l = lines[i];
+    const double len = (l.endpoint_a - l.endpoint_b).norm();
+    if (!(len >= o.min_line_length) || !std::isfinite(l.rho) || !std::isfinite(l.alpha) ||
+        !l.cov.allFinite())
+      continue;
+    order.push_back({-len, i});
+  }
+  std::stable_sort(order.begin(), order.end());
+  if (static_cast<int>(order.size()) > o.max_lines) order.resize(o.max_lines);
+  std::vector<Line> out;
+  out.reserve(order.size());
+  for (const auto& [neg_len, i] : order) {
+    const MapLine& l = lines[i];
+    Line p;
+    p.rho = l.rho;
+    p.alpha = l.alpha;
+    p.cov = 0.5 * (l.cov + l.cov.transpose());
+    p.cov(0, 0) += o.sigma_rho_floor * o.sigma_rho_floor;
+    p.cov(1, 1) += o.sigma_alpha_floor * o.sigma_alpha_floor;
+    p.p = l.endpoint_a;
+    p.q = l.endpoint_b;
+    out.push_back(p);
+  }
+  return out;
+}
+
+// Difference of two line directions modulo pi, in [-pi/2, pi/2].
+double AngleModPi(double a) { return 0.5 * WrapAngle(2.0 * a); }
+
+// Residual of line a (in A) against line b (in B) transformed by t (pose of B in A), its
+// Jacobian with respect to t, and its covariance.
+struct PairResidual {
+  Vec2 r;
+  Mat23 jt;
+  Mat2 s;
+  double chi2;
+};
+
+PairResidual Residual(const Line& a, const Line& b, const Pose2& t) {
+  const double alpha = b.alpha + t.theta;
+  const double c = std::cos(alpha), sn = std::sin(alpha);
+  const double rho = b.rho + t.x * c + t.y * sn;
+  const double drho = -t.x * sn + t.y * c;
+  const double sign = std::cos(alpha - a.alpha) >= 0.0 ? 1.0 : -1.0;
+  PairResidual out;
+  out.r = Vec2(a.rho - sign * rho, WrapAngle(a.alpha - alpha - (sign < 0 ? std::numbers::pi : 0)));
+  out.jt << -sign * c, -sign * sn, -sign * drho, 0, 0, -1;
+  Mat2 jb;
+  jb << sign, sign * drho, 0, 1;
+  out.s = a.cov + jb * b.cov * jb.transpose();
+  out.chi2 = out.r.dot(out.s.inverse() * out.r);
+  return out;
+}
+
+bool SegmentsOverlap(const Line& a, const Line& b, const Pose2& t, double slack) {
+  const Vec2 d(-std::sin(a.alpha), std::cos(a.alpha));
+  double a0 = d.dot(a.p), a1 = d.dot(a.q);
+  double b0 = d.dot(t.TransformPoint(b.p)), b1 = d.dot(t.TransformPoint(b.q));
+  if (a0 > a1) std::swap(a0, a1);
+  if (b0 > b1) std::swap(b0, b1);
+  return b0 <= a1 + slack && b1 >= a0 - slack;
+}
+
+struct Support {
+  int count = 0;
+  double chi2 = 0.0;
+  uint64_t lines_a = 0, lines_b = 0;
+  std::vector<std::pair<int, int>> pairs;
+};
+
+Support Verify(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
+               uint64_t usable_b, const Pose2& t, const MapMatchOptions& o) {
+  Support s;
+  for (int k = 0; k < static_cast<int>(b.size()); ++k) {
+    if (!(usable_b >> k & 1)) continue;
+    int best = -1;
+    double best_chi2 = o.line_gate_chi2;
+    for (int i = 0; i < static_cast<int>(a.size()); ++i) {
+      if (!(usable_a >> i & 1) || (s.lines_a >> i & 1)) continue;
+      const double chi2 = Residual(a[i], b[k], t).chi2;
+      if (chi2 <= best_chi2 && SegmentsOverlap(a[i], b[k], t, o.overlap_slack)) {
+        best = i;
+        best_chi2 = chi2;
+      }
+    }
+    if (best < 0) continue;
+    ++s.count;
+    s.chi2 += best_chi2;
+    s.lines_a |= uint64_t{1} << best;
+    s.lines_b |= uint64_t{1} << k;
+    s.pairs.push_back({best, k});
+  }
+  return s;
+}
+
+struct Cluster {
+  Pose2 t;
+  Support support;
+};
+
+bool SameTransform(const Pose2& x, const Pose2& y, const MapMatchOptions& o) {
+  return std::hypot(x.x - y.x, x.y - y.y) < o.distinct_translation &&
+         std::abs(WrapAngle(x.theta - y.theta)) < o.distinct_rotation;
+}
+
+bool Better(const Support& x, const Support& y) {
+  return x.count > y.count || (x.count == y.count && x.chi2 < y.chi2);
+}
+
+constexpr int kMaxClusters = 64;
+
+void AddToClusters(const Pose2& t, Support s, const MapMatchOptions& o,
+                   std::vector<Cluster>* clusters) {
+  for (Cluster& c : *clusters) {
+    if (!SameTransform(c.t, t, o)) continue;
+    if (Better(s, c.support)) c = Cluster{t, std::move(s)};
+    return;
+  }
+  if (static_cast<int>(clusters->size()) < kMaxClusters) {
+    clusters->push_back(Cluster{t, std::move(s)});
+    return;
+  }
+  auto worst = std::min_element(
+      clusters->begin(), clusters->end(),
+      [](const Cluster& x, const Cluster& y) { return Better(y.support, x.support); });
+  if (Better(s, worst->support)) *worst = Cluster{t, std::move(s)};
+}
+
+// Enumerates pair hypotheses and collects verified transforms with support >= 2. With
+// `self` set, a and b are the same map and the identity hypotheses are skipped.
+int Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
+                uint64_t usable_b, bool self, const MapMatchOptions& o,
+                std::vector<Cluster>* clusters) {
+  int verified = 0;
+  const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+  for (int i = 0; i < na; ++i) {
+    if (!(usable_a >> i & 1)) continue;
+    for (int j = i + 1; j < na; ++j) {
+      if (!(usable_a >> j & 1)) continue;
+      const double angle_a = AngleModPi(a[j].alpha - a[i].alpha);
+      if (std::abs(angle_a) < o.parallel_tolerance) continue;
+      Mat2 m;
+      m << std::cos(a[i].alpha), std::sin(a[i].alpha), std::cos(a[j].alpha), std::sin(a[j].alpha);
+      const Mat2 m_inv = m.inverse();
+      for (int k = 0; k < nb; ++k) {
+        if (!(usable_b >> k & 1)) continue;
+        for (int l = 0; l < nb; ++l) {
+          if (l == k || !(usable_b >> l & 1)) continue;
+          if (self && k == i && l == j) continue;
+          const double angle_b = AngleModPi(b[l].alpha - b[k].alpha);
+          if (std::abs(AngleModPi(angle_a - angle_b)) > o.pair_angle_tolerance) continue;
+          for (int flip = 0; flip < 2; ++flip) {
+            const double theta =
+                WrapAngle(a[i].alpha - b[k].alpha + (flip ? std::numbers::pi : 0.0));
+            const double si = std::cos(b[k].alpha + theta - a[i].alpha) >= 0 ? 1.0 : -1.0;
+            const double sj = std::cos(b[l].alpha + theta - a[j].alpha) >= 0 ? 1.0 : -1.0;
+            const Vec2 xy = m_inv * Vec2(a[i].rho - si * b[k].rho, a[j].rho - sj * b[l].rho);
+            const Pose2 t{xy.x(), xy.y(), theta};
+            if (!SegmentsOverlap(a[i], b[k], t, o.overlap_slack) ||
+                !SegmentsOverlap(a[j], b[l], t, o.overlap_slack))
+              continue;
+            ++verified;
+            Support s = Verify(a, usable_a, b, usable_b, t, o);
+            if (s.count >= 2) AddToClusters(t, std::move(s), o, clusters);
+          }
+        }
+      }
+    }
+  }
+  return verified;
+}
+
+uint64_t AllLines(int n) { return n >= 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1; }
+
+bool InsidePrior(const Pose2& t, const UncertainPose* prior, const MapMatchOptions& o) {
+  if (prior == nullptr) return true;
+  const Vec3 d(t.x - prior->mean.x, t.y - prior->mean.y, WrapAngle(t.theta - prior->mean.theta));
+  const Mat3 cov = prior->cov + Vec3(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix();
+  return d.dot(cov.inverse() * d) <= o.prior_gate_chi2;
+}
+
+}  // namespace
+
+SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions& o) {
+  const std::vector<Line> p = Prepare(lines, o);
+  SelfMatch out;
+  out.usable_lines = static_cast<int>(p.size());
+  std::vector<Cluster> clusters;
+  const uint64_t all = AllLines(out.usable_lines);
+  Hypothesise(p, all, p, all, /*self=*/true, o, &clusters);
+  for (const Cluster& c : clusters) {
+    if (c.support.count < o.min_support || SameTransform(c.t, Pose2{}, o)) continue;
+    out.repetitions.push_back({c.t, c.support.lines_a | c.support.lines_b, c.support.count});
+  }
+  return out;
+}
+
+MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
+                   const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
+                   const UncertainPose* prior, const MapMatchOptions& o) {
+  MapMatch out;
+  const std::vector<Line> a = Prepare(lines_a, o), b = Prepare(lines_b, o);
+  uint64_t usable_a = AllLines(static_cast<int>(a.size()));
+  uint64_t usable_b = AllLines(static_cast<int>(b.size()));
+  const int count_a = static_cast<int>(a.size()), count_b = static_cast<int>(b.size());
+  if (count_a < o.min_support || count_b < o.min_support) {
+    out.reason = MapMatchReason::kTooFewLines;
+    return out;
+  }
+  if (o.self_match) {
+    for (const SelfMatch::Repetition& r : self_a.repetitions)
+      if (prior == nullptr || InsidePrior(Compose(r.transform, prior->mean), prior, o))
+        usable_a &= ~r.lines;
+    for (const SelfMatch::Repetition& r : self_b.repetitions)
+      if (prior == nullptr || InsidePrior(Compose(prior->mean, r.transform), prior, o))
+        usable_b &= ~r.lines;
+    if (std::popcount(usable_a) < o.min_support || std::popcount(usable_b) < o.min_support) {
+      out.result = MapMatchResult::kAmbiguous;
+      out.reason = MapMatchReason::kRepetitive;
+      return out;
+    }
+  }
+  std::vector<Cluster> clusters;
+  out.hypotheses = Hypothesise(a, usable_a, b, usable_b, /*self=*/false, o, &clusters);
+
+  const Cluster* best = nullptr;
+  bool gated_away = false;
+  for (const Cluster& c : clusters) {
+    if (!InsidePrior(c.t, prior, o)) {
+      gated_away |= c.support.count >= o.min_support;
+      continue;
+    }
+    if (best == nullptr || Better(c.support, best->support)) best = &c;
+  }
+  if (best == nullptr || best->support.count < o.min_support) {
+    out.reason = gated_away ? MapMatchReason::kOutsidePrior : MapMatchReason::kTooLittleSupport;
+    out.support = best ? best->support.count : 0;
+    return out;
+  }
+  out.support = best->support.count;
+  for (const Cluster& c : clusters) {
+    if (&c == best || SameTransform(c.t, best->t, o) || !InsidePrior(c.t, prior, o)) continue;
+    out.rival_support = std::max(out.rival_support, c.support.count);
+  }
+  if (out.rival_support > out.support - o.min_lead) {
+    out.result = MapMatchResult::kAmbiguous;
+    out.reason = MapMatchReason::kRivalTransform;
+    return out;
+  }
+
+  // t and its covariance from all matched lines (Gauss-Newton).
+  Pose2 t = best->t;
+  Mat3 h = Mat3::Zero();
+  for (int it = 0; it <= o.gauss_newton_iterations; ++it) {
+    h.setZero();
+    Vec3 g = Vec3::Zero();
+    for (const auto& [i, k] : best->support.pairs) {
+      const PairResidual r = Residual(a[i], b[k], t);
+      const Mat2 s_inv = r.s.inverse();
+      h += r.jt.transpose() * s_inv * r.jt;
+      g += r.jt.transpose() * s_inv * r.r;
+    }
+    if (it == o.gauss_newton_iterations) break;
+    const Eigen::FullPivLU<Mat3> lu(h);
+    if (!lu.isInvertible()) break;
+    const Vec3 delta = -lu.solve(g);
+    t = Pose2::FromVector(t.ToVector() + delta);
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(h);
+  const Vec3 ev = eig.eigenvalues();
+  if (!(ev(0) > 1e-10 * ev(2)) || !ev.allFinite()) {
+    out.reason = MapMatchReason::kDegenerate;
+    return out;
+  }
+  out.b_in_a.mean = t;
+  out.b_in_a.cov = h.inverse();
+  out.b_in_a.cov = 0.5 * (out.b_in_a.cov + out.b_in_a.cov.transpose());
+  out.result = MapMatchResult::kAccepted;
+  out.reason = MapMatchReason::kMatched;
+  return out;
+}
+
+}  // namespace atlas

@@ -1,0 +1,99 @@
+#pragma once
+// Map-matching between two line maps (paper, Section III-D, eq. 7-9), for loop closure.
+//
+// The paper leaves the forms of m (eq. 7-8) and t (eq. 9) open. Choices made here:
+// - t, the transform, is hypothesised from the maps alone (never from the robot pose): for a
+//   pair of non-parallel lines (i, j) of map A and a pair (k, l) of map B whose angles agree
+//   (the angle between two lines is invariant under SE(2)), aligning k with i and l with j
+//   fixes the rotation (two solutions, theta and theta + pi, since a line's normal direction is
+//   not invariant) and the translation (two line equations, non-parallel so solvable).
+// - m, the degree of match, is the support of a hypothesis: the number of lines of B that,
+//   transformed into A, fall within the chi-square gate of a distinct line of A (Mahalanobis
+//   over (rho, alpha) with both lines' covariances) and whose segments overlap (with slack).
+//   A match needs `min_support` lines and a support that leads every distinct rival transform
+//   by `min_lead` lines: a unique best.
+// - Self-match (III-D: "only structure elements that match uniquely within a map"): each map is
+//   matched with itself; a non-identity self-transform S with at least `min_support` lines is
+//   repetitive structure, and its lines are excluded. Condition 2: a repetition only matters
+//   when the prior (the Dijkstra projection of B in A) cannot tell S (+) T from T, i.e. when
+//   S (+) T lies inside the prior's gate; without a prior every repetition matters. The same
+//   gate filters cross-match rivals. When exclusion leaves too little structure, or two
+//   distinct transforms inside the gate are equally supported, the result is kAmbiguous.
+// - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
+//   pairs, Sigma = (sum H^T S^-1 H)^-1. Matched lines that are all parallel leave a singular
+//   information matrix: kRejected (degenerate), never a guess.
+// Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each
+// verified in O(n^2); bounded by the map capacity, independent of the atlas size.
+
+#include <Eigen/LU>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/geometry/se2.h"
+#include "core/localmap/local_map.h"
+
+namespace atlas {
+
+struct MapMatchOptions {
+  double min_line_length = 0.5;        // metres; shorter lines are not used
+  int max_lines = 24;                  // longest lines used per map (<= 64)
+  double parallel_tolerance = 0.25;    // rad; pairs closer to parallel do not hypothesise
+  double pair_angle_tolerance = 0.06;  // rad; angle-between-lines agreement
+  double line_gate_chi2 = 9.21;        // 2 dof, 99 %
+  double sigma_rho_floor = 0.03;       // metres, added to every line's rho variance
+  double sigma_alpha_floor = 0.01;     // rad
+  double overlap_slack = 0.5;          // metres of allowed gap between matched segments
+  int min_support = 3;                 // lines
+  int min_lead = 1;                    // lines the best must lead any distinct rival by
+  double distinct_translation = 0.5;   // metres: transforms closer than this are the same
+  double distinct_rotation = 0.1;      // rad
+  double prior_gate_chi2 = 16.27;      // 3 dof, 99.9 %
+  bool self_match = true;
+  int gauss_newton_iterations = 4;
+  std::string Validate() const;
+};
+
+enum class MapMatchResult { kAccepted, kRejected, kAmbiguous };
+enum class MapMatchReason {
+  kMatched,
+  kTooFewLines,       // rejected: not enough usable structure
+  kTooLittleSupport,  // rejected: no hypothesis reached min_support
+  kDegenerate,        // rejected: matched lines do not fix the transform
+  kOutsidePrior,      // rejected: the best transform contradicts the prior (Condition 2)
+  kRepetitive,        // ambiguous: structure unique within the maps is too little
+  kRivalTransform,    // ambiguous: a distinct transform is (nearly) as well supported
+};
+const char* MapMatchResultName(MapMatchResult r);
+const char* MapMatchReasonName(MapMatchReason r);
+
+// Repetitive structure of one map, from matching it with itself.
+struct SelfMatch {
+  struct Repetition {
+    Pose2 transform;     // S: maps the map onto itself
+    uint64_t lines = 0;  // bit k: prepared line k takes part (as source or image)
+    int support = 0;
+  };
+  std::vector<Repetition> repetitions;
+  int usable_lines = 0;
+};
+
+struct MapMatch {
+  MapMatchResult result = MapMatchResult::kRejected;
+  MapMatchReason reason = MapMatchReason::kTooFewLines;
+  UncertainPose b_in_a;  // t (eq. 9): the pose of B's frame in A's frame, with covariance
+  int support = 0;
+  int rival_support = 0;
+  int hypotheses = 0;  // transform hypotheses verified (work done)
+};
+
+SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions& options);
+
+// Matches map B into map A. `self_a`, `self_b` are the maps' self-matches (ignored when
+// options.self_match is false). `prior_b_in_a`, if not null, is the Dijkstra projection of B's
+// frame in A's frame, used only to gate (Condition 2), never to form t.
+MapMatch MatchMaps(const std::vector<MapLine>& a, const SelfMatch& self_a,
+                   const std::vector<MapLine>& b, const SelfMatch& self_b,
+                   const UncertainPose* prior_b_in_a, const MapMatchOptions& options);
+
+}  // namespace atlas

@@ -1,0 +1,166 @@
+#include "core/atlas/map_match.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <random>
+
+namespace atlas {
+namespace {
+
+MapLine Segment(Vec2 p, Vec2 q, double sigma_rho = 0.01, double sigma_alpha = 0.003) {
+  MapLine l;
+  const Vec2 d = (q - p).normalized();
+  Vec2 n(-d.y(), d.x());
+  double rho = n.dot(p);
+  if (rho < 0) {
+    n = -n;
+    rho = -rho;
+  }
+  l.rho = rho;
+  l.alpha = std::atan2(n.y(), n.x());
+  l.cov = Vec2(sigma_rho * sigma_rho, sigma_alpha * sigma_alpha).asDiagonal();
+  l.endpoint_a = p;
+  l.endpoint_b = q;
+  return l;
+}
+
+// The same segments (given in A's frame) as map B sees them, B's frame being `b_in_a`.
+std::vector<MapLine> SeenFrom(const std::vector<std::pair<Vec2, Vec2>>& segs, const Pose2& b_in_a,
+                              double noise = 0.0, unsigned seed = 1) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, noise);
+  const Pose2 a_in_b = Inverse(b_in_a);
+  std::vector<MapLine> out;
+  for (const auto& [p, q] : segs) {
+    Vec2 pb = a_in_b.TransformPoint(p), qb = a_in_b.TransformPoint(q);
+    if (noise > 0) {
+      pb += Vec2(n(rng), n(rng));
+      qb += Vec2(n(rng), n(rng));
+    }
+    out.push_back(Segment(pb, qb));
+  }
+  return out;
+}
+
+std::vector<MapLine> InA(const std::vector<std::pair<Vec2, Vec2>>& segs) {
+  return SeenFrom(segs, Pose2{});
+}
+
+// An irregular room: no symmetry, lines at several angles.
+std::vector<std::pair<Vec2, Vec2>> Room() {
+  return {{{0, 0}, {6, 0}}, {{6, 0}, {7, 3}}, {{7, 3}, {4, 5}},
+          {{4, 5}, {0, 4}}, {{0, 4}, {0, 0}}, {{2, 1}, {3, 2.5}}};
+}
+
+// A comb: a long wall with identical short walls every 4 m (repetitive structure).
+std::vector<std::pair<Vec2, Vec2>> Comb(double x0, double x1) {
+  std::vector<std::pair<Vec2, Vec2>> s{{{x0, 0}, {x1, 0}}};
+  for (double x = 0; x <= 24; x += 4)
+    if (x >= x0 - 0.01 && x <= x1 + 0.01) s.push_back({{x, 0}, {x, 2}});
+  return s;
+}
+
+TEST(MapMatch, RecoversTransformIndependentlyOfAnyPrior) {
+  MapMatchOptions o;
+  const Pose2 truth{3.0, -2.0, 0.8};
+  const auto a = InA(Room());
+  const auto b = SeenFrom(Room(), truth, 0.01);
+  const MapMatch m = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);
+  ASSERT_EQ(m.result, MapMatchResult::kAccepted) << MapMatchReasonName(m.reason);
+  EXPECT_EQ(m.support, 6);
+  EXPECT_NEAR(m.b_in_a.mean.x, truth.x, 0.05);
+  EXPECT_NEAR(m.b_in_a.mean.y, truth.y, 0.05);
+  EXPECT_NEAR(m.b_in_a.mean.theta, truth.theta, 0.01);
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(m.b_in_a.cov);
+  EXPECT_GT(eig.eigenvalues()(0), 0.0);
+  // The covariance is of the order of the line covariances (cm, mrad), not a constant.
+  EXPECT_LT(std::sqrt(m.b_in_a.cov(0, 0)), 0.1);
+  EXPECT_LT(std::sqrt(m.b_in_a.cov(2, 2)), 0.02);
+  // A wrong prior far away does not move t: it only gates (Condition 2).
+  UncertainPose far{Pose2{-10, 10, 0}, Vec3(1, 1, 0.1).asDiagonal()};
+  const MapMatch gated = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &far, o);
+  EXPECT_EQ(gated.result, MapMatchResult::kRejected);
+  EXPECT_EQ(gated.reason, MapMatchReason::kOutsidePrior);
+}
+
+TEST(MapMatch, LooserLineCovarianceGivesLooserTransform) {
+  MapMatchOptions o;
+  const Pose2 truth{1.0, 1.0, -0.4};
+  auto a = InA(Room());
+  auto b = SeenFrom(Room(), truth);
+  const MapMatch tight = MatchMaps(a, {}, b, {}, nullptr, o);
+  for (MapLine& l : a) l.cov *= 25;
+  for (MapLine& l : b) l.cov *= 25;
+  const MapMatch loose = MatchMaps(a, {}, b, {}, nullptr, o);
+  ASSERT_EQ(tight.result, MapMatchResult::kAccepted);
+  ASSERT_EQ(loose.result, MapMatchResult::kAccepted);
+  EXPECT_GT(loose.b_in_a.cov.determinant(), tight.b_in_a.cov.determinant());
+}
+
+TEST(MapMatch, SelfMatchFindsRepetition) {
+  MapMatchOptions o;
+  const SelfMatch room = SelfMatchMap(InA(Room()), o);
+  EXPECT_TRUE(room.repetitions.empty());
+  const SelfMatch comb = SelfMatchMap(InA(Comb(0, 24)), o);
+  ASSERT_FALSE(comb.repetitions.empty());
+  bool shift4 = false;
+  for (const auto& r : comb.repetitions)
+    shift4 |= std::abs(std::abs(r.transform.x) - 4.0) < 0.1 && std::abs(r.transform.theta) < 0.01;
+  EXPECT_TRUE(shift4);
+}
+
+TEST(MapMatch, AmbiguousRepetitiveStructureIsRejected) {
+  MapMatchOptions o;
+  const Pose2 truth{8.0, 0.5, 0.3};
+  const auto a = InA(Comb(0, 24));
+  const auto b = SeenFrom(Comb(7, 17), truth);
+  // With self-match: the comb's teeth are not unique within either map.
+  const MapMatch m = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);
+  EXPECT_EQ(m.result, MapMatchResult::kAmbiguous);
+  EXPECT_EQ(m.reason, MapMatchReason::kRepetitive);
+  // Without self-match the cross-match itself finds equally supported rival shifts.
+  o.self_match = false;
+  const MapMatch r = MatchMaps(a, {}, b, {}, nullptr, o);
+  EXPECT_EQ(r.result, MapMatchResult::kAmbiguous);
+  EXPECT_EQ(r.reason, MapMatchReason::kRivalTransform);
+  EXPECT_GE(r.rival_support, r.support - o.min_lead + 1);
+  // A loose prior (sigma 5 m) cannot tell the shifts apart either (Condition 2 violated).
+  o.self_match = true;
+  UncertainPose loose{Pose2{8.5, 0.0, 0.3}, Vec3(25, 25, 0.1).asDiagonal()};
+  EXPECT_EQ(MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &loose, o).result,
+            MapMatchResult::kAmbiguous);
+}
+
+TEST(MapMatch, TightPriorDisambiguatesRepetition) {
+  // Condition 2 satisfied: the predicted transform is accurate to 0.3 m, the repetition is 4 m.
+  MapMatchOptions o;
+  const Pose2 truth{8.0, 0.5, 0.3};
+  const auto a = InA(Comb(0, 24));
+  const auto b = SeenFrom(Comb(7, 17), truth);
+  UncertainPose prior{Pose2{8.3, 0.3, 0.32}, Vec3(0.09, 0.09, 0.01).asDiagonal()};
+  const MapMatch m = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &prior, o);
+  ASSERT_EQ(m.result, MapMatchResult::kAccepted) << MapMatchReasonName(m.reason);
+  EXPECT_NEAR(m.b_in_a.mean.x, truth.x, 0.02);
+  EXPECT_NEAR(m.b_in_a.mean.y, truth.y, 0.02);
+}
+
+TEST(MapMatch, ParallelOrTooFewLinesAreRejected) {
+  MapMatchOptions o;
+  const std::vector<std::pair<Vec2, Vec2>> corridor{
+      {{0, 0}, {10, 0}}, {{0, 2}, {10, 2}}, {{12, 0}, {20, 0}}, {{12, 2}, {20, 2}}};
+  const auto a = InA(corridor);
+  const auto b = SeenFrom(corridor, Pose2{1, 0, 0});
+  const MapMatch m = MatchMaps(a, {}, b, {}, nullptr, o);
+  EXPECT_EQ(m.result, MapMatchResult::kRejected);
+  const auto two = InA({{{0, 0}, {5, 0}}, {{0, 0}, {0, 5}}});
+  EXPECT_EQ(MatchMaps(two, {}, two, {}, nullptr, o).reason, MapMatchReason::kTooFewLines);
+  // Garbage lines (NaN) are ignored, not trusted.
+  auto bad = InA(Room());
+  for (MapLine& l : bad) l.rho = std::nan("");
+  EXPECT_EQ(MatchMaps(bad, {}, bad, {}, nullptr, o).result, MapMatchResult::kRejected);
+  EXPECT_EQ(o.Validate(), "");
+}
+
+}  // namespace
+}  // namespace atlas
