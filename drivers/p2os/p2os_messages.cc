@@ -8,10 +8,10 @@
 namespace atlas::p2os {
 namespace {
 
+// Reads little-endian fields; the caller has checked the length.
 class LittleEndianReader {
  public:
   explicit LittleEndianReader(std::span<const uint8_t> b) : b_(b) {}
-  bool Has(std::size_t n) const { return at_ + n <= b_.size(); }
   uint8_t U8() { return b_[at_++]; }
   uint16_t U16() {
     const uint16_t v = static_cast<uint16_t>(b_[at_] | (b_[at_ + 1] << 8));
@@ -109,8 +109,12 @@ std::vector<uint8_t> EncodeSync2Reply(const RobotIdentity& id) {
 
 SipDecode DecodeStandardSip(const PacketView& p, StandardSip* sip) {
   if (p.payload.empty() || !IsStandardSipType(p.payload[0])) return SipDecode::kNotStandardSip;
+  if (p.payload.size() < kSipFixedBefore) return SipDecode::kTruncated;
+  const std::size_t count = p.payload[kSipFixedBefore - 1];
+  if (p.payload.size() < kSipFixedBefore + 3 * count + kSipFixedAfter) {
+    return SipDecode::kTruncated;
+  }
   LittleEndianReader r(p.payload);
-  if (!r.Has(kSipFixedBefore)) return SipDecode::kTruncated;
   StandardSip s;
   s.sonars = std::move(sip->sonars);
   s.sonars.clear();
@@ -126,11 +130,7 @@ SipDecode DecodeStandardSip(const PacketView& p, StandardSip* sip) {
   s.control = r.I16();
   s.flags = r.U16();
   s.compass = r.U8();
-  const std::size_t count = r.U8();
-  if (!r.Has(3 * count + kSipFixedAfter)) {
-    sip->sonars = std::move(s.sonars);
-    return SipDecode::kTruncated;
-  }
+  r.U8();  // the sonar count, read above
   for (std::size_t i = 0; i < count; ++i) {
     SonarRaw raw;
     raw.index = r.U8();
