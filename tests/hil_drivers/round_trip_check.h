@@ -1,0 +1,109 @@
+#pragma once
+// Assertions shared by the round-trip tests (unit slice and the full "hil" run).
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "tests/hil_drivers/driver_rig.h"
+
+namespace atlas::hil {
+
+// Pose step of the driver between samples a and b vs the recording's between the same ticks.
+inline void CheckOdometry(const DriverRig& rig, bool expect_all) {
+  const auto sent = rig.base_->SentIntact();
+  const auto& got = rig.odometry;
+  if (expect_all) {
+    EXPECT_EQ(got.size(), sent.size()) << "odometry samples out vs 0x311 frames in";
+  }
+  const size_t n = std::min(sent.size(), got.size());
+  double worst_xy = 0, worst_th = 0;
+  for (size_t k = 1; k < n; ++k) {
+    const Pose2 want = Between(sent[k - 1].pose, sent[k].pose);
+    const Pose2 have = Between(got[k - 1].pose, got[k].pose);
+    worst_xy = std::max(worst_xy, std::hypot(want.x - have.x, want.y - have.y));
+    worst_th = std::max(worst_th, std::abs(WrapAngle(want.theta - have.theta)));
+  }
+  // Over the whole run: the integrated pose against the log's, relative to the first sample.
+  double end_xy = 0, end_th = 0;
+  if (n > 1) {
+    const Pose2 want = Between(sent[0].pose, sent[n - 1].pose);
+    const Pose2 have = Between(got[0].pose, got[n - 1].pose);
+    end_xy = std::hypot(want.x - have.x, want.y - have.y);
+    end_th = std::abs(WrapAngle(want.theta - have.theta));
+  }
+  std::printf("odometry: %zu frames 0x311 sent intact, %zu samples out; worst step error %.4f m "
+              "%.5f rad; end-to-end error %.4f m %.5f rad over %.1f m of log\n",
+              sent.size(), got.size(), worst_xy, worst_th, end_xy, end_th,
+              n > 1 ? std::hypot(sent[n - 1].pose.x - sent[0].pose.x,
+                                 sent[n - 1].pose.y - sent[0].pose.y)
+                    : 0.0);
+  // Counters are whole millimetres: each wheel's change over a step is within 1 mm of the
+  // exact one, so the heading within 2 mm / 0.58 m = 0.00345 rad; the position also carries
+  // the log's sideways motion, which a differential drive cannot reproduce.
+  EXPECT_LT(worst_xy, 0.005);
+  EXPECT_LT(worst_th, 0.0035);
+}
+
+inline void CheckSonar(const DriverRig& rig, bool expect_all) {
+  const auto sent = rig.p2os_->SentIntact();
+  const auto& got = rig.sonar;
+  if (expect_all) {
+    EXPECT_EQ(got.size(), sent.size()) << "sonar readings out vs SIPs in";
+  }
+  size_t bad = 0;
+  for (size_t k = 0; k < std::min(sent.size(), got.size()); ++k) {
+    if (sent[k].returns.size() != got[k].returns.size()) {
+      ++bad;
+      continue;
+    }
+    for (size_t i = 0; i < sent[k].returns.size(); ++i) {
+      const SonarReturn& a = sent[k].returns[i];
+      const SonarReturn& b = got[k].returns[i];
+      if (a.transducer != b.transducer || IsReturn(a.range) != IsReturn(b.range) ||
+          (IsReturn(a.range) && std::abs(a.range - b.range) > 0.0006f)) {
+        ++bad;
+        break;
+      }
+    }
+  }
+  std::printf("sonar: %zu SIPs with returns sent intact, %zu readings out, %zu differ\n",
+              sent.size(), got.size(), bad);
+  EXPECT_EQ(bad, 0u);
+}
+
+inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
+  const auto sent = rig.lms_->SentIntact();
+  std::string first;
+  const size_t bad = CompareScans(*rig.rec_, sent, rig.scans, &first);
+  size_t no_return = 0;
+  for (const auto& s : rig.scans)
+    for (float r : s.ranges) no_return += !IsReturn(r);
+  std::printf("laser: %zu scans in the slice, %zu sent intact, %zu out, %zu differ, "
+              "%zu no-return beams out\n",
+              rig.rec_->scans.size(), sent.size(), rig.scans.size(), bad, no_return);
+  EXPECT_EQ(bad, 0u) << first;
+  if (expect_all) {
+    EXPECT_EQ(sent.size(), rig.rec_->scans.size());
+    EXPECT_EQ(rig.scans.size(), rig.rec_->scans.size());
+  }
+  CheckOdometry(rig, expect_all);
+  CheckSonar(rig, expect_all);
+  for (const DriverHealth& h : {rig.laser_->Health(), rig.odo_->Health(), rig.sonar_->Health()}) {
+    std::printf("  %-40s %-8s msgs %6llu samples %6llu crc %llu garbage %llu trunc %llu "
+                "disc %llu drops %llu reconnects %llu rate %.1f Hz\n",
+                h.device.c_str(), ToString(h.state), (unsigned long long)h.messages,
+                (unsigned long long)h.samples, (unsigned long long)h.bad_crc,
+                (unsigned long long)h.garbage_bytes, (unsigned long long)h.truncated,
+                (unsigned long long)h.discontinuities, (unsigned long long)h.drops,
+                (unsigned long long)h.reconnects, h.message_rate_hz);
+    if (expect_all) {
+      EXPECT_EQ(h.bad_crc, 0u) << h.device;
+      EXPECT_EQ(h.drops, 0u) << h.device;
+      EXPECT_EQ(h.discontinuities, 0u) << h.device;
+      EXPECT_EQ(h.disconnects, 0u) << h.device;
+    }
+  }
+}
+
+}  // namespace atlas::hil
