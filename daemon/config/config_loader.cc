@@ -313,6 +313,49 @@ class ValueChecker {
   std::vector<std::string>* problems_;
 };
 
+// Visits the schema writing every value as text (FlattenOptions()).
+class Flattener {
+ public:
+  std::map<std::string, std::string> values;
+
+  template <typename F>
+  void Section(const char* name, F body) {
+    const std::string saved = prefix_;
+    prefix_ = Join(prefix_, name);
+    body();
+    prefix_ = saved;
+  }
+  void Bool(const char* k, bool& v) { values[Join(prefix_, k)] = v ? "true" : "false"; }
+  void Int(const char* k, int& v, int, int) { values[Join(prefix_, k)] = FormatNumber(v); }
+  void IntOneOf(const char* k, int& v, std::initializer_list<int>) {
+    values[Join(prefix_, k)] = FormatNumber(v);
+  }
+  void Double(const char* k, double& v, double, double) {
+    values[Join(prefix_, k)] = FormatNumber(v);
+  }
+  void DoubleOneOf(const char* k, double& v, std::initializer_list<double>) {
+    values[Join(prefix_, k)] = FormatNumber(v);
+  }
+  void String(const char* k, std::string& v, config::StringCheck) {
+    values[Join(prefix_, k)] = "\"" + v + "\"";
+  }
+  template <typename E, size_t N>
+  void Enum(const char* k, E& v, const config::EnumNames<E, N>& names) {
+    std::string& out = values[Join(prefix_, k)];
+    for (const auto& [name, value] : names) {
+      if (value == v) out = "\"" + std::string(name) + "\"";
+    }
+  }
+  void IntList(const char* k, std::vector<int>& v, int, int, size_t) {
+    std::string s = "[";
+    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + FormatNumber(v[i]);
+    values[Join(prefix_, k)] = s + "]";
+  }
+
+ private:
+  std::string prefix_;
+};
+
 ConfigResult LoadFromTable(const toml::table& root, const std::string& file) {
   ConfigResult result;
   TomlReader reader(root, file, &result.errors);
@@ -422,6 +465,33 @@ std::string DaemonOptions::Validate() const {
   std::string out;
   for (const std::string& p : problems) out += (out.empty() ? "" : "\n") + p;
   return out;
+}
+
+std::map<std::string, std::string> FlattenOptions(const DaemonOptions& options) {
+  DaemonOptions copy = options;  // the visitor takes mutable references; nothing is changed
+  Flattener f;
+  config::VisitOptions(f, copy);
+  return std::move(f.values);
+}
+
+bool IsReloadableKey(const std::string& key) {
+  for (const char* prefix :
+       {"noise.", "atlas.", "lcm.republish_raw", "lcm.health_period_s", "lcm.graph_period_s",
+        "lcm.local_map_period_s", "loop.step_budget_ms", "state.save_period_s"}) {
+    if (key.rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+ReloadDiff DiffForReload(const DaemonOptions& running, const DaemonOptions& loaded) {
+  const auto a = FlattenOptions(running);
+  const auto b = FlattenOptions(loaded);
+  ReloadDiff diff;
+  for (const auto& [key, value] : a) {
+    if (b.at(key) == value) continue;
+    (IsReloadableKey(key) ? diff.reloadable : diff.needs_restart).push_back(key);
+  }
+  return diff;
 }
 
 std::string ConfigError::ToString() const {

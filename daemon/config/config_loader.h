@@ -14,6 +14,7 @@
 // then stops restarting a daemon whose configuration is broken.
 
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,6 +45,21 @@ struct ConfigResult {
 ConfigResult LoadConfigFile(const std::string& path);
 // source_name is used as the file name in errors.
 ConfigResult LoadConfigString(std::string_view toml_text, const std::string& source_name);
+
+// Every key with its value as text ("laser.baud" -> "500000"; enums by their file names), in
+// key order: for logging the effective configuration and for comparing two of them.
+std::map<std::string, std::string> FlattenOptions(const DaemonOptions& options);
+
+// What a reload (SIGHUP) may change while running: the LCM periods and raw republishing, the
+// noise models, the atlas parameters and budgets, the step budget and the save period. Devices,
+// the LCM URL and channels, the state directory, queue capacities and scheduling need a restart.
+bool IsReloadableKey(const std::string& key);
+
+struct ReloadDiff {
+  std::vector<std::string> reloadable;     // changed keys a running atlasd may apply
+  std::vector<std::string> needs_restart;  // changed keys that take effect at the next start
+};
+ReloadDiff DiffForReload(const DaemonOptions& running, const DaemonOptions& loaded);
 
 // Loads path; prints each error on err (one per line) and returns kExitConfigError, or prints
 // "PATH: configuration is valid" on out and returns 0.

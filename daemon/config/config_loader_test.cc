@@ -9,56 +9,13 @@
 #include <map>
 #include <sstream>
 
-#include "daemon/config/config_schema.h"
 
 namespace atlas {
 namespace {
 
 using ::testing::HasSubstr;
 
-// Lists every schema key with its value as text, so that two DaemonOptions can be compared and
-// the shipped file can be checked against the schema.
-class KeyDump {
- public:
-  std::map<std::string, std::string> values;
-
-  template <typename F>
-  void Section(const char* name, F body) {
-    const std::string saved = prefix_;
-    prefix_ = Key(name);
-    body();
-    prefix_ = saved;
-  }
-  void Bool(const char* k, bool& v) { values[Key(k)] = v ? "true" : "false"; }
-  void Int(const char* k, int& v, int, int) { values[Key(k)] = std::to_string(v); }
-  void IntOneOf(const char* k, int& v, std::initializer_list<int>) {
-    values[Key(k)] = std::to_string(v);
-  }
-  void Double(const char* k, double& v, double, double) { values[Key(k)] = std::to_string(v); }
-  void DoubleOneOf(const char* k, double& v, std::initializer_list<double>) {
-    values[Key(k)] = std::to_string(v);
-  }
-  void String(const char* k, std::string& v, config::StringCheck) { values[Key(k)] = v; }
-  template <typename E, size_t N>
-  void Enum(const char* k, E& v, const config::EnumNames<E, N>&) {
-    values[Key(k)] = std::to_string(static_cast<int>(v));
-  }
-  void IntList(const char* k, std::vector<int>& v, int, int, size_t) {
-    std::string s;
-    for (int x : v) s += std::to_string(x) + ",";
-    values[Key(k)] = s;
-  }
-
- private:
-  std::string Key(const char* k) const { return prefix_.empty() ? k : prefix_ + "." + k; }
-  std::string prefix_;
-};
-
-std::map<std::string, std::string> Dump(DaemonOptions o) {
-  KeyDump d;
-  config::VisitOptions(d, o);
-  return d.values;
-}
+std::map<std::string, std::string> Dump(const DaemonOptions& o) { return FlattenOptions(o); }
 
 std::vector<std::filesystem::path> ShippedConfigFiles() {
   std::vector<std::filesystem::path> files;
@@ -265,6 +222,31 @@ TEST(ConfigLoader, ValidateChecksProgrammaticOptions) {
   const std::string v = o.Validate();
   EXPECT_THAT(v, HasSubstr("atlas.max_hypotheses: must be between 1 and 64, got 0"));
   EXPECT_THAT(v, HasSubstr("lcm.channels.graph: must be printable ASCII"));
+}
+
+TEST(ConfigLoader, FlattenOptionsWritesFileSyntax) {
+  DaemonOptions o;
+  o.scheduling.cpu_affinity = {0, 1};
+  const auto flat = FlattenOptions(o);
+  EXPECT_EQ(flat.at("laser.baud"), "500000");
+  EXPECT_EQ(flat.at("laser.unit"), "\"mm\"");
+  EXPECT_EQ(flat.at("lcm.channels.pose"), "\"ATLAS_POSE\"");
+  EXPECT_EQ(flat.at("scheduling.cpu_affinity"), "[0, 1]");
+  EXPECT_EQ(flat.at("sonar.enabled"), "false");
+  EXPECT_EQ(flat.size(), 57u) << "a key was added or removed: update config/atlasd.toml";
+}
+
+TEST(ConfigLoader, DiffForReloadSeparatesWhatNeedsARestart) {
+  DaemonOptions running;
+  DaemonOptions loaded;
+  loaded.atlas.quality_alpha = 0.7;
+  loaded.lcm.republish_raw = true;
+  loaded.laser.baud = 38400;
+  loaded.state.directory = "/srv/atlas";
+  const ReloadDiff d = DiffForReload(running, loaded);
+  EXPECT_EQ(d.reloadable, (std::vector<std::string>{"atlas.quality_alpha", "lcm.republish_raw"}));
+  EXPECT_EQ(d.needs_restart, (std::vector<std::string>{"laser.baud", "state.directory"}));
+  EXPECT_TRUE(DiffForReload(running, running).reloadable.empty());
 }
 
 TEST(ConfigLoader, CheckConfigCommandExits78AndNamesTheKey) {
