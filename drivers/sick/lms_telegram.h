@@ -50,7 +50,9 @@ enum class TelegramParse { kOk, kTooShort, kNoStx, kBadLength, kBadCrc, kTrailin
 // Checks exactly one whole telegram in `bytes` (no ACK byte in front).
 TelegramParse ParseTelegram(std::span<const uint8_t> bytes, TelegramView* out);
 
-// What the stream decoder found: a checked telegram, or a lone ACK / NAK byte.
+// What the stream decoder found: a checked telegram, or a lone ACK / NAK byte. Every 0x06 /
+// 0x15 outside a checked telegram is reported, also one inside garbage, so a driver should act
+// on them only while it waits for the answer to a command.
 enum class StreamEventKind { kTelegram, kAck, kNak };
 struct StreamEvent {
   StreamEventKind kind = StreamEventKind::kTelegram;
