@@ -37,10 +37,11 @@ void LaserReader::Disconnect() { port_.Close(); }
 
 void LaserReader::SyncCounters() {
   const sick::StreamCounters& c = decoder_.counters();
-  health_.bytes.store(c.bytes_fed, std::memory_order_relaxed);
+  health_.bytes.store(c.bytes_fed - resync_.double_counted(), std::memory_order_relaxed);
   health_.bad_crc.store(c.bad_crc, std::memory_order_relaxed);
   health_.bad_length.store(c.bad_length, std::memory_order_relaxed);
-  health_.garbage_bytes.store(c.garbage_bytes, std::memory_order_relaxed);
+  health_.garbage_bytes.store(c.garbage_bytes - resync_.double_counted(),
+                              std::memory_order_relaxed);
 }
 
 template <typename Accept>
@@ -64,6 +65,7 @@ LaserReader::Reply LaserReader::Transact(const std::vector<uint8_t>& command, ui
       return Reply::kGone;
     }
     if (r.status != SerialIo::kData) continue;
+    resync_.Record(std::span<const uint8_t>(buf, r.n));
     decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), [&](const sick::StreamEvent& e) {
       if (done) return;
       if (e.kind == sick::StreamEventKind::kNak) {
@@ -209,6 +211,9 @@ DeviceReader::SessionEnd LaserReader::ReadUntilGone(std::string* error) {
     const int timeout = decoder_.buffered() > 0 ? gap_ms : 50;
     SerialResult r = port_.Read(buf, sizeof(buf), timeout);
     const Time now = Now();
+    auto on_event = [&](const sick::StreamEvent& e) {
+      if (e.kind == sick::StreamEventKind::kTelegram) HandleTelegram(e.telegram, now);
+    };
     if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
       *error = r.error;
       SyncCounters();
@@ -216,12 +221,11 @@ DeviceReader::SessionEnd LaserReader::ReadUntilGone(std::string* error) {
     }
     if (r.status == SerialIo::kTimeout && decoder_.buffered() > 0) {
       health_.truncated.fetch_add(1, std::memory_order_relaxed);
-      decoder_.Reset();
+      resync_.Resync(decoder_, on_event);
     }
     if (r.status == SerialIo::kData) {
-      decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), [&](const sick::StreamEvent& e) {
-        if (e.kind == sick::StreamEventKind::kTelegram) HandleTelegram(e.telegram, now);
-      });
+      resync_.Record(std::span<const uint8_t>(buf, r.n));
+      decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), on_event);
     }
     SyncCounters();
     if (TrackSilence(r.status == SerialIo::kData, now)) {

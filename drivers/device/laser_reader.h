@@ -20,6 +20,7 @@
 
 #include "core/common/sensor_types.h"
 #include "drivers/device/device_reader.h"
+#include "drivers/device/gap_resync.h"
 #include "drivers/queue/spsc_queue.h"
 #include "drivers/serial/serial_port.h"
 #include "drivers/sick/lms_messages.h"
@@ -71,6 +72,7 @@ class LaserReader final : public DeviceReader {
   LaserReaderOptions options_;
   SerialPort port_;
   sick::StreamDecoder decoder_;
+  GapResync<sick::StreamDecoder::kWindow> resync_;
   SpscQueue<LaserScan> queue_;
   LaserScan scan_;
   std::atomic<int> found_baud_{0};

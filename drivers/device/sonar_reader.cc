@@ -29,10 +29,11 @@ void SonarReader::Disconnect() { port_.Close(); }
 
 void SonarReader::SyncCounters() {
   const p2os::StreamCounters& c = decoder_.counters();
-  health_.bytes.store(c.bytes_fed, std::memory_order_relaxed);
+  health_.bytes.store(c.bytes_fed - resync_.double_counted(), std::memory_order_relaxed);
   health_.bad_crc.store(c.bad_checksum, std::memory_order_relaxed);
   health_.bad_length.store(c.bad_count, std::memory_order_relaxed);
-  health_.garbage_bytes.store(c.garbage_bytes, std::memory_order_relaxed);
+  health_.garbage_bytes.store(c.garbage_bytes - resync_.double_counted(),
+                              std::memory_order_relaxed);
 }
 
 bool SonarReader::Send(const std::vector<uint8_t>& packet, std::string* error) {
@@ -60,6 +61,7 @@ bool SonarReader::Exchange(const std::vector<uint8_t>& packet, Accept&& accept,
       return false;
     }
     if (r.status != SerialIo::kData) continue;
+    resync_.Record(std::span<const uint8_t>(buf, r.n));
     decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), [&](const p2os::PacketView& p) {
       if (!done && accept(p)) done = true;
     });
@@ -77,10 +79,25 @@ bool SonarReader::Connect(std::string* error) {
     if (Stopping()) return false;
     if (!port_.Open({options_.device, rate, true}, error)) return false;
     std::string why;
-    if (Exchange(p2os::EncodeSync(0), [](const p2os::PacketView& p) { return p2os::SyncEcho(p) == 0; },
-                 &why)) {
+    bool saw_sip = false;
+    auto sync0_echo = [&](const p2os::PacketView& p) {
+      if (p2os::IsStandardSipType(p.payload[0])) saw_sip = true;
+      return p2os::SyncEcho(p) == 0;
+    };
+    if (Exchange(p2os::EncodeSync(0), sync0_echo, &why)) {
       synced = true;
       break;
+    }
+    if (saw_sip && port_.is_open()) {
+      // Still open from an earlier session (SYNC0 reads as PULSE then): close it, retry.
+      if (Send(p2os::EncodeCommand(p2os::kCmdClose), &why) &&
+          SleepFor(std::chrono::milliseconds(100))) {
+        decoder_.Reset();
+        if (Exchange(p2os::EncodeSync(0), sync0_echo, &why)) {
+          synced = true;
+          break;
+        }
+      }
     }
     if (!port_.is_open()) {
       *error = why;
@@ -144,6 +161,7 @@ DeviceReader::SessionEnd SonarReader::ReadUntilGone(std::string* error) {
     const int timeout = decoder_.buffered() > 0 ? gap_ms : 50;
     SerialResult r = port_.Read(buf, sizeof(buf), timeout);
     const Time now = Now();
+    auto on_event = [&](const p2os::PacketView& p) { HandlePacket(p, now); };
     if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
       *error = r.error;
       SyncCounters();
@@ -151,11 +169,11 @@ DeviceReader::SessionEnd SonarReader::ReadUntilGone(std::string* error) {
     }
     if (r.status == SerialIo::kTimeout && decoder_.buffered() > 0) {
       health_.truncated.fetch_add(1, std::memory_order_relaxed);
-      decoder_.Reset();
+      resync_.Resync(decoder_, on_event);
     }
     if (r.status == SerialIo::kData) {
-      decoder_.FeedAll(std::span<const uint8_t>(buf, r.n),
-                       [&](const p2os::PacketView& p) { HandlePacket(p, now); });
+      resync_.Record(std::span<const uint8_t>(buf, r.n));
+      decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), on_event);
     }
     SyncCounters();
     if (TrackSilence(r.status == SerialIo::kData, now)) {

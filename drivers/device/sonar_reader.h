@@ -1,6 +1,7 @@
 #pragma once
 // The P2OS sonar reader thread (shared/specs/devices.md, section 3). Start-up: open the line at
-// 9600 8N1 raw (or the next probe rate if no SYNC0 echo comes), the SYNC0/SYNC1/SYNC2
+// 9600 8N1 raw (or the next probe rate if no SYNC0 echo comes; SIPs instead of an echo mean
+// the controller is still open from an earlier session: CLOSE, then SYNC0 again), the SYNC0/SYNC1/SYNC2
 // handshake (each echoed; SYNC2's echo names the robot), OPEN, sonar on (command 28, 1); then a
 // PULSE at least every pulse_period or the controller closes the connection. Standard SIPs are
 // decoded by drivers/p2os, their sonar returns converted with the configured range factor and
@@ -13,6 +14,7 @@
 
 #include "core/common/sensor_types.h"
 #include "drivers/device/device_reader.h"
+#include "drivers/device/gap_resync.h"
 #include "drivers/p2os/p2os_messages.h"
 #include "drivers/p2os/p2os_packet.h"
 #include "drivers/queue/spsc_queue.h"
@@ -58,6 +60,7 @@ class SonarReader final : public DeviceReader {
   SonarReaderOptions options_;
   SerialPort port_;
   p2os::StreamDecoder decoder_;
+  GapResync<p2os::StreamDecoder::kWindow> resync_;
   SpscQueue<SonarReading> queue_;
   p2os::StandardSip sip_;
   SonarReading reading_;

@@ -114,7 +114,7 @@ void FakeSerialDevice::Loop() {
     if (clock_->started()) next = std::min(next, Tick(now));
     const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(next - Now());
     const long n = pty_.Read(buf, sizeof(buf), static_cast<int>(std::clamp<int64_t>(wait.count(), 0, 20)));
-    if (n > 0 && !Stalled(Now())) OnHostBytes(std::span<const uint8_t>(buf, static_cast<size_t>(n)), Now());
+    if (n > 0) OnHostBytes(std::span<const uint8_t>(buf, static_cast<size_t>(n)), Now());
   }
 }
 

@@ -4,7 +4,8 @@
 // sends the device's messages when the playback clock says they are due, and the fault
 // injection of FaultOptions applied to every outgoing message:
 //   garbage     bytes before the message;          corrupt   last CRC/checksum byte flipped;
-//   truncate    only the first half is sent;       stall     nothing sent, nothing answered;
+//   truncate    only the first half is sent;       stall     nothing sent (the device still
+//                                                            hears the host, answers nothing);
 //   drop        the pty is closed (the driver reads EIO), then recreated at the same path and
 //               the device powers up again (OnPowerUp).
 
@@ -48,7 +49,7 @@ class FakeSerialDevice {
  protected:
   // The device is (re)powered: reset its protocol state.
   virtual void OnPowerUp() = 0;
-  // Bytes the host wrote (not called while stalled).
+  // Bytes the host wrote (also while stalled: replies are then suppressed).
   virtual void OnHostBytes(std::span<const uint8_t> bytes, Time now) = 0;
   // Sends what is due at `now` (SendMessage); returns when to be called next.
   virtual Time Tick(Time now) = 0;

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <thread>
@@ -176,6 +177,10 @@ class DriverRig {
     Time quiet_since = Now();
     while (Now() < deadline) {
       if (Drain()) quiet_since = Now();
+      if (Finished() && states_at_end.empty()) {
+        for (DeviceReader* r : std::initializer_list<DeviceReader*>{laser_.get(), odo_.get(), sonar_.get()})
+          if (r) states_at_end.push_back(r->Health().state);
+      }
       if (Finished() && Now() - quiet_since > std::chrono::milliseconds(300)) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
@@ -199,6 +204,7 @@ class DriverRig {
   std::vector<LaserScan> scans;
   std::vector<OdometrySample> odometry;
   std::vector<SonarReading> sonar;
+  std::vector<DriverState> states_at_end;  // when the last fake finished playing
 
  private:
   static bool Fail(const std::string& e, std::string* error) {
