@@ -1,0 +1,251 @@
+#include "core/localmap/jcbb.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace atlas {
+namespace {
+
+// Inverse of the standard normal CDF (P. J. Acklam's rational approximation, |err| < 1.2e-9).
+double NormalQuantile(double p) {
+  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
+                                 -2.759285104469687e+02, 1.383577518672690e+02,
+                                 -3.066479806614716e+01, 2.506628277459239e+00};
+  static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
+                                 -1.556989798598866e+02, 6.680131188771972e+01,
+                                 -1.328068155288572e+01};
+  static constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
+                                 -2.400758277161838e+00, -2.549732539343734e+00,
+                                 4.374664141464968e+00,  2.938163982698783e+00};
+  static constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01,
+                                 2.445134137142996e+00, 3.754408661907416e+00};
+  p = std::clamp(p, 1e-300, 1.0 - 1e-16);
+  if (p < 0.02425) {
+    const double q = std::sqrt(-2.0 * std::log(p));
+    return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+           ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+  }
+  if (p > 1.0 - 0.02425) {
+    const double q = std::sqrt(-2.0 * std::log(1.0 - p));
+    return -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+           ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+  }
+  const double q = p - 0.5, r = q * q;
+  return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+         (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
+}
+
+double WilsonHilferty(double z, int dof) {
+  const double k = dof;
+  const double h = 2.0 / (9.0 * k);
+  const double t = 1.0 - h + z * std::sqrt(h);
+  return k * t * t * t;
+}
+
+struct TieHypothesis {
+  std::vector<int> pair_of;
+  double d2 = 0.0;
+};
+
+class Search {
+ public:
+  Search(int num_observations, const std::vector<CandidatePair>& candidates,
+         const JointCovariance& cov, const JcbbOptions& options)
+      : cands_(candidates), cov_(cov), options_(options) {
+    by_obs_.assign(num_observations, {});
+    for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
+      const int j = candidates[c].observation;
+      if (j >= 0 && j < num_observations) by_obs_[j].push_back(c);
+    }
+    for (int j = 0; j < num_observations; ++j) {
+      if (by_obs_[j].empty()) continue;
+      std::sort(by_obs_[j].begin(), by_obs_[j].end(),
+                [&](int a, int b) { return candidates[a].d2 < candidates[b].d2; });
+      order_.push_back(j);
+    }
+    std::stable_sort(order_.begin(), order_.end(),
+                     [&](int a, int b) { return by_obs_[a].size() < by_obs_[b].size(); });
+    const int n = static_cast<int>(order_.size());
+    const double z = NormalQuantile(options.joint_gate);
+    gate_.resize(n + 1);
+    gate_[0] = 0.0;
+    for (int k = 1; k <= n; ++k) {
+      gate_[k] = k == 1 ? -2.0 * std::log(1.0 - options.joint_gate) : WilsonHilferty(z, 2 * k);
+    }
+    const int dim = 2 * n;
+    l_.assign(static_cast<size_t>(dim) * dim, 0.0);
+    y_.assign(dim, 0.0);
+    x_.assign(2 * static_cast<size_t>(dim), 0.0);
+    stack_.assign(n, -1);
+    current_pair_of_.assign(num_observations, -1);
+    int max_feature = 0;
+    for (const CandidatePair& c : candidates) max_feature = std::max(max_feature, c.feature);
+    feature_use_.assign(max_feature + 1, 0);
+    dim_ = dim;
+  }
+
+  void Run() { Visit(0, 0, 0.0); }
+
+  int nodes = 0;
+  bool exhausted = false;
+  int best_pairings = -1;
+  double best_d2 = 0.0;
+  std::vector<int> best_pair_of;
+  std::vector<TieHypothesis> ties;  // hypotheses with best_pairings pairings, the best included
+
+ private:
+  double& L(int r, int c) { return l_[static_cast<size_t>(r) * dim_ + c]; }
+
+  void Record(double d2, int pairings) {
+    if (pairings > best_pairings) {
+      best_pairings = pairings;
+      ties.clear();
+    }
+    constexpr size_t kMaxTies = 8;
+    if (ties.size() == kMaxTies) {
+      auto worst = std::max_element(ties.begin(), ties.end(),
+                                    [](const auto& a, const auto& b) { return a.d2 < b.d2; });
+      if (worst->d2 <= d2) return;
+      *worst = TieHypothesis{current_pair_of_, d2};
+    } else {
+      ties.push_back(TieHypothesis{current_pair_of_, d2});
+    }
+  }
+
+  // Level `level` of the search; `k` pairings so far with joint distance d2.
+  void Visit(int level, int k, double d2) {
+    const int n = static_cast<int>(order_.size());
+    if (k + (n - level) < best_pairings) return;
+    if (nodes >= options_.node_budget) {
+      exhausted = true;
+      return;
+    }
+    ++nodes;
+    if (level == n) {
+      Record(d2, k);
+      return;
+    }
+    const int j = order_[level];
+    for (int c : by_obs_[j]) {
+      const CandidatePair& p = cands_[c];
+      const bool feature_ok = p.feature >= 0 && p.feature < static_cast<int>(feature_use_.size());
+      if (!feature_ok) continue;
+      if (!options_.allow_shared_features && feature_use_[p.feature] > 0) continue;
+      // Cross covariances C (2k x 2) with the pairings already in the hypothesis; solve L X = C.
+      const int r0 = 2 * k;
+      for (int m = 0; m < k; ++m) {
+        const Mat2 cm = cov_.Cross(cands_[stack_[m]], p);
+        x_[2 * (2 * m) + 0] = cm(0, 0);
+        x_[2 * (2 * m) + 1] = cm(0, 1);
+        x_[2 * (2 * m + 1) + 0] = cm(1, 0);
+        x_[2 * (2 * m + 1) + 1] = cm(1, 1);
+      }
+      for (int r = 0; r < r0; ++r) {
+        double s0 = x_[2 * r], s1 = x_[2 * r + 1];
+        for (int q = 0; q < r; ++q) {
+          s0 -= L(r, q) * x_[2 * q];
+          s1 -= L(r, q) * x_[2 * q + 1];
+        }
+        x_[2 * r] = s0 / L(r, r);
+        x_[2 * r + 1] = s1 / L(r, r);
+      }
+      // Schur complement S_p - X^T X, its Cholesky factor, and the new part of y.
+      double s00 = p.S(0, 0), s01 = p.S(0, 1), s11 = p.S(1, 1);
+      double v0 = p.innovation(0), v1 = p.innovation(1);
+      for (int r = 0; r < r0; ++r) {
+        s00 -= x_[2 * r] * x_[2 * r];
+        s01 -= x_[2 * r] * x_[2 * r + 1];
+        s11 -= x_[2 * r + 1] * x_[2 * r + 1];
+        v0 -= x_[2 * r] * y_[r];
+        v1 -= x_[2 * r + 1] * y_[r];
+      }
+      if (!(s00 > 0.0)) continue;
+      const double l00 = std::sqrt(s00);
+      const double l10 = s01 / l00;
+      const double t = s11 - l10 * l10;
+      if (!(t > 0.0)) continue;
+      const double l11 = std::sqrt(t);
+      const double y0 = v0 / l00;
+      const double y1 = (v1 - l10 * y0) / l11;
+      const double d2_new = d2 + y0 * y0 + y1 * y1;
+      if (!(d2_new < gate_[k + 1])) continue;
+      for (int r = 0; r < r0; ++r) {
+        L(r0, r) = x_[2 * r];
+        L(r0 + 1, r) = x_[2 * r + 1];
+      }
+      L(r0, r0) = l00;
+      L(r0, r0 + 1) = 0.0;
+      L(r0 + 1, r0) = l10;
+      L(r0 + 1, r0 + 1) = l11;
+      y_[r0] = y0;
+      y_[r0 + 1] = y1;
+      stack_[k] = c;
+      current_pair_of_[j] = c;
+      ++feature_use_[p.feature];
+      Visit(level + 1, k + 1, d2_new);
+      --feature_use_[p.feature];
+      current_pair_of_[j] = -1;
+      if (exhausted) return;
+    }
+    Visit(level + 1, k, d2);
+  }
+
+  const std::vector<CandidatePair>& cands_;
+  const JointCovariance& cov_;
+  const JcbbOptions& options_;
+  std::vector<std::vector<int>> by_obs_;
+  std::vector<int> order_;
+  std::vector<double> gate_;
+  std::vector<double> l_, y_, x_;
+  std::vector<int> stack_;
+  std::vector<int> current_pair_of_;
+  std::vector<int> feature_use_;
+  int dim_ = 0;
+};
+
+}  // namespace
+
+double ChiSquareQuantile(double p, int dof) {
+  if (dof <= 0) return 0.0;
+  if (dof == 2) return -2.0 * std::log(1.0 - p);
+  const double z = NormalQuantile(dof == 1 ? 0.5 * (1.0 + p) : p);
+  if (dof == 1) return z * z;
+  return WilsonHilferty(z, dof);
+}
+
+JcbbResult Jcbb(int num_observations, const std::vector<CandidatePair>& candidates,
+                const JointCovariance& cov, const JcbbOptions& options) {
+  JcbbResult result;
+  result.feature_of.assign(num_observations, -1);
+  result.pair_of.assign(num_observations, -1);
+  result.ambiguous.assign(num_observations, false);
+  Search search(num_observations, candidates, cov, options);
+  search.Run();
+  result.nodes = search.nodes;
+  if (search.exhausted) {
+    result.status = AssociationStatus::kBudgetExhausted;
+    return result;
+  }
+  if (search.ties.empty()) return result;
+  const auto best = std::min_element(search.ties.begin(), search.ties.end(),
+                                     [](const auto& a, const auto& b) { return a.d2 < b.d2; });
+  result.pairings = search.best_pairings;
+  result.joint_d2 = best->d2;
+  for (int j = 0; j < num_observations; ++j) {
+    result.pair_of[j] = best->pair_of[j];
+    result.feature_of[j] = best->pair_of[j] >= 0 ? candidates[best->pair_of[j]].feature : -1;
+  }
+  for (const TieHypothesis& h : search.ties) {
+    if (&h == &*best || h.d2 - best->d2 >= options.ambiguity_margin) continue;
+    for (int j = 0; j < num_observations; ++j) {
+      const int fa = h.pair_of[j] >= 0 ? candidates[h.pair_of[j]].feature : -1;
+      if (fa != result.feature_of[j]) {
+        result.ambiguous[j] = true;
+        result.status = AssociationStatus::kAmbiguous;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace atlas

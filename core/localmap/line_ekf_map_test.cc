@@ -1,0 +1,186 @@
+#include "core/localmap/line_ekf_map.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cstring>
+#include <random>
+
+#include "core/localmap/fake_wall_scanner.h"
+#include "core/localmap/line_extraction.h"
+
+namespace atlas {
+namespace {
+
+LocalMapOptions SimOptions() {
+  LocalMapOptions o;
+  o.capacity = 30;
+  o.extraction.range_sigma = 0.01;
+  return o;
+}
+
+TEST(LineEkfMapTest, OptionsValidate) {
+  EXPECT_EQ(LocalMapOptions().Validate(), "");
+  LocalMapOptions o;
+  o.association.individual_gate = 1.5;
+  EXPECT_NE(o.Validate(), "");
+  o = LocalMapOptions();
+  o.extraction.min_points = 1;
+  EXPECT_NE(o.Validate(), "");
+  o = LocalMapOptions();
+  o.quality.window = 0;
+  EXPECT_NE(o.Validate(), "");
+}
+
+TEST(LineEkfMapTest, PredictComposesAndGrowsCovarianceWithDistanceAndTurn) {
+  LineEkfMap map;
+  map.Predict(Pose2{1.0, 0.0, 0.0});
+  map.Predict(Pose2{0.0, 0.0, std::numbers::pi / 2});
+  map.Predict(Pose2{1.0, 0.0, 0.0});
+  const UncertainPose p = map.RobotPose();
+  EXPECT_NEAR(p.mean.x, 1.0, 1e-12);
+  EXPECT_NEAR(p.mean.y, 1.0, 1e-12);
+  EXPECT_NEAR(p.mean.theta, std::numbers::pi / 2, 1e-12);
+  const Mat3 straight = LineEkfMap::OdometryNoise(Pose2{1.0, 0, 0}, OdometryNoiseOptions());
+  const Mat3 longer = LineEkfMap::OdometryNoise(Pose2{2.0, 0, 0}, OdometryNoiseOptions());
+  const Mat3 turn = LineEkfMap::OdometryNoise(Pose2{0.0, 0, 1.0}, OdometryNoiseOptions());
+  EXPECT_GT(longer.trace(), straight.trace());
+  EXPECT_GT(turn(2, 2), LineEkfMap::OdometryNoise(Pose2{0, 0, 0.1}, OdometryNoiseOptions())(2, 2));
+  EXPECT_EQ(LineEkfMap::OdometryNoise(Pose2{}, OdometryNoiseOptions()), Mat3::Zero());
+  EXPECT_GT(p.cov.determinant(), 0.0);
+}
+
+// Drives a robot along the corridor world with noisy odometry and scans; returns the
+// average robot NEES over the steps after the first update.
+struct RunStats {
+  double mean_nees = 0.0;
+  int max_features = 0;
+  int updates_with_matches = 0;
+};
+
+RunStats RunCorridor(LineEkfMap& map, uint64_t seed, int steps, bool allow_new = true) {
+  const OdometryNoiseOptions& on = map.Options().odometry;
+  FakeLaserOptions lo;
+  lo.range_sigma = map.Options().extraction.range_sigma;
+  FakeWallScanner scanner(CorridorWorld(), lo, seed);
+  std::mt19937_64 rng(seed + 1);
+  std::normal_distribution<double> normal;
+  Pose2 truth;
+  RunStats stats;
+  double nees_sum = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    const Pose2 u{0.1, 0.0, s % 40 < 20 ? 0.005 : -0.005};
+    truth = Compose(truth, u);
+    // Odometry noise drawn from the filter's own model.
+    const Mat3 q = LineEkfMap::OdometryNoise(u, on);
+    const Eigen::LLT<Mat3> llt(q + Mat3::Identity() * 1e-15);
+    const Vec3 w = llt.matrixL() * Vec3(normal(rng), normal(rng), normal(rng));
+    map.Predict(Pose2{u.x + w(0), u.y + w(1), u.theta + w(2)});
+    const ScanUpdate up = map.Update(scanner.Scan(truth), allow_new);
+    if (up.matched > 0) ++stats.updates_with_matches;
+    stats.max_features = std::max(stats.max_features, map.Complexity());
+    const UncertainPose est = map.RobotPose();
+    const Vec3 e(truth.x - est.mean.x, truth.y - est.mean.y,
+                 WrapAngle(truth.theta - est.mean.theta));
+    nees_sum += e.dot(est.cov.inverse() * e);
+  }
+  stats.mean_nees = nees_sum / steps;
+  return stats;
+}
+
+TEST(LineEkfMapTest, ShortCorridorRunIsConsistentAndBounded) {
+  double nees = 0.0;
+  constexpr int kRuns = 4;
+  for (int r = 0; r < kRuns; ++r) {
+    LineEkfMap map(SimOptions());
+    const RunStats s = RunCorridor(map, 100 + r, 150);
+    EXPECT_LE(s.max_features, map.Capacity());
+    EXPECT_GT(s.updates_with_matches, 140);
+    nees += s.mean_nees;
+  }
+  // 3 dof: a consistent filter averages 3; a loose bound (the Monte Carlo tool is strict).
+  EXPECT_LT(nees / kRuns, 6.0);
+  EXPECT_GT(nees / kRuns, 1.0);
+}
+
+TEST(LineEkfMapTest, CapacityAndJuvenileRule) {
+  LocalMapOptions o = SimOptions();
+  o.capacity = 3;
+  LineEkfMap map(o);
+  RunCorridor(map, 5, 40);
+  EXPECT_EQ(map.Complexity(), 3);
+  LineEkfMap juvenile(SimOptions());
+  RunCorridor(juvenile, 5, 40, /*allow_new=*/false);
+  EXPECT_EQ(juvenile.Complexity(), 0);
+}
+
+TEST(LineEkfMapTest, SerializeRoundTripsAndRejectsGarbage) {
+  LineEkfMap map(SimOptions());
+  RunCorridor(map, 9, 30);
+  ASSERT_GT(map.Complexity(), 2);
+  const std::string image = map.Serialize();
+  LineEkfMap copy(SimOptions());
+  ASSERT_TRUE(copy.Deserialize(image));
+  EXPECT_EQ(copy.Serialize(), image);
+  EXPECT_EQ(copy.State(), map.State());
+  EXPECT_EQ(copy.Covariance(), map.Covariance());
+  ASSERT_EQ(copy.Lines().size(), map.Lines().size());
+  EXPECT_EQ(copy.Quality(), map.Quality());
+  // Truncations, bit flips and random bytes never crash and never half-load.
+  const std::string before = copy.Serialize();
+  for (size_t cut = 0; cut < image.size(); cut += 7) {
+    EXPECT_FALSE(copy.Deserialize(image.substr(0, cut)));
+  }
+  EXPECT_FALSE(copy.Deserialize(image + "x"));
+  std::mt19937 rng(3);
+  for (int t = 0; t < 200; ++t) {
+    std::string junk(rng() % 300, '\0');
+    for (char& c : junk) c = static_cast<char>(rng());
+    EXPECT_FALSE(copy.Deserialize(junk));
+  }
+  std::string flipped = image;
+  flipped[1] ^= 0x40;
+  EXPECT_FALSE(copy.Deserialize(flipped));
+  std::string nan_image = image;
+  const double nan = std::nan("");
+  std::memcpy(nan_image.data() + 16, &nan, sizeof(nan));
+  EXPECT_FALSE(copy.Deserialize(nan_image));
+  EXPECT_EQ(copy.Serialize(), before);
+}
+
+TEST(LineEkfMapTest, CloneIsIndependent) {
+  LineEkfMap map(SimOptions());
+  RunCorridor(map, 11, 20);
+  std::unique_ptr<LocalMap> clone = map.Clone();
+  clone->Predict(Pose2{1.0, 0.0, 0.0});
+  EXPECT_NE(clone->RobotPose().mean.x, map.RobotPose().mean.x);
+  EXPECT_EQ(clone->Complexity(), map.Complexity());
+}
+
+TEST(LineEkfMapTest, ResetRobotPoseClearsCorrelation) {
+  LineEkfMap map(SimOptions());
+  RunCorridor(map, 12, 20);
+  UncertainPose seed;
+  seed.mean = Pose2{1.0, 2.0, 0.3};
+  seed.cov = Mat3::Identity() * 0.01;
+  map.ResetRobotPose(seed);
+  EXPECT_EQ(map.RobotPose().cov, seed.cov);
+  EXPECT_TRUE(map.Covariance().topRightCorner(3, map.Covariance().cols() - 3).isZero());
+}
+
+TEST(LineEkfMapTest, LinesAreCanonicalWithExtents) {
+  LineEkfMap map(SimOptions());
+  RunCorridor(map, 13, 60);
+  for (const MapLine& l : map.Lines()) {
+    EXPECT_GE(l.rho, 0.0);
+    EXPECT_GT(l.cov.determinant(), 0.0);
+    EXPECT_GT((l.endpoint_b - l.endpoint_a).norm(), 0.5);
+    for (const Vec2& e : {l.endpoint_a, l.endpoint_b}) {
+      EXPECT_NEAR(e.x() * std::cos(l.alpha) + e.y() * std::sin(l.alpha), l.rho, 1e-9);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace atlas

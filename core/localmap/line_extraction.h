@@ -1,0 +1,45 @@
+#pragma once
+// Line extraction from one laser scan: split-and-merge segmentation followed by a weighted
+// least-squares line fit per segment, after Nguyen, Martinelli, Tomatis and Siegwart, "A
+// comparison of line extraction algorithms using 2D laser rangefinder for indoor mobile
+// robotics" (IROS 2005), and Pfister, Roumeliotis and Burdick, "Weighted line fitting
+// algorithms for mobile robot map building and efficient data representation" (ICRA 2003).
+//
+// 1. Beams become points in the sensor frame; no-return beams and ranges outside
+//    [min_range, max_range) are never points. Consecutive points farther apart than max_gap
+//    start a new cluster.
+// 2. Split: each cluster is split recursively at the point farthest from the chord between its
+//    first and last point while that distance exceeds split_distance (iterative end-point fit).
+// 3. Merge: adjacent segments of one cluster whose joint fit stays within split_distance merge.
+// 4. Fit: each segment of at least min_points points is fitted by minimising
+//    sum_i w_i d_i^2, d_i the normal distance of point i, w_i = 1 / (sigma_r(r_i)^2
+//    cos^2(phi_i - alpha) + model_sigma^2): the range noise projected on the line normal. The
+//    (rho, alpha) covariance is the inverse of the Gauss-Newton information
+//    sum_i w_i J_i^T J_i, J_i = d d_i / d(rho, alpha) = (-1, -x_i sin(alpha) + y_i cos(alpha)).
+// 5. Endpoints are the first and last point projected on the line; lines shorter than
+//    min_length are dropped. At most max_lines lines are returned (longest kept).
+//
+// Pure function of the scan and options; fixed work bound per scan (O(beams * log) splits).
+
+#include <vector>
+
+#include "core/common/sensor_types.h"
+#include "core/localmap/line_model.h"
+#include "core/localmap/localmap_options.h"
+
+namespace atlas {
+
+// Lines in the SENSOR frame, canonical (rho >= 0), in beam order. `options` must be valid.
+std::vector<ObservedLine> ExtractLines(const LaserScan& scan, const LineExtractionOptions& options);
+
+// Lines in the ROBOT frame: ExtractLines moved through scan.sensor_pose (exact).
+std::vector<ObservedLine> ExtractRobotFrameLines(const LaserScan& scan,
+                                                 const LineExtractionOptions& options);
+
+// The weighted fit of step 4 on given points (sensor frame) with per-point normal variance
+// var_i(alpha) = range_var_i cos^2(phi_i - alpha) + model_var, phi_i the bearing of point i.
+// Needs >= 2 points; returns false if degenerate. Exposed for tests.
+bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_var,
+             double model_var, ObservedLine& line);
+
+}  // namespace atlas

@@ -1,0 +1,140 @@
+#include "core/localmap/line_extraction.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <numbers>
+
+#include "core/localmap/fake_wall_scanner.h"
+
+namespace atlas {
+namespace {
+
+TEST(LineExtractionTest, EstimatedCovarianceMatchesSampleCovariance) {
+  // One oblique wall 4 m long, seen over many beams; 2000 noisy scans.
+  const Wall wall{Vec2(3.0, -2.0), Vec2(2.0, 2.0)};
+  FakeLaserOptions lo;
+  lo.range_sigma = 0.02;
+  FakeWallScanner scanner({wall}, lo, 7);
+  LineExtractionOptions eo;
+  eo.range_sigma = 0.02;
+  eo.split_distance = 0.2;
+  const Vec2 truth = FakeWallScanner::WallLine(wall);
+  constexpr int kRuns = 2000;
+  Vec2 mean_err = Vec2::Zero();
+  Mat2 sample = Mat2::Zero();
+  Mat2 estimated = Mat2::Zero();
+  int fitted = 0;
+  double nees = 0.0;
+  for (int r = 0; r < kRuns; ++r) {
+    const std::vector<ObservedLine> lines = ExtractLines(scanner.Scan(Pose2{}), eo);
+    ASSERT_EQ(lines.size(), 1u);
+    const Vec2 e(lines[0].rho - truth(0), WrapAngle(lines[0].alpha - truth(1)));
+    mean_err += e;
+    sample += e * e.transpose();
+    estimated += lines[0].cov;
+    nees += e.dot(lines[0].cov.inverse() * e);
+    ++fitted;
+  }
+  mean_err /= fitted;
+  sample /= fitted;
+  estimated /= fitted;
+  // Unbiased to well within one sigma of the mean; covariances agree within sampling error
+  // (~3 % for 2000 samples, 10 % allowed) in both principal directions and in correlation.
+  EXPECT_LT(std::abs(mean_err(0)), 3.0 * std::sqrt(estimated(0, 0) / kRuns) + 1e-4);
+  EXPECT_LT(std::abs(mean_err(1)), 3.0 * std::sqrt(estimated(1, 1) / kRuns) + 1e-5);
+  EXPECT_NEAR(sample(0, 0) / estimated(0, 0), 1.0, 0.1);
+  EXPECT_NEAR(sample(1, 1) / estimated(1, 1), 1.0, 0.1);
+  const double rho_s = sample(0, 1) / std::sqrt(sample(0, 0) * sample(1, 1));
+  const double rho_e = estimated(0, 1) / std::sqrt(estimated(0, 0) * estimated(1, 1));
+  EXPECT_NEAR(rho_s, rho_e, 0.06);
+  // Each fit's own covariance explains its error: the NEES averages to 2 (2 dof).
+  EXPECT_NEAR(nees / kRuns, 2.0, 0.15);
+}
+
+TEST(LineExtractionTest, CornerGivesTwoLinesWithEndpoints) {
+  const std::vector<Wall> walls = {{Vec2(4.0, -3.0), Vec2(4.0, 2.0)},
+                                   {Vec2(4.0, 2.0), Vec2(-2.0, 2.0)}};
+  FakeLaserOptions lo;
+  lo.range_sigma = 0.005;
+  FakeWallScanner scanner(walls, lo, 3);
+  const std::vector<ObservedLine> lines =
+      ExtractLines(scanner.Scan(Pose2{}), LineExtractionOptions());
+  ASSERT_EQ(lines.size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    const Vec2 truth = FakeWallScanner::WallLine(walls[i]);
+    EXPECT_NEAR(lines[i].rho, truth(0), 0.02);
+    EXPECT_NEAR(WrapAngle(lines[i].alpha - truth(1)), 0.0, 0.01);
+  }
+  // The shared corner is an endpoint of both, within a few centimetres.
+  EXPECT_NEAR((lines[0].endpoint_b - Vec2(4.0, 2.0)).norm(), 0.0, 0.1);
+  EXPECT_NEAR((lines[1].endpoint_a - Vec2(4.0, 2.0)).norm(), 0.0, 0.1);
+}
+
+TEST(LineExtractionTest, NoReturnBeamsAreNeverPoints) {
+  const Wall wall{Vec2(2.0, -3.0), Vec2(2.0, 3.0)};
+  FakeLaserOptions lo;
+  lo.range_sigma = 0.0;
+  FakeWallScanner scanner({wall}, lo, 1);
+  LaserScan scan = scanner.Scan(Pose2{});
+  const std::vector<ObservedLine> full = ExtractLines(scan, LineExtractionOptions());
+  ASSERT_EQ(full.size(), 1u);
+  // Every third beam without return: still one line, fewer points, same geometry.
+  for (size_t i = 0; i < scan.ranges.size(); i += 3) scan.ranges[i] = kNoReturn;
+  const std::vector<ObservedLine> sparse = ExtractLines(scan, LineExtractionOptions());
+  ASSERT_EQ(sparse.size(), 1u);
+  EXPECT_LT(sparse[0].num_points, full[0].num_points);
+  EXPECT_NEAR(sparse[0].rho, 2.0, 1e-6);
+  // All beams without return: nothing, even though the ranges are +inf "beyond" the wall.
+  for (float& r : scan.ranges) r = kNoReturn;
+  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).empty());
+  // NaN ranges are treated the same way.
+  for (float& r : scan.ranges) r = std::nanf("");
+  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).empty());
+}
+
+TEST(LineExtractionTest, GapAndLengthAndPointOptionsAreHonoured) {
+  // Two collinear walls separated by a 1 m opening.
+  const std::vector<Wall> walls = {{Vec2(2.0, -3.0), Vec2(2.0, -0.5)},
+                                   {Vec2(2.0, 0.5), Vec2(2.0, 3.0)}};
+  FakeLaserOptions lo;
+  lo.range_sigma = 0.0;
+  FakeWallScanner scanner(walls, lo, 1);
+  const LaserScan scan = scanner.Scan(Pose2{});
+  LineExtractionOptions eo;
+  EXPECT_EQ(ExtractLines(scan, eo).size(), 2u);
+  eo.max_gap = 2.0;  // the opening no longer separates them: one merged line
+  EXPECT_EQ(ExtractLines(scan, eo).size(), 1u);
+  eo = LineExtractionOptions();
+  eo.min_length = 3.0;
+  EXPECT_EQ(ExtractLines(scan, eo).size(), 0u);
+  eo = LineExtractionOptions();
+  eo.min_points = 1000;
+  EXPECT_EQ(ExtractLines(scan, eo).size(), 0u);
+}
+
+TEST(LineExtractionTest, RobotFrameUsesSensorMounting) {
+  const Wall wall{Vec2(3.0, -3.0), Vec2(3.0, 3.0)};
+  FakeLaserOptions lo;
+  lo.range_sigma = 0.0;
+  lo.sensor_pose = Pose2{0.5, 0.0, 0.0};
+  FakeWallScanner scanner({wall}, lo, 1);
+  const LaserScan scan = scanner.Scan(Pose2{});
+  const auto sensor = ExtractLines(scan, LineExtractionOptions());
+  const auto robot = ExtractRobotFrameLines(scan, LineExtractionOptions());
+  ASSERT_EQ(sensor.size(), 1u);
+  ASSERT_EQ(robot.size(), 1u);
+  EXPECT_NEAR(sensor[0].rho, 2.5, 1e-6);
+  EXPECT_NEAR(robot[0].rho, 3.0, 1e-6);
+}
+
+TEST(LineExtractionTest, EmptyAndDegenerateScansDoNotCrash) {
+  LaserScan scan;
+  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).empty());
+  scan.ranges.assign(361, 1.0f);  // all points identical (zero increment)
+  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).size() <= 1u);
+}
+
+}  // namespace
+}  // namespace atlas

@@ -1,0 +1,98 @@
+#pragma once
+// Options of the line-feature local map (module atlas_localmap): line extraction, odometry
+// noise, data association, the quality metric q (eq. 5) and the bootstrapping function w
+// (eq. 12). One struct with defaults, validated once by Validate().
+
+#include <string>
+
+namespace atlas {
+
+// Segmentation and fitting of laser scans into lines (line_extraction.h).
+struct LineExtractionOptions {
+  // Range noise of one beam: sigma = range_sigma + range_sigma_per_m * range (metres).
+  double range_sigma = 0.01;
+  double range_sigma_per_m = 0.0;
+  // Extra noise normal to the line per point (walls that are not perfectly straight), metres.
+  double model_sigma = 0.0;
+  // A point farther than this from the chord of its segment splits the segment (metres).
+  double split_distance = 0.05;
+  // Consecutive points farther apart than this never share a segment (metres).
+  double max_gap = 0.3;
+  int min_points = 8;
+  double min_length = 0.5;  // metres, between the projected endpoints
+  // Ranges outside [min_range, max_range) of the scan are ignored (like no-return beams).
+  double min_range = 0.05;
+  int max_lines = 32;  // work bound: at most this many lines per scan
+
+  std::string Validate() const;
+};
+
+// Wheel odometry noise for Predict(): a differential-drive model (the variance of each wheel's
+// distance grows linearly with the distance it rolled) plus isotropic floors growing with
+// distance and turn, for slip and everything the wheel model misses.
+struct OdometryNoiseOptions {
+  double track_width = 0.4;         // metres
+  double wheel_var_per_m = 5e-6;    // m^2 per metre rolled, per wheel
+  double xy_var_per_m = 1e-6;       // m^2 per metre travelled, each of x and y
+  double xy_var_per_rad = 1e-6;     // m^2 per radian turned
+  double theta_var_per_m = 1e-6;    // rad^2 per metre travelled
+  double theta_var_per_rad = 1e-5;  // rad^2 per radian turned
+
+  std::string Validate() const;
+};
+
+// Data association by Joint Compatibility Branch and Bound (jcbb.h).
+struct AssociationOptions {
+  double individual_gate = 0.99;  // chi-square probability for one pairing (2 dof)
+  double joint_gate = 0.99;       // chi-square probability for a whole hypothesis (2k dof)
+  // A pairing also needs the observed segment to overlap the feature's tracked extent, or to
+  // leave a gap of at most this many metres along the line.
+  double max_extent_gap = 2.0;
+  int node_budget = 256;              // work bound on the branch-and-bound search per scan
+  bool allow_shared_features = true;  // several observed segments of one wall in one scan
+  // A rival hypothesis with as many pairings and a joint distance within this margin of the
+  // best one makes the observations on which they differ ambiguous (rejected).
+  double ambiguity_margin = 4.0;
+  // An unmatched observation becomes a new feature only if it is not compatible with any
+  // feature at this looser chi-square probability either (avoids duplicates).
+  double new_feature_gate = 0.9999;
+  double new_feature_min_length = 1.0;  // metres
+
+  std::string Validate() const;
+};
+
+// The quality metric q of eq. 5.
+struct QualityOptions {
+  double alpha = 0.5;        // weight of the pose-uncertainty term
+  double max_sigma_x = 0.5;  // metres: det(Sigma_x*) = sx^2 sy^2 st^2
+  double max_sigma_y = 0.5;
+  double max_sigma_theta = 0.2;  // radians
+  int window = 5;                // scans that count as "recent" for eta_a / ||Z||
+
+  std::string Validate() const;
+};
+
+// The bootstrapping function w of eq. 12 (bootstrap.h).
+struct BootstrapOptions {
+  int min_matches = 2;
+  // The two most informative matched directions must differ by at least this angle.
+  double min_angle_between = 0.35;  // radians (20 degrees)
+  double residual_gate = 0.999;     // chi-square probability of the final residual
+  int iterations = 5;               // Gauss-Newton iterations
+
+  std::string Validate() const;
+};
+
+struct LocalMapOptions {
+  int capacity = 10;  // map capacity: at most this many features (paper: 10 lines)
+  LineExtractionOptions extraction;
+  OdometryNoiseOptions odometry;
+  AssociationOptions association;
+  QualityOptions quality;
+  BootstrapOptions bootstrap;
+
+  // Empty when every field is valid, else the first problem found (field: reason).
+  std::string Validate() const;
+};
+
+}  // namespace atlas
