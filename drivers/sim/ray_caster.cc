@@ -45,14 +45,14 @@ RayCaster::RayCaster(const std::vector<Wall>& walls, double cell_size)
 
 inline double RayCaster::Intersect(int i, double ox, double oy, double ux, double uy) const {
   const PackedWall& w = packed_[i];
-  const double denom = ux * w.dy - uy * w.dx;
-  if (std::abs(denom) < 1e-12) return kInf;  // parallel: grazing walls are not seen
+  double denom = ux * w.dy - uy * w.dx;
   const double aox = w.ax - ox, aoy = w.ay - oy;
-  const double inv = 1.0 / denom;
-  const double t = (aox * w.dy - aoy * w.dx) * inv;
-  const double s = (aox * uy - aoy * ux) * inv;
-  if (t <= 1e-9 || s < 0.0 || s > 1.0) return kInf;
-  return t;
+  double tn = aox * w.dy - aoy * w.dx;
+  double sn = aox * uy - aoy * ux;
+  if (denom < 0.0) denom = -denom, tn = -tn, sn = -sn;
+  // Hit iff denom > 0 (not parallel: grazing walls are not seen), t > 0, 0 <= s <= 1.
+  if (denom < 1e-12 || tn <= 1e-9 * denom || sn < 0.0 || sn > denom) return kInf;
+  return tn / denom;
 }
 
 RayHit RayCaster::CastBruteForce(const Vec2& origin, const Vec2& direction,

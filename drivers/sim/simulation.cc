@@ -6,11 +6,6 @@
 namespace atlas::sim {
 namespace {
 
-Pose2 Interpolate(const Pose2& a, const Pose2& b, double f) {
-  return Pose2{a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
-               WrapAngle(a.theta + f * WrapAngle(b.theta - a.theta))};
-}
-
 // Independent seeds for the parts of the run.
 uint64_t SubSeed(uint64_t seed, uint64_t part) {
   std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32),
@@ -21,6 +16,11 @@ uint64_t SubSeed(uint64_t seed, uint64_t part) {
 }
 
 }  // namespace
+
+Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f) {
+  return Pose2{a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
+               WrapAngle(a.theta + f * WrapAngle(b.theta - a.theta))};
+}
 
 std::string SimulationOptions::Validate() const {
   if (!(length_m > 0.0 && length_m <= 1e7)) return "length must be in (0, 10000] km";
@@ -99,8 +99,8 @@ SimulationSummary Simulate(const World& world, const SimulationOptions& o, Simul
         const double t = std::min(tl, tsn);
         if (at_end ? t > t1 + 1e-9 : t >= t1 - 1e-9) break;
         const double f = std::clamp((t - t0) / dt, 0.0, 1.0);
-        const Pose2 true_pose = Interpolate(truth, next_truth.pose, f);
-        const Pose2 odo_pose = Interpolate(odo.pose, next_odo.pose, f);
+        const Pose2 true_pose = InterpolatePose(truth, next_truth.pose, f);
+        const Pose2 odo_pose = InterpolatePose(odo.pose, next_odo.pose, f);
         if (tl <= tsn) {
           sink.OnLaser(laser.Scan(caster, true_pose, FromSeconds(t)), odo_pose);
           ++laser_n;

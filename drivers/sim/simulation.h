@@ -57,6 +57,9 @@ struct SimulationSummary {
   std::string error;  // non-empty if the run could not start (e.g. no route in the world)
 };
 
+// The pose a fraction f in [0, 1] of the way from a to b (linear in x, y and wrapped theta).
+Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f);
+
 // Runs the whole simulation. `progress` (may be empty) is called now and then with the
 // distance driven so far.
 SimulationSummary Simulate(const World& world, const SimulationOptions& options,

@@ -1,0 +1,142 @@
+#include "tools/render/run_data.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+
+#include "drivers/carmen/carmen_line.h"
+#include "drivers/sim/simulation.h"
+
+namespace atlas::draw {
+namespace {
+
+bool ParseDouble(std::string_view* s, double* v) {
+  while (!s->empty() && (s->front() == ' ' || s->front() == '\t')) s->remove_prefix(1);
+  const auto r = std::from_chars(s->data(), s->data() + s->size(), *v);
+  if (r.ec != std::errc() || !std::isfinite(*v)) return false;
+  s->remove_prefix(r.ptr - s->data());
+  return true;
+}
+
+}  // namespace
+
+std::optional<TruthSample> ParseTruthRow(std::string_view line, bool* malformed) {
+  *malformed = false;
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
+  const size_t first = line.find_first_not_of(" \t");
+  if (first == std::string_view::npos || line[first] == '#') return std::nullopt;
+  double v[4];
+  for (double& x : v)
+    if (!ParseDouble(&line, &x)) {
+      *malformed = true;
+      return std::nullopt;
+    }
+  if (line.find_first_not_of(" \t") != std::string_view::npos) {
+    *malformed = true;
+    return std::nullopt;
+  }
+  return TruthSample{FromSeconds(v[0]), Pose2{v[1], v[2], WrapAngle(v[3])}};
+}
+
+Pose2 InterpolateTruth(const std::vector<TruthSample>& truth, Time stamp) {
+  auto it = std::lower_bound(truth.begin(), truth.end(), stamp,
+                             [](const TruthSample& s, Time t) { return s.stamp < t; });
+  if (it == truth.begin()) return truth.front().pose;
+  if (it == truth.end()) return truth.back().pose;
+  const TruthSample& b = *it;
+  const TruthSample& a = *(it - 1);
+  const double span = ToSeconds(b.stamp - a.stamp);
+  const double f = span > 0 ? ToSeconds(stamp - a.stamp) / span : 0.0;
+  return sim::InterpolatePose(a.pose, b.pose, f);
+}
+
+std::vector<Vec2> ScanPoints(const RunScan& scan, const Pose2& laser_pose) {
+  std::vector<Vec2> points;
+  points.reserve(scan.ranges.size());
+  for (size_t i = 0; i < scan.ranges.size(); ++i) {
+    if (!IsReturn(scan.ranges[i])) continue;
+    const double a = laser_pose.theta + scan.angle_min + i * scan.angle_increment;
+    points.emplace_back(laser_pose.x + scan.ranges[i] * std::cos(a),
+                        laser_pose.y + scan.ranges[i] * std::sin(a));
+  }
+  return points;
+}
+
+std::string ReadRun(const std::string& dir, const RunReadOptions& options, RunData* run) {
+  *run = RunData{};
+  const std::string world_path = dir + "/world.txt";
+  {
+    std::ifstream in(world_path);
+    if (!in)
+      return "cannot open " + world_path + " (is " + dir + " an atlas-sim output directory?)";
+    sim::WorldParseResult parsed = sim::ParseWorld(in, world_path);
+    if (!parsed.ok()) return parsed.error;
+    run->world = std::move(parsed.world);
+  }
+  std::string line;
+  {
+    const std::string path = dir + "/truth.tsv";
+    std::ifstream in(path);
+    long n = 0;
+    while (in && std::getline(in, line)) {
+      ++n;
+      bool malformed = false;
+      const auto row = ParseTruthRow(line, &malformed);
+      if (malformed)
+        return path + ":" + std::to_string(n) + ": expected 'timestamp x y theta' (4 numbers)";
+      if (row) run->truth.push_back(*row);
+    }
+  }
+  const std::string log_path = dir + "/run.clf";
+  std::ifstream in(log_path);
+  if (!in) return "cannot open " + log_path;
+  const long max_scans = std::max(1L, options.max_scans);
+  std::vector<long> kept_index;
+  long n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    const bool flaser = line.rfind("FLASER ", 0) == 0;
+    if (line.rfind("SONAR ", 0) == 0) ++run->sonar_lines;
+    if (flaser) {
+      const long index = run->total_scans++;
+      if (index % run->scan_stride != 0) continue;
+    } else if (line.rfind("ODOM ", 0) != 0) {
+      continue;
+    }
+    const carmen::ParsedLine p = carmen::ParseLine(line);
+    if (!p.ok()) return log_path + ":" + std::to_string(n) + ": " + p.reason;
+    if (p.kind == carmen::LineKind::kOdometry) {
+      run->odometry.push_back(
+          OdometrySample{FromSeconds(p.odometry.ipc_timestamp), p.odometry.pose});
+    } else if (p.kind == carmen::LineKind::kLaser && p.laser.laser_pose && p.laser.odometry_pose) {
+      RunScan s;
+      s.stamp = FromSeconds(p.laser.ipc_timestamp);
+      s.laser_in_odometry = *p.laser.laser_pose;
+      s.robot_odometry = *p.laser.odometry_pose;
+      s.angle_min = p.laser.start_angle;
+      s.angle_increment = p.laser.angular_resolution;
+      s.ranges = p.laser.ranges;
+      for (float& r : s.ranges)
+        if (r >= 80.0f) r = kNoReturn;
+      run->scans.push_back(std::move(s));
+      kept_index.push_back(run->total_scans - 1);
+      if (static_cast<long>(run->scans.size()) > 2 * max_scans) {
+        run->scan_stride *= 2;
+        std::vector<RunScan> thinned;
+        std::vector<long> thinned_index;
+        for (size_t k = 0; k < run->scans.size(); ++k)
+          if (kept_index[k] % run->scan_stride == 0) {
+            thinned.push_back(std::move(run->scans[k]));
+            thinned_index.push_back(kept_index[k]);
+          }
+        run->scans = std::move(thinned);
+        kept_index = std::move(thinned_index);
+      }
+    }
+  }
+  if (in.bad()) return "read error in " + log_path;
+  return "";
+}
+
+}  // namespace atlas::draw
