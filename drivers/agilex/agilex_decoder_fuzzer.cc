@@ -10,13 +10,9 @@
 #include "drivers/agilex/agilex_messages.h"
 #include "drivers/agilex/can_frame_linux.h"
 #include "drivers/agilex/wheel_odometry.h"
+#include "drivers/framing/fuzz_check.h"
 
 namespace {
-
-#define FUZZ_CHECK(cond)           \
-  do {                             \
-    if (!(cond)) __builtin_trap(); \
-  } while (0)
 
 using namespace atlas::agilex;
 

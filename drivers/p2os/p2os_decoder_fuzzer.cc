@@ -7,15 +7,11 @@
 #include <cstdint>
 #include <span>
 
+#include "drivers/framing/fuzz_check.h"
 #include "drivers/p2os/p2os_messages.h"
 #include "drivers/p2os/p2os_packet.h"
 
 namespace {
-
-#define FUZZ_CHECK(cond)           \
-  do {                             \
-    if (!(cond)) __builtin_trap(); \
-  } while (0)
 
 using namespace atlas::p2os;
 

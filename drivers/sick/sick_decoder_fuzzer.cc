@@ -7,15 +7,11 @@
 #include <cstdint>
 #include <span>
 
+#include "drivers/framing/fuzz_check.h"
 #include "drivers/sick/lms_messages.h"
 #include "drivers/sick/lms_telegram.h"
 
 namespace {
-
-#define FUZZ_CHECK(cond)           \
-  do {                             \
-    if (!(cond)) __builtin_trap(); \
-  } while (0)
 
 using namespace atlas::sick;
 
