@@ -53,7 +53,11 @@ bool MoveAside(const std::string& path, const char* kind, std::string* moved_to,
   return true;
 }
 
-std::string ErrorText(sqlite3* db) { return db != nullptr ? sqlite3_errmsg(db) : "out of memory"; }
+std::string ErrorText(sqlite3* db) {
+  if (db == nullptr) return "out of memory";
+  return std::string(sqlite3_errmsg(db)) + ", SQLite code " +
+         std::to_string(sqlite3_extended_errcode(db));
+}
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);
@@ -142,56 +146,84 @@ bool AtlasStore::Exec(const char* sql, std::string* error) {
   return false;
 }
 
-// Runs on a read-only connection so that checking can never write to the file.
+// Checks on a read-only connection, so that checking never writes to the file. A WAL file left
+// by a killed process may need recovery, which a read-only connection cannot do (SQLITE_READONLY
+// and its extended codes): then the check runs on a read-write connection that recovers the WAL
+// index, but does not checkpoint into the main file when it closes.
 AtlasStore::Check AtlasStore::CheckExisting(std::string* why, int* found_version) {
-  sqlite3* ro = nullptr;
-  int rc = sqlite3_open_v2(path_.c_str(), &ro, SQLITE_OPEN_READONLY, nullptr);
   Check verdict = Check::kOurs;
-  if (rc == SQLITE_OK) {
-    sqlite3_busy_timeout(ro, 2000);
-    sqlite3_stmt* st = nullptr;
-    rc = sqlite3_prepare_v2(ro, "PRAGMA integrity_check", -1, &st, nullptr);
+  for (const bool read_only : {true, false}) {
+    sqlite3* db = nullptr;
+    int rc = sqlite3_open_v2(path_.c_str(), &db,
+                             read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE, nullptr);
     if (rc == SQLITE_OK) {
-      rc = sqlite3_step(st);
-      if (rc == SQLITE_ROW) {
-        const char* first = reinterpret_cast<const char*>(sqlite3_column_text(st, 0));
-        if (first == nullptr || std::strcmp(first, "ok") != 0) {
-          *why = std::string("it fails PRAGMA integrity_check (") + (first ? first : "?") + ")";
-          verdict = Check::kNotOurs;
-        }
-        rc = SQLITE_OK;
-      }
+      sqlite3_busy_timeout(db, 2000);
+      if (!read_only) sqlite3_db_config(db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
+      rc = CheckConnection(db, why, found_version, &verdict);
     }
-    sqlite3_finalize(st);
-  }
-  if (rc != SQLITE_OK && verdict == Check::kOurs) {
-    *why = rc == SQLITE_NOTADB ? "it is not an SQLite database"
-                               : "SQLite cannot read it (" + ErrorText(ro) + ")";
-    verdict = Check::kNotOurs;
-  }
-  if (verdict == Check::kOurs) {
-    sqlite3_stmt* st = nullptr;
-    if (sqlite3_prepare_v2(ro, "SELECT version FROM schema_version", -1, &st, nullptr) !=
-            SQLITE_OK ||
-        sqlite3_step(st) != SQLITE_ROW) {
-      *why = "it has no schema_version: it is not an atlasd store";
+    const std::string error = ErrorText(db);
+    sqlite3_close(db);
+    if (read_only && (rc & 0xff) == SQLITE_READONLY) continue;  // needs recovery: retry writable
+    if (rc != SQLITE_OK && verdict == Check::kOurs) {
+      *why = rc == SQLITE_NOTADB ? "it is not an SQLite database"
+                                 : "SQLite cannot read it (" + error + ")";
       verdict = Check::kNotOurs;
-    } else {
-      *found_version = sqlite3_column_int(st, 0);
-      if (*found_version > kSchemaVersion) {
-        *why = "it was written by a newer atlasd (schema version " +
-               std::to_string(*found_version) + "; this atlasd reads up to " +
-               std::to_string(kSchemaVersion) + ")";
-        verdict = Check::kNewer;
-      } else if (*found_version < 1) {
-        *why = "its schema_version " + std::to_string(*found_version) + " is invalid";
-        verdict = Check::kNotOurs;
-      }
     }
-    sqlite3_finalize(st);
+    break;
   }
-  sqlite3_close(ro);
   return verdict;
+}
+
+// Runs integrity_check and reads schema_version; returns the SQLite code of a failure to read,
+// or SQLITE_OK with *verdict set.
+int AtlasStore::CheckConnection(sqlite3* db, std::string* why, int* found_version, Check* verdict) {
+  sqlite3_stmt* st = nullptr;
+  int rc = sqlite3_prepare_v2(db, "PRAGMA integrity_check", -1, &st, nullptr);
+  if (rc == SQLITE_OK) {
+    rc = sqlite3_step(st);
+    if (rc == SQLITE_ROW) {
+      const char* first = reinterpret_cast<const char*>(sqlite3_column_text(st, 0));
+      if (first == nullptr || std::strcmp(first, "ok") != 0) {
+        *why = std::string("it fails PRAGMA integrity_check (") + (first ? first : "?") + ")";
+        *verdict = Check::kNotOurs;
+      }
+      rc = SQLITE_OK;
+    }
+  }
+  sqlite3_finalize(st);
+  if (rc != SQLITE_OK || *verdict != Check::kOurs) return rc;
+
+  // A database without any table is a store whose creation was interrupted (the schema is
+  // created in one transaction, after the journal mode): it is simply created again.
+  st = nullptr;
+  rc = sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master", -1, &st, nullptr);
+  if (rc == SQLITE_OK) rc = sqlite3_step(st) == SQLITE_ROW ? SQLITE_OK : sqlite3_errcode(db);
+  const bool no_tables = rc == SQLITE_OK && sqlite3_column_int(st, 0) == 0;
+  sqlite3_finalize(st);
+  if (rc != SQLITE_OK) return rc;
+  if (no_tables) {
+    *verdict = Check::kEmpty;
+    return SQLITE_OK;
+  }
+
+  st = nullptr;
+  if (sqlite3_prepare_v2(db, "SELECT version FROM schema_version", -1, &st, nullptr) != SQLITE_OK ||
+      sqlite3_step(st) != SQLITE_ROW) {
+    *why = "it has no schema_version: it is not an atlasd store";
+    *verdict = Check::kNotOurs;
+  } else {
+    *found_version = sqlite3_column_int(st, 0);
+    if (*found_version > kSchemaVersion) {
+      *why = "it was written by a newer atlasd (schema version " + std::to_string(*found_version) +
+             "; this atlasd reads up to " + std::to_string(kSchemaVersion) + ")";
+      *verdict = Check::kNewer;
+    } else if (*found_version < 1) {
+      *why = "its schema_version " + std::to_string(*found_version) + " is invalid";
+      *verdict = Check::kNotOurs;
+    }
+  }
+  sqlite3_finalize(st);
+  return SQLITE_OK;
 }
 
 bool AtlasStore::Configure(std::string* error) {
@@ -250,7 +282,8 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
     std::string why;
     int version = 0;
     const Check check = CheckExisting(&why, &version);
-    if (check != Check::kOurs) {
+    if (check == Check::kEmpty) result.status = StoreOpenStatus::kCreated;
+    if (check == Check::kNotOurs || check == Check::kNewer) {
       const char* kind = check == Check::kNewer ? "newer" : "corrupt";
       std::string error;
       if (!MoveAside(path_, kind, &result.moved_to, &error)) {

@@ -5,7 +5,8 @@
 // reconnects it to the saved ones (issue 6, Persistence).
 //
 // Contract:
-// - Open() creates the file and schema when absent. A file that is not an SQLite database,
+// - Open() creates the file and schema when absent (or when the file holds no table at all: a
+//   creation interrupted by a crash). A file that is not an SQLite database,
 //   fails `PRAGMA integrity_check`, or lacks our schema is refused as corrupt; a file whose
 //   schema_version is newer than kSchemaVersion is refused as newer. A refused file is never
 //   overwritten: it is renamed (with its -wal and -shm companions) to
@@ -102,8 +103,9 @@ class AtlasStore {
   bool Load(StoredAtlas* out, std::string* error);
 
  private:
-  enum class Check { kOurs, kNotOurs, kNewer };
+  enum class Check { kOurs, kEmpty, kNotOurs, kNewer };
   Check CheckExisting(std::string* why, int* found_version);
+  static int CheckConnection(sqlite3* db, std::string* why, int* found_version, Check* verdict);
   bool CreateSchema(std::string* error);
   bool Configure(std::string* error);
   bool Prepare(std::string* error);

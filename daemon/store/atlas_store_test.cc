@@ -70,6 +70,9 @@ void SetSchemaVersion(const std::string& db, int version) {
   sqlite3_close(raw);
 }
 
+AtlasSnapshot Batch(int k);
+void ExpectConsistentPrefix(const StoredAtlas& a, int last);
+
 TEST_F(StoreDir, SaveLoadRoundTrip) {
   {
     AtlasStore store;
@@ -194,6 +197,56 @@ TEST_F(StoreDir, ForeignDatabaseIsRefused) {
   EXPECT_THAT(r.message, HasSubstr("not an atlasd store"));
 }
 
+TEST_F(StoreDir, InterruptedCreationIsCreatedAgain) {
+  fs::create_directories(dir_);
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(db().c_str(), &raw), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(raw, "PRAGMA journal_mode=WAL", nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(raw);
+  ASSERT_GT(fs::file_size(db()), 0u);
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  EXPECT_EQ(r.status, StoreOpenStatus::kCreated) << r.message;
+  std::string error;
+  EXPECT_TRUE(store.Save(Batch(1), &error)) << error;
+}
+
+// A writer killed right after a commit leaves its -wal (and -shm) behind. Here the wal-index is
+// also damaged, as a writer killed while updating it leaves it, so that a read-only connection
+// cannot read the WAL without recovery: the store must recover it, not refuse it.
+TEST_F(StoreDir, WalLeftByAKilledWriterIsRecoveredNotRefused) {
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    AtlasStore store;
+    std::string error;
+    if (!store.Open(dir_.string()).ok()) _exit(2);
+    for (int k = 1; k <= 5; ++k) {
+      if (!store.Save(Batch(k), &error)) _exit(3);
+    }
+    raise(SIGKILL);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  ASSERT_TRUE(fs::exists(db() + "-wal"));
+  ASSERT_GT(fs::file_size(db() + "-wal"), 0u);
+  {  // Make the two copies of the wal-index header disagree: the index needs recovery.
+    ASSERT_TRUE(fs::exists(db() + "-shm"));
+    std::fstream shm(db() + "-shm", std::ios::in | std::ios::out | std::ios::binary);
+    shm.seekp(8);
+    shm.write("\xde\xad\xbe\xef", 4);
+  }
+
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  ASSERT_EQ(r.status, StoreOpenStatus::kOpened) << r.message;
+  StoredAtlas a;
+  std::string error;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  ExpectConsistentPrefix(a, 5);
+}
+
 TEST_F(StoreDir, UnusableDirectoryFailsWithAMessage) {
   fs::create_directories(dir_);
   std::ofstream(dir_ / "file") << "x";
@@ -215,6 +268,11 @@ AtlasSnapshot Batch(int k) {
 }
 
 void ExpectConsistentPrefix(const StoredAtlas& a, int last) {
+  if (last == 0) {  // nothing committed yet
+    EXPECT_TRUE(a.frames.empty());
+    EXPECT_TRUE(a.edges.empty());
+    return;
+  }
   ASSERT_EQ(a.frames.size(), static_cast<size_t>(last + 1));
   EXPECT_EQ(a.frames[0].blob, Blob(0, last));
   for (int k = 1; k <= last; ++k) {
@@ -228,14 +286,16 @@ void ExpectConsistentPrefix(const StoredAtlas& a, int last) {
   }
 }
 
-// Writes logical batches forever, directly or through the writer thread; never returns.
-[[noreturn]] void WriteUntilKilled(const std::string& dir, bool through_writer) {
+// Writes logical batches forever, directly or through the writer thread; writes one byte to
+// ready_fd once the store is open; never returns.
+[[noreturn]] void WriteUntilKilled(const std::string& dir, bool through_writer, int ready_fd) {
   AtlasStore store;
   if (!store.Open(dir).ok()) _exit(2);
   StoredAtlas a;
   std::string error;
   if (!store.Load(&a, &error)) _exit(3);
   int k = a.metadata.count("last") ? std::stoi(a.metadata["last"]) : 0;
+  if (write(ready_fd, "r", 1) != 1) _exit(5);
   if (through_writer) {
     AtlasStoreWriter writer(&store, 4);
     writer.Start();
@@ -249,16 +309,29 @@ void ExpectConsistentPrefix(const StoredAtlas& a, int last) {
   }
 }
 
+// Even rounds kill at a random moment after fork (opening and creating included); odd rounds at
+// a random moment after the child has started writing, half of those through the writer thread.
 TEST_F(StoreDir, SigkillAtRandomMomentsLeavesAConsistentPrefix) {
   std::mt19937 rng(20261122);
-  std::uniform_int_distribution<int> delay_ms(15, 120);
+  std::uniform_int_distribution<int> delay_ms(0, 60);
   int last = 0;
-  for (int round = 0; round < 10; ++round) {
+  for (int round = 0; round < 16; ++round) {
+    int ready[2];
+    ASSERT_EQ(pipe(ready), 0);
     const pid_t child = fork();
     ASSERT_GE(child, 0);
-    if (child == 0) WriteUntilKilled(dir_.string(), round % 2 == 1);
+    if (child == 0) {
+      close(ready[0]);
+      WriteUntilKilled(dir_.string(), round % 4 == 3, ready[1]);
+    }
+    close(ready[1]);
+    if (round % 2 == 1) {
+      char byte;
+      ASSERT_EQ(read(ready[0], &byte, 1), 1) << "the child could not open the store";
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
     ASSERT_EQ(kill(child, SIGKILL), 0);
+    close(ready[0]);
     int status = 0;
     ASSERT_EQ(waitpid(child, &status, 0), child);
     ASSERT_TRUE(WIFSIGNALED(status))
