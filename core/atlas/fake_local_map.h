@@ -119,10 +119,15 @@ class FakeLocalMap : public LocalMap {
     std::string s = "FAKE";
     Put(&s, tag_);
     Put(&s, scans_);
-    Put(&s, pose_.mean);
-    Put(&s, pose_.cov);
+    for (double v : {pose_.mean.x, pose_.mean.y, pose_.mean.theta}) Put(&s, v);
+    for (int k = 0; k < 9; ++k) Put(&s, pose_.cov.data()[k]);
     Put(&s, static_cast<int>(lines_.size()));
-    for (const MapLine& l : lines_) Put(&s, l);
+    for (const MapLine& l : lines_) {
+      Put(&s, l.id);
+      for (double v : {l.rho, l.alpha, l.cov(0, 0), l.cov(0, 1), l.cov(1, 0), l.cov(1, 1),
+                       l.endpoint_a.x(), l.endpoint_a.y(), l.endpoint_b.x(), l.endpoint_b.y()})
+        Put(&s, v);
+    }
     return s;
   }
   bool Deserialize(const std::string& bytes) override {
@@ -131,12 +136,19 @@ class FakeLocalMap : public LocalMap {
     FakeLocalMap copy = *this;
     int n = 0;
     if (!Get(bytes, &at, &copy.tag_) || !Get(bytes, &at, &copy.scans_) ||
-        !Get(bytes, &at, &copy.pose_.mean) || !Get(bytes, &at, &copy.pose_.cov) ||
+        !Get(bytes, &at, &copy.pose_.mean.x) || !Get(bytes, &at, &copy.pose_.mean.y) ||
+        !Get(bytes, &at, &copy.pose_.mean.theta) || !GetMat(bytes, &at, &copy.pose_.cov) ||
         !Get(bytes, &at, &n) || n < 0 || n > 100000)
       return false;
     copy.lines_.assign(n, MapLine{});
-    for (MapLine& l : copy.lines_)
-      if (!Get(bytes, &at, &l)) return false;
+    for (MapLine& l : copy.lines_) {
+      double* fields[] = {
+          &l.rho,       &l.alpha,          &l.cov(0, 0),      &l.cov(0, 1),      &l.cov(1, 0),
+          &l.cov(1, 1), &l.endpoint_a.x(), &l.endpoint_a.y(), &l.endpoint_b.x(), &l.endpoint_b.y()};
+      if (!Get(bytes, &at, &l.id)) return false;
+      for (double* f : fields)
+        if (!Get(bytes, &at, f)) return false;
+    }
     if (at != bytes.size()) return false;
     *this = copy;
     return true;
@@ -161,6 +173,12 @@ class FakeLocalMap : public LocalMap {
     return true;
   }
 
+  static bool GetMat(const std::string& s, size_t* at, Mat3* m) {
+    for (int k = 0; k < 9; ++k)
+      if (!Get(s, at, &m->data()[k])) return false;
+    return true;
+  }
+
   Options o_;
   std::shared_ptr<const FakeWorldScript> script_;
   int tag_ = 0;
@@ -177,11 +195,11 @@ class FakeLocalMap : public LocalMap {
 class FakeBootstrapper : public PoseBootstrapper {
  public:
   explicit FakeBootstrapper(int min_matched = 1) : min_matched_(min_matched) {}
-  BootstrapResult Solve(const LocalMap& map, const std::vector<BootstrapScan>& z) const override {
+  PoseBootstrap Solve(const LocalMap& map, const std::vector<JuvenileScan>& z) const override {
     ++calls_;
     int matched = 0;
-    for (const BootstrapScan& s : z) matched += s.update.matched;
-    BootstrapResult r;
+    for (const JuvenileScan& s : z) matched += s.update.matched;
+    PoseBootstrap r;
     if (matched < min_matched_) return r;
     r.outcome = BootstrapOutcome::kSolved;
     r.pose = map.RobotPose();

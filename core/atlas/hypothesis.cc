@@ -5,7 +5,7 @@
 
 namespace atlas {
 
-std::string QualityOptions::Validate() const {
+std::string HypothesisQualityOptions::Validate() const {
   if (!(alpha >= 0.0 && alpha <= 1.0)) return "quality.alpha must lie in [0, 1]";
   if (!(sigma_x > 0 && sigma_y > 0 && sigma_theta > 0))
     return "quality.sigma_x, sigma_y, sigma_theta must be positive";
@@ -15,7 +15,8 @@ std::string QualityOptions::Validate() const {
   return "";
 }
 
-double QualityMetric(const Mat3& robot_cov, double explanation, const QualityOptions& o) {
+double HypothesisQuality(const Mat3& robot_cov, double explanation,
+                         const HypothesisQualityOptions& o) {
   const double det_star = std::pow(o.sigma_x * o.sigma_y * o.sigma_theta, 2);
   const double det = std::max(0.0, robot_cov.determinant());
   const double certainty = std::clamp(1.0 - det / det_star, 0.0, 1.0);

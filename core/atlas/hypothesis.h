@@ -39,7 +39,7 @@
 
 namespace atlas {
 
-struct QualityOptions {
+struct HypothesisQualityOptions {
   double alpha = 0.5;
   double sigma_x = 0.5;      // metres: maximum acceptable robot uncertainty, eq. 5
   double sigma_y = 0.5;      // metres
@@ -50,7 +50,8 @@ struct QualityOptions {
 };
 
 // eq. 5. `explanation` is eta_a / ||Z^k|| in [0, 1].
-double QualityMetric(const Mat3& robot_cov, double explanation, const QualityOptions& options);
+double HypothesisQuality(const Mat3& robot_cov, double explanation,
+                         const HypothesisQualityOptions& options);
 
 // The last `window` (observations, matched) pairs. Fixed capacity.
 class QualityWindow {
@@ -84,14 +85,14 @@ enum class HypothesisState : uint8_t { kJuvenile = 0, kMature = 1, kRetired = 2 
 const char* HypothesisStateName(HypothesisState s);
 
 // One scan kept for the bootstrap function w (eq. 12).
-struct BootstrapScan {
+struct JuvenileScan {
   Pose2 odometry_delta;  // motion from the previous scan to this one, robot frame
   LaserScan scan;
   ScanUpdate update;  // what the seeded juvenile made of it
 };
 
 enum class BootstrapOutcome { kSolved, kFailed };
-struct BootstrapResult {
+struct PoseBootstrap {
   BootstrapOutcome outcome = BootstrapOutcome::kFailed;
   UncertainPose pose;  // the robot pose at the last scan of Z, in the map's frame
 };
@@ -101,7 +102,7 @@ struct BootstrapResult {
 class PoseBootstrapper {
  public:
   virtual ~PoseBootstrapper() = default;
-  virtual BootstrapResult Solve(const LocalMap& map, const std::vector<BootstrapScan>& z) const = 0;
+  virtual PoseBootstrap Solve(const LocalMap& map, const std::vector<JuvenileScan>& z) const = 0;
 };
 
 struct Hypothesis {
@@ -118,7 +119,7 @@ struct Hypothesis {
   // Juvenile only: private copy of the frame's map, and the bootstrap state.
   std::unique_ptr<LocalMap> trial_map;
   bool bootstrapped = false;
-  std::vector<BootstrapScan> z;
+  std::vector<JuvenileScan> z;
 };
 
 struct LifecycleOptions {

@@ -5,8 +5,8 @@
 namespace atlas {
 namespace {
 
-TEST(QualityMetric, Eq5) {
-  QualityOptions o;
+TEST(HypothesisQuality, Eq5) {
+  HypothesisQualityOptions o;
   o.alpha = 0.3;
   o.sigma_x = 0.5;
   o.sigma_y = 0.4;
@@ -14,10 +14,10 @@ TEST(QualityMetric, Eq5) {
   const double det_star = 0.25 * 0.16 * 0.01;
   const Mat3 cov = Vec3(0.05, 0.04, 0.002).asDiagonal();
   const double expect = 0.3 * (1 - 0.05 * 0.04 * 0.002 / det_star) + 0.7 * 0.75;
-  EXPECT_NEAR(QualityMetric(cov, 0.75, o), expect, 1e-12);
+  EXPECT_NEAR(HypothesisQuality(cov, 0.75, o), expect, 1e-12);
   // Too uncertain: first term clamps at 0.
-  EXPECT_NEAR(QualityMetric(Mat3::Identity() * 10, 1.0, o), 0.7, 1e-12);
-  EXPECT_NEAR(QualityMetric(Mat3::Zero(), 1.0, o), 1.0, 1e-12);
+  EXPECT_NEAR(HypothesisQuality(Mat3::Identity() * 10, 1.0, o), 0.7, 1e-12);
+  EXPECT_NEAR(HypothesisQuality(Mat3::Zero(), 1.0, o), 1.0, 1e-12);
 }
 
 TEST(QualityWindow, SlidesOverTheLastScans) {
@@ -115,9 +115,9 @@ TEST(HypothesisStateMachine, DominantIsBestMature) {
 }
 
 TEST(Options, Validate) {
-  EXPECT_EQ(QualityOptions{}.Validate(), "");
+  EXPECT_EQ(HypothesisQualityOptions{}.Validate(), "");
   EXPECT_EQ(LifecycleOptions{}.Validate(), "");
-  QualityOptions q;
+  HypothesisQualityOptions q;
   q.alpha = 1.5;
   EXPECT_NE(q.Validate(), "");
   LifecycleOptions l;

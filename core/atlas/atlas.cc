@@ -1,0 +1,618 @@
+#include "core/atlas/atlas.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "core/atlas/byte_image.h"
+#include "core/atlas/edge_refinement.h"
+
+namespace atlas {
+
+std::string AtlasOptions::Validate() const {
+  for (const std::string& e : {quality.Validate(), lifecycle.Validate(), match.Validate()})
+    if (!e.empty()) return e;
+  if (max_hypotheses < 2 || max_hypotheses > 64) return "max_hypotheses must lie in [2, 64]";
+  if (max_degree < 2) return "max_degree must be at least 2";
+  if (!(q_traverse >= 0 && q_traverse <= 1)) return "q_traverse must lie in [0, 1]";
+  if (max_seeds_per_step < 0) return "max_seeds_per_step must be non-negative";
+  if (seed_cooldown_steps < 0) return "seed_cooldown_steps must be non-negative";
+  if (traversal_max_hops < 1) return "traversal_max_hops must be at least 1";
+  if (projection_max_frames < 2) return "projection_max_frames must be at least 2";
+  if (!(projection_max_rho > 0)) return "projection_max_rho must be positive";
+  if (match_candidates_per_step < 0) return "match_candidates_per_step must be non-negative";
+  if (match_interval_steps < 1) return "match_interval_steps must be at least 1";
+  if (min_match_lines < match.min_support) return "min_match_lines must be >= match.min_support";
+  if (!(match_radius > 0)) return "match_radius must be positive";
+  if (self_match_cache < 2) return "self_match_cache must be at least 2";
+  if (match_memory < 1) return "match_memory must be at least 1";
+  if (max_refinements_per_step < 0) return "max_refinements_per_step must be non-negative";
+  if (refine_interval_steps < 1) return "refine_interval_steps must be at least 1";
+  if (!(capacity_explanation >= 0 && capacity_explanation <= 1))
+    return "capacity_explanation must lie in [0, 1]";
+  if (genesis_min_interval_steps < 0) return "genesis_min_interval_steps must be non-negative";
+  return "";
+}
+
+Atlas::Atlas(const AtlasOptions& options, MapFactory factory,
+             std::shared_ptr<const PoseBootstrapper> bootstrapper)
+    : options_(options),
+      factory_(std::move(factory)),
+      bootstrapper_(std::move(bootstrapper)),
+      graph_(options.max_degree) {
+  assert(options_.Validate().empty());
+  assert(factory_);
+  hypotheses_.reserve(options_.max_hypotheses + 1);
+  self_cache_.resize(options_.self_match_cache);
+  tried_.resize(options_.match_memory);
+}
+
+LocalMap& Atlas::MapOf(Hypothesis& h) {
+  return h.state == HypothesisState::kJuvenile ? *h.trial_map : *graph_.MutableFrame(h.frame).map;
+}
+
+UncertainPose Atlas::PoseOf(const Hypothesis& h) const {
+  return h.state == HypothesisState::kJuvenile ? h.trial_map->RobotPose()
+                                               : graph_.Frame(h.frame).map->RobotPose();
+}
+
+bool Atlas::HasHypothesis(FrameId f) const {
+  for (const Hypothesis& h : hypotheses_)
+    if (h.frame == f) return true;
+  return false;
+}
+
+DominantOutput Atlas::Dominant() const {
+  DominantOutput out;
+  const int d = DominantIndex(hypotheses_);
+  if (d < 0) return out;
+  const Hypothesis& h = hypotheses_[d];
+  out.valid = true;
+  out.hypothesis = h.id;
+  out.frame = h.frame;
+  out.pose = PoseOf(h);
+  out.q = h.q;
+  return out;
+}
+
+const StepStats& Atlas::Step(const Pose2& odometry_delta, const LaserScan& scan) {
+  stats_ = StepStats{};
+  stats_.step = ++step_;
+  const bool first = graph_.FrameCount() == 0;
+  if (first) {
+    std::unique_ptr<LocalMap> map = factory_();
+    map->ResetRobotPose(UncertainPose{});
+    Hypothesis h;
+    h.id = next_hypothesis_id_++;
+    h.frame = graph_.AddFrame(std::move(map), step_);
+    h.state = HypothesisState::kMature;
+    h.born_step = step_;
+    h.window = QualityWindow(options_.quality.window);
+    hypotheses_.push_back(std::move(h));
+    last_genesis_step_ = step_;
+  }
+  UpdateHypotheses(odometry_delta, scan, first);
+  JudgeJuveniles();
+  HandleFailures();
+  int d = FindDominant();
+  if (d >= 0) Traverse(d);
+  GenesisAtCapacity();
+  d = FindDominant();
+  if (d >= 0 && step_ % options_.match_interval_steps == 0) MatchMaps(d);
+  RefineEdges();
+  FindDominant();
+  stats_.frames = graph_.FrameCount();
+  stats_.hypotheses_alive = static_cast<int>(hypotheses_.size());
+  return stats_;
+}
+
+void Atlas::UpdateHypotheses(const Pose2& delta, const LaserScan& scan, bool first) {
+  bootstrap_failed_.assign(hypotheses_.size(), 0);
+  for (size_t i = 0; i < hypotheses_.size(); ++i) {
+    Hypothesis& h = hypotheses_[i];
+    LocalMap& map = MapOf(h);
+    if (!first) map.Predict(delta);
+    const bool mature = h.state == HypothesisState::kMature;
+    h.last_update = map.Update(scan, mature);
+    h.window.Add(h.last_update);
+    ++h.steps;
+    if (!mature && !h.bootstrapped) {
+      h.z.push_back(JuvenileScan{delta, scan, h.last_update});
+      if (static_cast<int>(h.z.size()) >= options_.lifecycle.bootstrap_scans) {
+        if (bootstrapper_) {
+          ++stats_.bootstraps;
+          const PoseBootstrap r = bootstrapper_->Solve(map, h.z);
+          if (r.outcome == BootstrapOutcome::kSolved) {
+            map.ResetRobotPose(r.pose);
+            h.bootstrapped = true;
+          } else {
+            bootstrap_failed_[i] = 1;
+          }
+        } else {
+          h.bootstrapped = true;
+        }
+        h.z.clear();
+        h.z.shrink_to_fit();
+      }
+    }
+    h.q = HypothesisQuality(map.RobotPose().cov,
+                            h.window.Explanation(options_.quality.empty_explanation),
+                            options_.quality);
+  }
+}
+
+void Atlas::JudgeJuveniles() {
+  double best_mature = -1.0;
+  for (const Hypothesis& h : hypotheses_)
+    if (h.state == HypothesisState::kMature) best_mature = std::max(best_mature, h.q);
+  for (size_t i = 0; i < hypotheses_.size();) {
+    Hypothesis& h = hypotheses_[i];
+    const JuvenileVerdict v =
+        JudgeJuvenile(h, best_mature, bootstrap_failed_[i] != 0, options_.lifecycle);
+    if (v == JuvenileVerdict::kMature) {
+      graph_.MutableFrame(h.frame).map = std::move(h.trial_map);
+      h.state = HypothesisState::kMature;
+      h.failing_steps = 0;
+      h.z.clear();
+      ++stats_.matured;
+    } else if (v == JuvenileVerdict::kDelete) {
+      graph_.MutableFrame(h.frame).seed_cooldown_until = step_ + options_.seed_cooldown_steps;
+      if (bootstrap_failed_[i]) ++stats_.killed_by_w;
+      ++stats_.deleted;
+      hypotheses_.erase(hypotheses_.begin() + i);
+      bootstrap_failed_.erase(bootstrap_failed_.begin() + i);
+      continue;
+    }
+    ++i;
+  }
+}
+
+void Atlas::HandleFailures() {
+  int failing = 0, healthy = 0, juveniles = 0;
+  for (Hypothesis& h : hypotheses_) {
+    if (h.state == HypothesisState::kJuvenile) {
+      ++juveniles;
+      continue;
+    }
+    if (UpdateFailing(&h, options_.lifecycle))
+      ++failing;
+    else
+      ++healthy;
+  }
+  if (failing == 0) return;
+  if (healthy == 0) {
+    // The only mature hypotheses fail. Juveniles on probation are given their chance first.
+    if (juveniles > 0) return;
+    const int from = DominantIndex(hypotheses_);
+    if (!Genesis(from)) return;  // degree full: keep going with the failing map
+  }
+  for (size_t i = 0; i < hypotheses_.size();) {
+    Hypothesis& h = hypotheses_[i];
+    if (h.state == HypothesisState::kMature && h.failing_steps >= options_.lifecycle.fail_steps) {
+      MapFrame& f = graph_.MutableFrame(h.frame);
+      ++f.retirements;
+      f.seed_cooldown_until = step_ + options_.seed_cooldown_steps;
+      ++stats_.retired;
+      hypotheses_.erase(hypotheses_.begin() + i);
+      continue;
+    }
+    ++i;
+  }
+}
+
+void Atlas::GenesisAtCapacity() {
+  if (step_ - last_genesis_step_ < options_.genesis_min_interval_steps) return;
+  const int d = DominantIndex(hypotheses_);
+  if (d < 0) return;
+  const Hypothesis& h = hypotheses_[d];
+  const LocalMap& map = *graph_.Frame(h.frame).map;
+  if (map.Complexity() < map.Capacity()) return;
+  if (h.q >= options_.q_traverse) return;  // traversal gets the first chance
+  if (h.window.Explanation(1.0) >= options_.capacity_explanation) return;
+  for (const Hypothesis& o : hypotheses_) {
+    if (o.state == HypothesisState::kJuvenile) return;  // a known place gets its chance first
+    if (&o == &h) continue;
+    const LocalMap& m = *graph_.Frame(o.frame).map;
+    if (m.Complexity() < m.Capacity()) return;
+  }
+  Genesis(d);
+}
+
+bool Atlas::MakeRoomForHypothesis(int keep_index) {
+  if (static_cast<int>(hypotheses_.size()) < options_.max_hypotheses) return true;
+  // Drop the weakest juvenile, else the weakest mature hypothesis other than `keep_index`.
+  int victim = -1;
+  for (int pass = 0; pass < 2 && victim < 0; ++pass) {
+    const HypothesisState s = pass == 0 ? HypothesisState::kJuvenile : HypothesisState::kMature;
+    for (int i = 0; i < static_cast<int>(hypotheses_.size()); ++i) {
+      if (i == keep_index || hypotheses_[i].state != s) continue;
+      if (victim < 0 || hypotheses_[i].q < hypotheses_[victim].q) victim = i;
+    }
+  }
+  if (victim < 0) return false;
+  if (hypotheses_[victim].state == HypothesisState::kMature) {
+    ++graph_.MutableFrame(hypotheses_[victim].frame).retirements;
+    ++stats_.retired;
+  } else {
+    ++stats_.deleted;
+  }
+  hypotheses_.erase(hypotheses_.begin() + victim);
+  return true;
+}
+
+bool Atlas::Genesis(int from_index) {
+  if (from_index < 0) return false;
+  const FrameId from = hypotheses_[from_index].frame;
+  if (static_cast<int>(graph_.Frame(from).edges.size()) >= graph_.max_degree()) {
+    ++stats_.genesis_refused;
+    return false;
+  }
+  // III-C: the robot pose (with its covariance) in the old frame becomes the edge; the robot is
+  // at exactly zero, with zero covariance, in the new frame.
+  const UncertainPose robot = graph_.Frame(from).map->RobotPose();
+  const int64_t from_id = hypotheses_[from_index].id;
+  if (!MakeRoomForHypothesis(from_index)) return false;
+  std::unique_ptr<LocalMap> map = factory_();
+  map->ResetRobotPose(UncertainPose{});
+  const FrameId id = graph_.AddFrame(std::move(map), step_);
+  const AddEdgeResult added = graph_.AddEdge(from, id, robot, EdgeKind::kGenesis, step_);
+  assert(added == AddEdgeResult::kAdded);
+  (void)added;
+  (void)from_id;
+  Hypothesis h;
+  h.id = next_hypothesis_id_++;
+  h.frame = id;
+  h.state = HypothesisState::kMature;
+  h.born_step = step_;
+  h.window = QualityWindow(options_.quality.window);
+  h.q = HypothesisQuality(Mat3::Zero(), options_.quality.empty_explanation, options_.quality);
+  hypotheses_.push_back(std::move(h));
+  last_genesis_step_ = step_;
+  ++stats_.genesis;
+  return true;
+}
+
+int Atlas::FindDominant() {
+  const int d = DominantIndex(hypotheses_);
+  for (int i = 0; i < static_cast<int>(hypotheses_.size()); ++i) hypotheses_[i].dominant = i == d;
+  stats_.dominant_frame = d >= 0 ? hypotheses_[d].frame : kNoFrame;
+  return d;
+}
+
+const Projection& Atlas::ProjectionFromDominant(FrameId dominant) {
+  if (projection_step_ != step_ || projection_source_ != dominant) {
+    ProjectionLimits limits;
+    limits.max_frames = options_.projection_max_frames;
+    limits.max_rho = options_.projection_max_rho;
+    workspace_.Project(graph_, dominant, limits, &projection_);
+    projection_step_ = step_;
+    projection_source_ = dominant;
+    stats_.frames_examined += static_cast<int>(projection_.entries.size());
+  }
+  return projection_;
+}
+
+void Atlas::Traverse(int d) {
+  if (hypotheses_[d].q >= options_.q_traverse || options_.max_seeds_per_step == 0) return;
+  const FrameId dom_frame = hypotheses_[d].frame;
+  const UncertainPose x_d = PoseOf(hypotheses_[d]);
+  const Projection& p = ProjectionFromDominant(dom_frame);
+  int seeded = 0;
+  for (size_t k = 1; k < p.entries.size() && seeded < options_.max_seeds_per_step; ++k) {
+    const ProjectedFrame& e = p.entries[k];
+    if (e.hops > options_.traversal_max_hops) continue;
+    if (static_cast<int>(hypotheses_.size()) >= options_.max_hypotheses) break;
+    const MapFrame& f = graph_.Frame(e.frame);
+    if (f.seed_cooldown_until > step_ || HasHypothesis(e.frame)) continue;
+    // eq. 10-11: x_i* = T_i^d (+) x_d, T_i^d the pose of the dominant frame in frame i.
+    const UncertainPose seed = Compose(Inverse(e.pose), x_d);
+    Hypothesis h;
+    h.id = next_hypothesis_id_++;
+    h.frame = e.frame;
+    h.state = HypothesisState::kJuvenile;
+    h.born_step = step_;
+    h.window = QualityWindow(options_.quality.window);
+    h.trial_map = f.map->Clone();
+    h.trial_map->ResetRobotPose(seed);
+    h.q = HypothesisQuality(seed.cov, options_.quality.empty_explanation, options_.quality);
+    h.z.reserve(options_.lifecycle.bootstrap_scans);
+    hypotheses_.push_back(std::move(h));
+    ++seeded;
+  }
+  stats_.seeded += seeded;
+}
+
+const SelfMatch& Atlas::SelfMatchOf(FrameId f) {
+  const int complexity = graph_.Frame(f).map->Complexity();
+  for (CachedSelfMatch& c : self_cache_)
+    if (c.frame == f && c.complexity == complexity) return c.self;
+  CachedSelfMatch& slot = self_cache_[self_cache_next_];
+  self_cache_next_ = (self_cache_next_ + 1) % static_cast<int>(self_cache_.size());
+  slot.frame = f;
+  slot.complexity = complexity;
+  slot.self = SelfMatchMap(graph_.Frame(f).map->Lines(), options_.match);
+  return slot.self;
+}
+
+void Atlas::MatchMaps(int d) {
+  if (d < 0 || options_.match_candidates_per_step == 0) return;
+  const FrameId dom_frame = hypotheses_[d].frame;
+  const LocalMap& dom_map = *graph_.Frame(dom_frame).map;
+  if (dom_map.Complexity() < options_.min_match_lines) return;
+  const Pose2 robot = dom_map.RobotPose().mean;
+  const Projection& p = ProjectionFromDominant(dom_frame);
+  candidates_.clear();
+  for (size_t k = 1; k < p.entries.size(); ++k) {
+    const ProjectedFrame& e = p.entries[k];
+    if (graph_.FindEdge(dom_frame, e.frame) >= 0) continue;
+    const LocalMap& m = *graph_.Frame(e.frame).map;
+    if (m.Complexity() < options_.min_match_lines) continue;
+    const double dist = std::hypot(e.pose.mean.x - robot.x, e.pose.mean.y - robot.y);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(e.pose.cov.topLeftCorner<2, 2>());
+    const double sigma = std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
+    if (dist - 3.0 * sigma > options_.match_radius) continue;
+    candidates_.push_back(static_cast<FrameId>(k));  // index into the projection
+  }
+  if (candidates_.empty()) return;
+  const int n = static_cast<int>(candidates_.size());
+  const int budget = std::min(n, options_.match_candidates_per_step);
+  for (int tried = 0, start = static_cast<int>(match_cursor_ % n);
+       tried < n && stats_.candidates_matched < budget; ++tried) {
+    const ProjectedFrame& e = p.entries[candidates_[(start + tried) % n]];
+    const int ca = dom_map.Complexity();
+    const int cb = graph_.Frame(e.frame).map->Complexity();
+    bool unchanged = false;
+    for (const TriedPair& t : tried_)
+      unchanged |=
+          t.a == dom_frame && t.b == e.frame && t.complexity_a == ca && t.complexity_b == cb;
+    if (unchanged) continue;
+    tried_[tried_next_] = TriedPair{dom_frame, e.frame, ca, cb};
+    tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
+    ++stats_.candidates_matched;
+    const SelfMatch& self_a = SelfMatchOf(dom_frame);
+    const SelfMatch self_a_copy = self_a;  // the cache may evict it while matching b
+    const SelfMatch& self_b = SelfMatchOf(e.frame);
+    const MapMatch m =
+        atlas::MatchMaps(dom_map.Lines(), self_a_copy, graph_.Frame(e.frame).map->Lines(), self_b,
+                         &e.pose, options_.match);
+    stats_.match_hypotheses += m.hypotheses;
+    switch (m.result) {
+      case MapMatchResult::kAccepted:
+        if (graph_.AddEdge(dom_frame, e.frame, m.b_in_a, EdgeKind::kMapMatch, step_) ==
+            AddEdgeResult::kAdded)
+          ++stats_.match_accepted;
+        else
+          ++stats_.match_rejected;
+        break;
+      case MapMatchResult::kRejected:
+        ++stats_.match_rejected;
+        break;
+      case MapMatchResult::kAmbiguous:
+        ++stats_.match_ambiguous;
+        break;
+    }
+  }
+  match_cursor_ += budget;
+}
+
+void Atlas::RefineEdges() {
+  int budget = options_.max_refinements_per_step;
+  const int n = static_cast<int>(hypotheses_.size());
+  for (int i = 0; i < n && budget > 0; ++i) {
+    if (hypotheses_[i].state != HypothesisState::kMature) continue;
+    for (int j = i + 1; j < n && budget > 0; ++j) {
+      if (hypotheses_[j].state != HypothesisState::kMature) continue;
+      const FrameId fi = hypotheses_[i].frame, fj = hypotheses_[j].frame;
+      const int edge = graph_.FindEdge(fi, fj);
+      if (edge < 0) continue;
+      const AtlasEdge& e = graph_.Edge(edge);
+      const int64_t last = std::max(e.made_step, e.refined_step);
+      if (step_ - last < options_.refine_interval_steps) continue;
+      const UncertainPose obs = EdgeObservation(PoseOf(hypotheses_[i]), PoseOf(hypotheses_[j]));
+      const CovarianceIntersection ci = IntersectCovariances(obs, graph_.Transform(edge, fi));
+      graph_.SetTransform(edge, fi, ci.fused, EdgeKind::kRefined, step_);
+      ++stats_.refined;
+      --budget;
+    }
+  }
+}
+
+// ---- byte image -------------------------------------------------------------------------
+
+namespace {
+
+constexpr uint32_t kMagic = 0x534c5441;  // "ATLS"
+constexpr uint64_t kMaxBlob = uint64_t{1} << 30;
+
+void PutScan(ByteWriter* w, const LaserScan& s) {
+  w->Put<int64_t>(s.stamp.time_since_epoch().count());
+  w->Put(s.angle_min);
+  w->Put(s.angle_increment);
+  w->Put(s.max_range);
+  w->PutPose(s.sensor_pose);
+  w->Put<uint64_t>(s.ranges.size());
+  for (float r : s.ranges) w->Put(r);
+}
+
+bool GetScan(ByteReader* r, LaserScan* s) {
+  int64_t ns = 0;
+  uint64_t n = 0;
+  if (!r->Get(&ns) || !r->Get(&s->angle_min) || !r->Get(&s->angle_increment) ||
+      !r->Get(&s->max_range) || !r->GetPose(&s->sensor_pose) || !r->Get(&n) || n > 100000)
+    return false;
+  s->stamp = Time(Duration(ns));
+  s->ranges.resize(n);
+  for (float& v : s->ranges)
+    if (!r->Get(&v)) return false;
+  return true;
+}
+
+void PutUpdate(ByteWriter* w, const ScanUpdate& u) {
+  w->Put<int32_t>(u.observations);
+  w->Put<int32_t>(u.matched);
+  w->Put<int32_t>(u.added);
+  w->Put<uint8_t>(u.ambiguous);
+}
+
+bool GetUpdate(ByteReader* r, ScanUpdate* u) {
+  int32_t o, m, a;
+  uint8_t amb;
+  if (!r->Get(&o) || !r->Get(&m) || !r->Get(&a) || !r->Get(&amb)) return false;
+  *u = ScanUpdate{o, m, a, amb != 0};
+  return true;
+}
+
+}  // namespace
+
+std::string Atlas::Serialize() const {
+  ByteWriter w;
+  w.Put(kMagic);
+  w.Put(kImageVersion);
+  w.Put(step_);
+  w.Put(next_hypothesis_id_);
+  w.Put(last_genesis_step_);
+  w.Put(match_cursor_);
+  w.Put<uint32_t>(graph_.FrameCount());
+  for (FrameId f = 0; f < graph_.FrameCount(); ++f) {
+    const MapFrame& frame = graph_.Frame(f);
+    w.Put(frame.created_step);
+    w.Put(frame.seed_cooldown_until);
+    w.Put<int32_t>(frame.retirements);
+    w.PutString(frame.map->Serialize());
+  }
+  w.Put<uint32_t>(graph_.EdgeCount());
+  for (const AtlasEdge& e : graph_.Edges()) {
+    w.Put(e.a);
+    w.Put(e.b);
+    w.PutUncertain(e.b_in_a);
+    w.Put(e.kind);
+    w.Put(e.origin);
+    w.Put(e.made_step);
+    w.Put(e.refined_step);
+    w.Put<int32_t>(e.refinements);
+  }
+  w.Put<uint32_t>(hypotheses_.size());
+  for (const Hypothesis& h : hypotheses_) {
+    w.Put(h.id);
+    w.Put(h.frame);
+    w.Put(h.state);
+    w.Put<uint8_t>(h.dominant);
+    w.Put(h.born_step);
+    w.Put<int32_t>(h.steps);
+    w.Put(h.q);
+    w.Put<int32_t>(h.failing_steps);
+    w.Put<int32_t>(static_cast<int32_t>(h.window.Ring().size()));
+    w.Put<int32_t>(h.window.Head());
+    w.Put<int32_t>(h.window.Size());
+    for (const QualityWindow::Entry& e : h.window.Ring()) {
+      w.Put<int32_t>(e.observations);
+      w.Put<int32_t>(e.matched);
+    }
+    PutUpdate(&w, h.last_update);
+    w.Put<uint8_t>(h.bootstrapped);
+    w.Put<uint8_t>(h.trial_map != nullptr);
+    if (h.trial_map) w.PutString(h.trial_map->Serialize());
+    w.Put<uint32_t>(h.z.size());
+    for (const JuvenileScan& z : h.z) {
+      w.PutPose(z.odometry_delta);
+      PutScan(&w, z.scan);
+      PutUpdate(&w, z.update);
+    }
+  }
+  return std::move(w.bytes());
+}
+
+bool Atlas::Deserialize(const std::string& bytes) {
+  ByteReader r(bytes);
+  uint32_t magic = 0, version = 0, frames = 0, edges = 0, hyps = 0;
+  int64_t step = 0, next_id = 0, last_genesis = 0;
+  uint64_t cursor = 0;
+  if (!r.Get(&magic) || magic != kMagic || !r.Get(&version) || version != kImageVersion ||
+      !r.Get(&step) || !r.Get(&next_id) || !r.Get(&last_genesis) || !r.Get(&cursor) ||
+      !r.Get(&frames) || frames > (1u << 24))
+    return false;
+  AtlasGraph graph(options_.max_degree);
+  for (uint32_t i = 0; i < frames; ++i) {
+    int64_t created = 0, cooldown = 0;
+    int32_t retirements = 0;
+    std::string blob;
+    if (!r.Get(&created) || !r.Get(&cooldown) || !r.Get(&retirements) ||
+        !r.GetString(&blob, kMaxBlob))
+      return false;
+    std::unique_ptr<LocalMap> map = factory_();
+    if (!map->Deserialize(blob)) return false;
+    const FrameId id = graph.AddFrame(std::move(map), created);
+    graph.MutableFrame(id).seed_cooldown_until = cooldown;
+    graph.MutableFrame(id).retirements = retirements;
+  }
+  if (!r.Get(&edges) || edges > (1u << 28)) return false;
+  for (uint32_t i = 0; i < edges; ++i) {
+    AtlasEdge e;
+    int32_t refinements = 0;
+    if (!r.Get(&e.a) || !r.Get(&e.b) || !r.GetUncertain(&e.b_in_a) || !r.Get(&e.kind) ||
+        !r.Get(&e.origin) || !r.Get(&e.made_step) || !r.Get(&e.refined_step) ||
+        !r.Get(&refinements))
+      return false;
+    if (static_cast<uint8_t>(e.kind) > 2 || static_cast<uint8_t>(e.origin) > 2) return false;
+    if (graph.AddEdge(e.a, e.b, e.b_in_a, e.origin, e.made_step) != AddEdgeResult::kAdded)
+      return false;
+    const int index = graph.EdgeCount() - 1;
+    if (e.kind == EdgeKind::kRefined) {
+      for (int k = 0; k < refinements; ++k)
+        graph.SetTransform(index, e.a, e.b_in_a, EdgeKind::kRefined, e.refined_step);
+    }
+  }
+  if (!r.Get(&hyps) || hyps > static_cast<uint32_t>(options_.max_hypotheses)) return false;
+  std::vector<Hypothesis> hypotheses;
+  for (uint32_t i = 0; i < hyps; ++i) {
+    Hypothesis h;
+    uint8_t dominant = 0, bootstrapped = 0, has_trial = 0;
+    int32_t steps = 0, failing = 0, cap = 0, head = 0, size = 0;
+    uint32_t nz = 0;
+    if (!r.Get(&h.id) || !r.Get(&h.frame) || !graph.HasFrame(h.frame) || !r.Get(&h.state) ||
+        static_cast<uint8_t>(h.state) > 1 || !r.Get(&dominant) || !r.Get(&h.born_step) ||
+        !r.Get(&steps) || !r.Get(&h.q) || !r.Get(&failing) || !r.Get(&cap) || !r.Get(&head) ||
+        !r.Get(&size) || cap < 1 || cap > 1000 || head < 0 || head >= cap || size < 0 || size > cap)
+      return false;
+    std::vector<QualityWindow::Entry> ring(cap);
+    for (QualityWindow::Entry& e : ring)
+      if (!r.Get(&e.observations) || !r.Get(&e.matched)) return false;
+    h.window.Restore(cap, std::move(ring), head, size);
+    if (!GetUpdate(&r, &h.last_update) || !r.Get(&bootstrapped) || !r.Get(&has_trial)) return false;
+    h.dominant = dominant != 0;
+    h.steps = steps;
+    h.failing_steps = failing;
+    h.bootstrapped = bootstrapped != 0;
+    if ((h.state == HypothesisState::kJuvenile) != (has_trial != 0)) return false;
+    if (has_trial) {
+      std::string blob;
+      if (!r.GetString(&blob, kMaxBlob)) return false;
+      h.trial_map = factory_();
+      if (!h.trial_map->Deserialize(blob)) return false;
+    }
+    if (!r.Get(&nz) || nz > 1000) return false;
+    h.z.resize(nz);
+    for (JuvenileScan& z : h.z)
+      if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &z.scan) || !GetUpdate(&r, &z.update))
+        return false;
+    for (const Hypothesis& o : hypotheses)
+      if (o.frame == h.frame) return false;  // at most one hypothesis per frame
+    hypotheses.push_back(std::move(h));
+  }
+  if (!r.AtEnd()) return false;
+  graph_ = std::move(graph);
+  hypotheses_ = std::move(hypotheses);
+  step_ = step;
+  next_hypothesis_id_ = next_id;
+  last_genesis_step_ = last_genesis;
+  match_cursor_ = cursor;
+  projection_step_ = -1;
+  projection_source_ = kNoFrame;
+  for (CachedSelfMatch& c : self_cache_) c = CachedSelfMatch{};
+  for (TriedPair& t : tried_) t = TriedPair{};
+  stats_ = StepStats{};
+  return true;
+}
+
+}  // namespace atlas
