@@ -87,6 +87,7 @@ void FakeP2os::OnHostBytes(std::span<const uint8_t> bytes, Time now) {
 }
 
 Time FakeP2os::Tick(Time now) {
+  if (clock().LogAt(now) > recording_->end) SetFinished();
   if (state_.load() != State::kOpen) return now + std::chrono::milliseconds(20);
   if (now - last_command_ > options_.watchdog) {
     state_.store(State::kWaitSync0);

@@ -40,6 +40,9 @@ inline std::shared_ptr<const fake::Recording> LoadMitCsail(size_t max_scans, std
 
 struct RigOptions {
   double speed = 10.0;
+  // Non-empty: the devices are provided by another process (atlas-fakedev --dir external_dir);
+  // the rig runs the drivers only, against external_dir/laser, /can and /sonar.
+  std::string external_dir;
   bool laser = true, odometry = true, sonar = true;
   fake::FaultOptions laser_faults, odometry_faults, sonar_faults;
   int lms_power_up_baud = 9600;
@@ -49,19 +52,20 @@ class DriverRig {
  public:
   DriverRig(std::shared_ptr<const fake::Recording> rec, const RigOptions& o) : rec_(rec), o_(o) {
     char tmpl[] = "/tmp/atlas_hil_XXXXXX";
-    dir_ = mkdtemp(tmpl);
+    dir_ = o.external_dir.empty() ? std::string(mkdtemp(tmpl)) : o.external_dir;
     clock_ = std::make_shared<fake::PlaybackClock>(rec->begin, o.speed);
     ReconnectOptions rc;
     rc.initial_backoff = std::chrono::milliseconds(20);
     rc.max_backoff = std::chrono::milliseconds(200);
     rc.stall_timeout = std::chrono::milliseconds(400);
     rc.reopen_after_silence = std::chrono::milliseconds(1500);
+    const bool own = o.external_dir.empty();
     if (o.laser) {
       fake::FakeLmsOptions fo;
       fo.link = dir_ + "/laser";
       fo.power_up_baud = o.lms_power_up_baud;
       fo.faults = o.laser_faults;
-      lms_ = std::make_unique<fake::FakeLms>(fo, rec, clock_);
+      if (own) lms_ = std::make_unique<fake::FakeLms>(fo, rec, clock_);
       LaserReaderOptions lo;
       lo.device = fo.link;
       lo.baud = 500000;
@@ -73,7 +77,7 @@ class DriverRig {
       fake::FakeAgilexOptions fo;
       fo.socket_path = dir_ + "/can";
       fo.faults = o.odometry_faults;
-      base_ = std::make_unique<fake::FakeAgilexBase>(fo, rec, clock_);
+      if (own) base_ = std::make_unique<fake::FakeAgilexBase>(fo, rec, clock_);
       OdometryReaderOptions oo;
       oo.interface_name = "unix:" + fo.socket_path;
       // At `speed` times real time the wheels seem to turn `speed` times faster, and the
@@ -88,7 +92,7 @@ class DriverRig {
       fake::FakeP2osOptions fo;
       fo.link = dir_ + "/sonar";
       fo.faults = o.sonar_faults;
-      p2os_ = std::make_unique<fake::FakeP2os>(fo, rec, clock_);
+      if (own) p2os_ = std::make_unique<fake::FakeP2os>(fo, rec, clock_);
       SonarReaderOptions so;
       so.device = fo.link;
       so.reconnect = rc;
@@ -104,12 +108,13 @@ class DriverRig {
     if (base_) base_->Stop();
     if (p2os_) p2os_->Stop();
     std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
+    if (o_.external_dir.empty()) std::filesystem::remove_all(dir_, ec);
   }
 
   // Opens the fakes, starts the drivers, waits until every driver is running, starts the
   // clock. False (with *error) if that takes longer than `timeout`.
   bool Start(std::string* error, Duration timeout = std::chrono::seconds(10)) {
+    if (!o_.external_dir.empty()) return StartExternal(error, timeout);
     if (lms_ && (!lms_->Open(error))) return false;
     if (base_ && !base_->Open(error)) return false;
     if (p2os_ && !p2os_->Open(error)) return false;
@@ -143,6 +148,27 @@ class DriverRig {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     return Fail("drivers did not start in time", error);
+  }
+
+  // Drivers only, the devices being another process's; returns once every driver runs.
+  bool StartExternal(std::string* error, Duration timeout) {
+    laser_ = std::make_unique<LaserReader>(laser_opts_);
+    odo_ = std::make_unique<OdometryReader>(odo_opts_);
+    sonar_ = std::make_unique<SonarReader>(sonar_opts_);
+    laser_->Start();
+    odo_->Start();
+    sonar_->Start();
+    const Time deadline = Now() + timeout;
+    while (Now() < deadline) {
+      if (laser_->Health().state == DriverState::kRunning &&
+          odo_->Health().state == DriverState::kRunning &&
+          sonar_->Health().state == DriverState::kRunning)
+        return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return Fail("drivers did not start in time: " + laser_->Health().last_error + " / " +
+                    odo_->Health().last_error + " / " + sonar_->Health().last_error,
+                error);
   }
 
   // Drains the queues; true when something came out.

@@ -10,9 +10,8 @@
 namespace atlas::hil {
 
 // Pose step of the driver between samples a and b vs the recording's between the same ticks.
-inline void CheckOdometry(const DriverRig& rig, bool expect_all) {
-  const auto sent = rig.base_->SentIntact();
-  const auto& got = rig.odometry;
+inline void CheckOdometry(const std::vector<fake::SentOdometry>& sent,
+                          const std::vector<OdometrySample>& got, bool expect_all) {
   if (expect_all) {
     EXPECT_EQ(got.size(), sent.size()) << "odometry samples out vs 0x311 frames in";
   }
@@ -69,9 +68,8 @@ inline bool SameReading(const SonarReading& a, const SonarReading& b) {
 
 // Every reading out must be one of the SIPs sent intact, in order. (SIPs sent while the
 // driver was away, e.g. during its reconnection, are legitimately missing.)
-inline void CheckSonar(const DriverRig& rig, bool expect_all) {
-  const auto sent = rig.p2os_->SentIntact();
-  const auto& got = rig.sonar;
+inline void CheckSonar(const std::vector<SonarReading>& sent, const std::vector<SonarReading>& got,
+                       bool expect_all) {
   if (expect_all) {
     EXPECT_EQ(got.size(), sent.size()) << "sonar readings out vs SIPs in";
   }
@@ -90,6 +88,8 @@ inline void CheckSonar(const DriverRig& rig, bool expect_all) {
   EXPECT_EQ(unmatched, 0u);
 }
 
+inline void PrintHealthAndCheck(const DriverRig& rig, bool expect_all);
+
 inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
   const auto sent = rig.lms_->SentIntact();
   std::string first;
@@ -105,8 +105,12 @@ inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
     EXPECT_EQ(sent.size(), rig.rec_->scans.size());
     EXPECT_EQ(rig.scans.size(), rig.rec_->scans.size());
   }
-  CheckOdometry(rig, expect_all);
-  CheckSonar(rig, expect_all);
+  CheckOdometry(rig.base_->SentIntact(), rig.odometry, expect_all);
+  CheckSonar(rig.p2os_->SentIntact(), rig.sonar, expect_all);
+  PrintHealthAndCheck(rig, expect_all);
+}
+
+inline void PrintHealthAndCheck(const DriverRig& rig, bool expect_all) {
   for (const DriverHealth& h : {rig.laser_->Health(), rig.odo_->Health(), rig.sonar_->Health()}) {
     std::printf("  %-40s %-8s msgs %6llu samples %6llu crc %llu garbage %llu trunc %llu "
                 "disc %llu drops %llu reconnects %llu rate %.1f Hz\n",
