@@ -56,7 +56,7 @@ class FieldCursor {
     auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
     if (ec != std::errc() || ptr != w.data() + w.size() || !std::isfinite(v)) {
       Fail(LineError::kBadNumber, std::string("field ") + std::to_string(index + 1) + " (" + what +
-                                      ") is '" + std::string(w) + "', not a number");
+                                      ") is " + QuoteForMessage(w) + ", not a number");
       return 0.0;
     }
     return v;
@@ -113,8 +113,8 @@ class FieldCursor {
   void ExpectEnd() {
     if (failed() || next_ == fields_.size()) return;
     Fail(LineError::kExtraFields, std::to_string(fields_.size() - next_) +
-                                      " unexpected field(s) after the last one, starting with '" +
-                                      std::string(fields_[next_]) + "'");
+                                      " unexpected field(s) after the last one, starting with " +
+                                      QuoteForMessage(fields_[next_]));
   }
 
  private:
@@ -180,6 +180,25 @@ void ParseConfiguredLaser(FieldCursor& c, ParsedLine& out, bool robot) {
 
 }  // namespace
 
+std::string QuoteForMessage(std::string_view text) {
+  constexpr size_t kMax = 40;
+  std::string out = "'";
+  for (size_t i = 0; i < text.size() && i < kMax; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  out += "'";
+  if (text.size() > kMax) out += "...";
+  return out;
+}
+
 const char* ToString(LineError e) {
   switch (e) {
     case LineError::kNone:
@@ -222,7 +241,7 @@ ParsedLine ParseLine(std::string_view line) {
   out.message = std::string(fields[0]);
   if (!IsMessageName(fields[0])) {
     out.error = LineError::kBadMessageName;
-    out.reason = "first word '" + out.message + "' is not a CARMEN message name";
+    out.reason = "first word " + QuoteForMessage(out.message) + " is not a CARMEN message name";
     return out;
   }
   FieldCursor c(fields, out);

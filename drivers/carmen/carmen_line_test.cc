@@ -133,6 +133,15 @@ TEST(CarmenLineTest, RejectsMalformedLinesWithReasons) {
   EXPECT_EQ(p.error, LineError::kBadMessageName);
 }
 
+TEST(CarmenLineTest, ErrorMessagesQuoteBinaryGarbageSafely) {
+  const ParsedLine p = ParseLine(std::string("ODOM 1 2 \x01\xff") + std::string(100, 'z'));
+  EXPECT_EQ(p.error, LineError::kBadNumber);
+  EXPECT_NE(p.reason.find("'\\x01\\xffzzz"), std::string::npos) << p.reason;
+  EXPECT_NE(p.reason.find("zzz'..."), std::string::npos) << p.reason;
+  EXPECT_LT(p.reason.size(), 120u);
+  EXPECT_EQ(QuoteForMessage("ab\n"), "'ab\\x0a'");
+}
+
 TEST(CarmenLineTest, TruncatedPrefixesOfAValidLineNeverParse) {
   const std::string good = "FLASER 2 1.5 2.5 0.1 0.2 0.3 1.1 2.2 -3.3 1.0 b21 0.08";
   ASSERT_TRUE(ParseLine(good).ok());

@@ -53,12 +53,6 @@ int Usage(const std::string& what) {
   return 2;
 }
 
-bool ParseDouble(const char* s, double& out) {
-  char* end = nullptr;
-  out = std::strtod(s, &end);
-  return end != s && *end == '\0' && std::isfinite(out);
-}
-
 void PrintCounts(const std::string& path, const carmen::CarmenLog& log, bool json) {
   if (json) {
     std::string types;
@@ -142,7 +136,8 @@ int Main(int argc, char** argv) {
                a == "--track-width" || a == "--wheel-noise" || a == "--left-scale" ||
                a == "--right-scale" || a == "--track-width-error") {
       double d = 0.0;
-      if (i + 1 >= argc || !ParseDouble(argv[i + 1], d)) return Usage(a + " needs a number");
+      if (i + 1 >= argc || !ParseArgumentNumber(argv[i + 1], d))
+        return Usage(a + " needs a number");
       ++i;
       if (a == "--line-period") options.line_period_s = d;
       if (a == "--max-range") options.max_range_m = d;
@@ -178,6 +173,9 @@ int Main(int argc, char** argv) {
     carmen::CarmenReadResult r = carmen::ReadCarmenLog(path, options);
     if (!r.ok()) {
       std::fprintf(stderr, "atlas-carmen: %s\n", r.error.c_str());
+      if (r.status == carmen::ReadStatus::kBadLine) {
+        std::fprintf(stderr, "atlas-carmen: use --skip-bad-lines to count such lines and go on\n");
+      }
       status = 1;
       continue;
     }

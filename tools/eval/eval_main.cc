@@ -45,12 +45,6 @@ int Usage(const std::string& what) {
   return 2;
 }
 
-bool ParseDouble(const char* s, double& out) {
-  char* end = nullptr;
-  out = std::strtod(s, &end);
-  return end != s && *end == '\0' && std::isfinite(out);
-}
-
 int Fail(const std::string& error) {
   std::fprintf(stderr, "atlas-eval: %s\n", error.c_str());
   return 1;
@@ -84,7 +78,7 @@ int Main(int argc, char** argv) {
         reference_path = v;
       } else if (a == "--dead-reckon") {
         log_path = v;
-      } else if (!ParseDouble(v, d)) {
+      } else if (!ParseArgumentNumber(v, d)) {
         return Usage(a + " needs a number, got '" + v + "'");
       } else if (a == "--tolerance") {
         tolerance_s = d;
@@ -156,7 +150,10 @@ int Main(int argc, char** argv) {
       std::fputs(FormatStats("translational", "m", s.translation_m).c_str(), stdout);
       std::fputs(FormatStats("rotational", "deg", s.rotation_deg).c_str(), stdout);
     }
-    return s.matched > 0 ? 0 : Fail("no relation matched the trajectory's stamps");
+    return s.matched > 0 ? 0
+                         : Fail(
+                               "no relation matched the trajectory's stamps: are both on the "
+                               "same clock (the log's ipc timestamps)?");
   }
 
   TextFile f = ReadTextFile(reference_path);
@@ -197,7 +194,10 @@ int Main(int argc, char** argv) {
     std::fputs(FormatStats("  translational", "m", s.ate_translation_m).c_str(), stdout);
     std::fputs(FormatStats("  rotational", "deg", s.ate_rotation_deg).c_str(), stdout);
   }
-  return s.matched > 0 ? 0 : Fail("no pose of the trajectory matched a reference stamp");
+  return s.matched > 0 ? 0
+                       : Fail(
+                             "no pose of the trajectory matched a reference stamp: were both "
+                             "written from the same log with the same clock options?");
 }
 
 }  // namespace

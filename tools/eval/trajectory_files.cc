@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace atlas::eval {
@@ -26,8 +27,8 @@ bool ParseNumbers(std::string_view line, std::vector<double>& out, std::string& 
     double v = 0.0;
     auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
     if (ec != std::errc() || ptr != w.data() + w.size() || !std::isfinite(v)) {
-      error = "field " + std::to_string(out.size() + 1) + " is '" +
-              std::string(line.substr(start, i - start)) + "', not a number";
+      error = "field " + std::to_string(out.size() + 1) + " is " +
+              carmen::QuoteForMessage(line.substr(start, i - start)) + ", not a number";
       return false;
     }
     out.push_back(v);
@@ -151,6 +152,12 @@ TimedTrajectory ReferenceAtScans(const carmen::CarmenLog& log) {
     if (r.at_laser) poses.push_back(TimedPose{r.truth.stamp, r.truth.pose});
   }
   return TimedTrajectory(std::move(poses));
+}
+
+bool ParseArgumentNumber(const char* s, double& out) {
+  char* end = nullptr;
+  out = std::strtod(s, &end);
+  return end != s && *end == '\0' && std::isfinite(out);
 }
 
 std::string FormatStats(const char* name, const char* unit, const ErrorStats& s) {

@@ -49,6 +49,9 @@ TimedTrajectory OdometryAtScans(const std::vector<carmen::CarmenEvent>& events);
 // The reference poses of a log's laser lines (read with reference_trajectory set).
 TimedTrajectory ReferenceAtScans(const carmen::CarmenLog& log);
 
+// A whole command-line argument as a finite number.
+bool ParseArgumentNumber(const char* s, double& out);
+
 // Human-readable and JSON summaries.
 std::string FormatStats(const char* name, const char* unit, const ErrorStats& s);
 std::string StatsJson(const ErrorStats& s);
