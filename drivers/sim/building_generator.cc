@@ -84,6 +84,8 @@ std::string BuildingOptions::Validate() const {
   if (!(block_width_min >= room_width_min && block_width_max >= block_width_min &&
         block_width_max <= 500.0))
     return "block widths must satisfy room_width_min <= block_width_min <= block_width_max";
+  if (!(merged_block_probability >= 0.0 && merged_block_probability <= 1.0))
+    return "merged_block_probability must be in [0, 1]";
   if (max_boxes_per_room < 0 || max_boxes_per_room > 2) return "max_boxes_per_room: 0, 1 or 2";
   if (!(cabinets_per_10m >= 0.0 && cabinets_per_10m <= 5.0))
     return "cabinets_per_10m must be in [0, 5]";
@@ -119,6 +121,14 @@ World GenerateBuilding(const BuildingOptions& o, uint64_t seed) {
       b.AddCabinets(true, xs.back() + 0.5 * w, ys[j], ys[j + 1], -1.0);
     }
 
+    // Vertical corridor pieces between corridors j and j + 1 at column line i; closing an inner
+    // one merges two blocks into one twice as long, so that loops differ more in size.
+    std::vector<std::vector<bool>> open(cols + 1, std::vector<bool>(rows, true));
+    for (int j = 0; j < rows; ++j)
+      for (int i = 1; i < cols; ++i)
+        if (open[i - 1][j] && b.Uniform(0.0, 1.0) < o.merged_block_probability)
+          open[i][j] = false;
+
     // Junction nodes, and the nodes on each horizontal corridor (by corridor index).
     std::vector<std::vector<int>> junction(cols + 1, std::vector<int>(rows + 1));
     std::vector<std::vector<int>> on_corridor(rows + 1);
@@ -130,8 +140,9 @@ World GenerateBuilding(const BuildingOptions& o, uint64_t seed) {
 
     int rooms = 0;
     for (int j = 0; j < rows; ++j) {
-      for (int i = 0; i < cols; ++i) {
-        const double xl = xs[i] + 0.5 * w, xr = xs[i + 1] - 0.5 * w;
+      for (int i = 0, end = 1; i < cols; i = end, end = i + 1) {
+        while (!open[end][j]) ++end;
+        const double xl = xs[i] + 0.5 * w, xr = xs[end] - 0.5 * w;
         const double yb = ys[j] + 0.5 * w, yt = ys[j + 1] - 0.5 * w, ym = 0.5 * (yb + yt);
         b.AddWall(xl, yb, xl, yt);
         b.AddWall(xr, yb, xr, yt);
@@ -182,7 +193,8 @@ World GenerateBuilding(const BuildingOptions& o, uint64_t seed) {
       for (size_t k = 0; k + 1 < ids.size(); ++k) b.world.edges.push_back({ids[k], ids[k + 1]});
     }
     for (int i = 0; i <= cols; ++i)
-      for (int j = 0; j < rows; ++j) b.world.edges.push_back({junction[i][j], junction[i][j + 1]});
+      for (int j = 0; j < rows; ++j)
+        if (open[i][j]) b.world.edges.push_back({junction[i][j], junction[i][j + 1]});
     return std::move(b.world);
   }
 }

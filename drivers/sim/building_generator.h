@@ -1,11 +1,12 @@
 #pragma once
 // Generates an office building as large as asked for: a grid of corridor blocks whose
 // corridors form loops of several sizes (every block is ringed by corridors; block widths and
-// depths vary, so single-block and multi-block loops differ in length), each block holding two
-// rows of rooms that open onto the corridors through doors, with clutter (boxes in room
-// corners, cabinets along corridor walls). Also emits the route graph: corridor centreline
-// nodes at every junction and in front of every door, a node just inside each door and one at
-// each room's centre. Pure, seeded computation.
+// depths vary, and some neighbouring blocks are merged into one twice as long, so single-block
+// and multi-block loops differ in length), each block holding two rows of rooms that open onto
+// the corridors through doors, with clutter (boxes in room corners, cabinets along corridor
+// walls). Also emits the route graph: corridor centreline nodes at every junction and in front
+// of every door, a node just inside each door and one at each room's centre. Pure, seeded
+// computation.
 
 #include <cstdint>
 #include <string>
@@ -24,6 +25,7 @@ struct BuildingOptions {
   double room_depth_max = 6.0;
   double block_width_min = 11.0;  // m, between two corridor walls
   double block_width_max = 24.0;
+  double merged_block_probability = 0.3;  // two neighbouring blocks form one (bigger loops)
   int max_boxes_per_room = 2;     // clutter in the room corners away from the door
   double cabinets_per_10m = 0.6;  // clutter along corridor walls without doors
 

@@ -40,10 +40,10 @@ double NormalQuantile(double p) {
 
 FastNoise::FastNoise(uint64_t seed) : engine_(seed) {}
 
-const std::array<double, 65536>& FastNoise::Table() {
-  static const std::array<double, 65536> table = [] {
-    std::array<double, 65536> t{};
-    for (int i = 0; i < 65536; ++i) t[i] = NormalQuantile((i + 0.5) / 65536.0);
+const std::array<double, 4096>& FastNoise::Table() {
+  static const std::array<double, 4096> table = [] {
+    std::array<double, 4096> t{};
+    for (int i = 0; i < 4096; ++i) t[i] = NormalQuantile((i + 0.5) / 4096.0);
     return t;
   }();
   return table;
