@@ -46,7 +46,7 @@ bool FakeSerialDevice::Stalled(Time now) const {
 
 bool FakeSerialDevice::SendReply(const std::vector<uint8_t>& bytes) {
   if (Stalled(Now())) return false;
-  return pty_.WriteAll(bytes.data(), bytes.size(), 50);
+  return pty_.WriteAll(bytes.data(), bytes.size(), 1000);
 }
 
 bool FakeSerialDevice::SendMessage(std::vector<uint8_t> bytes) {
@@ -55,7 +55,7 @@ bool FakeSerialDevice::SendMessage(std::vector<uint8_t> bytes) {
   auto every = [&](int n) { return n > 0 && message_index_ % static_cast<uint64_t>(n) == 0; };
   if (every(faults_.garbage_every)) {
     const std::string g = GarbageBytes(faults_.garbage_bytes, static_cast<uint32_t>(message_index_));
-    if (pty_.WriteAll(reinterpret_cast<const uint8_t*>(g.data()), g.size(), 50))
+    if (pty_.WriteAll(reinterpret_cast<const uint8_t*>(g.data()), g.size(), 1000))
       counts_.garbage.fetch_add(1, std::memory_order_relaxed);
   }
   bool intact = true;
@@ -68,7 +68,7 @@ bool FakeSerialDevice::SendMessage(std::vector<uint8_t> bytes) {
     counts_.truncated.fetch_add(1, std::memory_order_relaxed);
     intact = false;
   }
-  if (!pty_.WriteAll(bytes.data(), bytes.size(), 50)) return false;
+  if (!pty_.WriteAll(bytes.data(), bytes.size(), 1000)) return false;
   messages_sent_.fetch_add(1, std::memory_order_relaxed);
   return intact;
 }

@@ -56,7 +56,9 @@ class FakeSerialDevice {
 
   // A reply to the host: sent as is (dropped while stalled).
   bool SendReply(const std::vector<uint8_t>& bytes);
-  // A device message, with the configured faults. Returns true if it went out intact.
+  // A device message, with the configured faults. Returns true if it went out intact. A full
+  // pty (driver not reading) holds the device up to 1 s, so that a slow reader on a loaded
+  // machine loses nothing; after that the message is dropped.
   bool SendMessage(std::vector<uint8_t> bytes);
   bool Stalled(Time now) const;
   int SlaveBaud() const { return pty_.SlaveBaud(); }

@@ -1,0 +1,187 @@
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
+#include "drivers/agilex/wheel_odometry.h"
+#include "drivers/can/can_transport.h"
+#include "drivers/device/laser_reader.h"
+#include "drivers/fake/fake_agilex_base.h"
+#include "drivers/fake/fake_can_bus.h"
+#include "drivers/fake/fake_lms.h"
+#include "drivers/fake/fake_p2os.h"
+
+namespace atlas::fake {
+namespace {
+
+std::string TempDir() {
+  char t[] = "/tmp/atlas_fake_XXXXXX";
+  return mkdtemp(t);
+}
+
+// The wheel counters the fake sends, integrated by the driver's integrator, give back an arc
+// path through the same poses (to the counters' millimetre).
+TEST(WheelPathEncoderTest, IntegratorRecoversArcPoses) {
+  WheelPathEncoder enc(0.58);
+  agilex::WheelOdometryOptions wo;
+  wo.track_width_m = 0.58;
+  agilex::WheelOdometryIntegrator integ(wo);
+  Pose2 truth{2.0, -1.0, 0.3};
+  enc.Reset(truth);
+  Time t{};
+  integ.Update(t, {0, 0});
+  const Pose2 start = truth;
+  for (int k = 0; k < 500; ++k) {
+    // Drive arcs: forward 2 cm with a turn that changes sign, and some reversing.
+    const double ds = (k % 100 < 80) ? 0.02 : -0.01;
+    const double dth = 0.01 * std::sin(k * 0.05) + 0.0023;
+    const double r = ds / dth;
+    truth = Compose(truth, Pose2{r * std::sin(dth), r * (1 - std::cos(dth)), dth});
+    t += std::chrono::milliseconds(20);
+    ASSERT_EQ(integ.Update(t, enc.Advance(truth)), agilex::OdometryStep::kIntegrated);
+  }
+  const Pose2 want = Between(start, truth);
+  const Pose2 have = integ.sample().pose;
+  EXPECT_NEAR(have.x, want.x, 0.01);
+  EXPECT_NEAR(have.y, want.y, 0.01);
+  EXPECT_NEAR(WrapAngle(have.theta - want.theta), 0.0, 0.004);
+}
+
+TEST(FakeCanBusTest, FramesReachEveryClientAndAClosedBusIsGone) {
+  const std::string dir = TempDir();
+  const std::string path = dir + "/bus";
+  FakeCanBus bus;
+  std::string err;
+  ASSERT_TRUE(bus.Listen(path, &err)) << err;
+  auto a = MakeCanTransport("unix:" + path);
+  auto b = MakeCanTransport("unix:" + path);
+  ASSERT_TRUE(a->Open(&err)) << err;
+  ASSERT_TRUE(b->Open(&err)) << err;
+  EXPECT_EQ(bus.AcceptPending(), 2u);
+  const CanFrame f = agilex::EncodeOdometry({1000, -2});
+  EXPECT_EQ(bus.Broadcast(f), 2u);
+  for (auto* t : {a.get(), b.get()}) {
+    CanReadResult r = t->Read(500);
+    ASSERT_EQ(r.status, CanRead::kFrame);
+    EXPECT_EQ(r.frame, f);
+  }
+  bus.Close();
+  EXPECT_EQ(a->Read(500).status, CanRead::kGone);
+  a->Close();
+  EXPECT_FALSE(a->Open(&err));  // nobody listening while the bus is down
+  ASSERT_TRUE(bus.Listen(path, &err)) << err;
+  EXPECT_TRUE(a->Open(&err)) << err;
+  EXPECT_EQ(bus.AcceptPending(), 1u);
+  bus.Close();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SonarFromScanTest, NearestReturnInsideEachCone) {
+  LaserScan scan;
+  scan.angle_min = -M_PI / 2;
+  scan.angle_increment = M_PI / 180;
+  scan.ranges.assign(181, kNoReturn);
+  scan.ranges[90] = 2.0f;   // straight ahead
+  scan.ranges[92] = 1.5f;   // 2 deg left: same cone, nearer
+  scan.ranges[180] = 0.7f;  // 90 deg left
+  std::vector<SonarTransducer> ring(3);
+  ring[0].pose = Pose2{0.1, 0, 0};
+  ring[1].pose = Pose2{0, 0.1, M_PI / 2};
+  ring[2].pose = Pose2{-0.1, 0, M_PI};  // behind: the laser does not see there
+  const SonarReading r = SonarFromScan(scan, ring);
+  ASSERT_EQ(r.returns.size(), 3u);
+  EXPECT_FLOAT_EQ(r.returns[0].range, 1.5f);
+  EXPECT_FLOAT_EQ(r.returns[1].range, 0.7f);
+  EXPECT_FALSE(IsReturn(r.returns[2].range));
+}
+
+std::shared_ptr<Recording> TinyRecording() {
+  auto rec = std::make_shared<Recording>();
+  for (int i = 0; i < 50; ++i) {
+    LaserScan s;
+    s.stamp = Time(std::chrono::milliseconds(100 * i));
+    s.angle_min = -M_PI / 2;
+    s.angle_increment = M_PI / 360;
+    s.ranges.assign(361, 1.0f + 0.01f * i);
+    s.ranges[7] = kNoReturn;
+    rec->scans.push_back(s);
+    rec->odometry.push_back({s.stamp, Pose2{0.05 * i, 0, 0}});
+  }
+  rec->begin = rec->scans.front().stamp;
+  rec->end = rec->scans.back().stamp;
+  return rec;
+}
+
+// A scanner left at 500000 baud by an earlier session: the driver finds nothing at 9600,
+// finds it at 500000, and does not switch.
+TEST(FakeLmsTest, ScannerStillAtHighRateIsFound) {
+  const std::string dir = TempDir();
+  auto rec = TinyRecording();
+  auto clock = std::make_shared<PlaybackClock>(rec->begin, 10.0);
+  FakeLmsOptions fo;
+  fo.link = dir + "/laser";
+  fo.power_up_baud = 500000;
+  FakeLms lms(fo, rec, clock);
+  std::string err;
+  ASSERT_TRUE(lms.Open(&err)) << err;
+  lms.Start();
+  LaserReaderOptions lo;
+  lo.device = fo.link;
+  LaserReader reader(lo);
+  reader.Start();
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (!lms.streaming() && Now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(lms.streaming()) << reader.Health().last_error;
+  EXPECT_EQ(reader.found_baud(), 500000);
+  EXPECT_GE(lms.commands_ignored_wrong_rate(), 1u);  // the 9600 probe
+  clock->Start();
+  LaserScan s;
+  int got = 0;
+  while (!lms.finished() && Now() < deadline + std::chrono::seconds(5)) {
+    while (reader.Pop(&s)) {
+      EXPECT_EQ(s.ranges.size(), 361u);
+      EXPECT_FALSE(IsReturn(s.ranges[7]));
+      ++got;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  while (reader.Pop(&s)) ++got;
+  EXPECT_EQ(got, 50);
+  reader.Stop();
+  lms.Stop();
+  std::filesystem::remove_all(dir);
+}
+
+// The fake follows the baud switch: after 0x20 0x48 it answers only at 500000.
+TEST(FakeLmsTest, BaudSwitchIsFollowed) {
+  const std::string dir = TempDir();
+  auto rec = TinyRecording();
+  auto clock = std::make_shared<PlaybackClock>(rec->begin, 10.0);
+  FakeLmsOptions fo;
+  fo.link = dir + "/laser";
+  FakeLms lms(fo, rec, clock);
+  std::string err;
+  ASSERT_TRUE(lms.Open(&err)) << err;
+  lms.Start();
+  LaserReaderOptions lo;
+  lo.device = fo.link;
+  lo.baud = 500000;
+  LaserReader reader(lo);
+  reader.Start();
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (!lms.streaming() && Now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_TRUE(lms.streaming());
+  EXPECT_EQ(reader.found_baud(), 9600);
+  EXPECT_EQ(lms.baud(), 500000);
+  EXPECT_EQ(lms.commands_answered(), 4u);  // status, baud, variant, continuous
+  reader.Stop();
+  lms.Stop();
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace atlas::fake
