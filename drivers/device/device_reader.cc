@@ -1,5 +1,9 @@
 #include "drivers/device/device_reader.h"
 
+#include <pthread.h>
+#include <sched.h>
+#include <string.h>
+
 #include <algorithm>
 
 namespace atlas {
@@ -9,6 +13,8 @@ std::string ReconnectOptions::Validate() const {
   if (max_backoff < initial_backoff) return "reconnect: max_backoff must be >= initial_backoff";
   if (max_attempts < 0) return "reconnect: max_attempts must be >= 0";
   if (stall_timeout <= Duration::zero()) return "reconnect: stall_timeout must be > 0";
+  if (realtime_priority < 0 || realtime_priority > 99)
+    return "reconnect: realtime_priority must be 0 (off) or 1..99";
   if (reopen_after_silence < stall_timeout)
     return "reconnect: reopen_after_silence must be >= stall_timeout";
   return "";
@@ -69,6 +75,13 @@ bool DeviceReader::TrackSilence(bool got_data, Time now) {
 }
 
 void DeviceReader::Loop() {
+  if (reconnect_.realtime_priority > 0) {
+    sched_param p{};
+    p.sched_priority = reconnect_.realtime_priority;
+    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0)
+      health_.SetError("SCHED_FIFO priority " + std::to_string(reconnect_.realtime_priority) +
+                       " refused (" + strerror(err) + "): running at normal priority");
+  }
   int failures = 0;
   bool ever_connected = false;
   while (!Stopping()) {

@@ -26,6 +26,10 @@ struct ReconnectOptions {
   Duration stall_timeout = std::chrono::milliseconds(1000);
   // ... and after this long it is reopened (a power-cycled device needs its start-up again).
   Duration reopen_after_silence = std::chrono::seconds(3);
+  // > 0: run the reader thread SCHED_FIFO at this priority (1..99), so that a loaded machine
+  // does not delay the arrival stamps. Needs CAP_SYS_NICE (or an rtprio limit); when it is
+  // refused the thread runs normally and last_error says so.
+  int realtime_priority = 0;
   std::string Validate() const;
 };
 
