@@ -18,7 +18,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev      # libFuzzer targets
   iproute2 util-linux           # private network namespaces for the hardware-in-loop tests
-  xvfb xauth                    # lcm-spy under a virtual display
+  xvfb xauth imagemagick        # lcm-spy under a virtual display, and its screenshot
   systemd                       # systemd-analyze verify
 )
 
