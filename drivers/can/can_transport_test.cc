@@ -58,7 +58,7 @@ TEST(CanTransportTest, FakeBusDatagrams) {
   ASSERT_GE(peer, 0);
   EXPECT_EQ(t->Read(10).status, CanRead::kTimeout);
 
-  struct can_frame f{};
+  struct can_frame f {};
   f.can_id = 0x311;
   f.can_dlc = 8;
   const uint8_t payload[8] = {0x00, 0x00, 0x03, 0xE8, 0xFF, 0xFF, 0xFF, 0xFE};
@@ -80,7 +80,7 @@ TEST(CanTransportTest, FakeBusDatagrams) {
   out.id = 0x221;
   out.dlc = 8;
   ASSERT_TRUE(t->Write(out, &err)) << err;
-  struct can_frame in{};
+  struct can_frame in {};
   ASSERT_EQ(recv(peer, &in, sizeof(in), 0), 16);
   EXPECT_EQ(in.can_id, 0x221u);
 

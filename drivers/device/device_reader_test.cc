@@ -64,7 +64,8 @@ TEST(DeviceReaderTest, MissingDeviceIsRetriedAndReported) {
   LaserReader r(o);
   r.Start();
   const Time deadline = Now() + std::chrono::seconds(5);
-  while (r.Health().connect_failures < 5 && Now() < deadline) std::this_thread::sleep_for(milliseconds(5));
+  while (r.Health().connect_failures < 5 && Now() < deadline)
+    std::this_thread::sleep_for(milliseconds(5));
   const DriverHealth h = r.Health();
   EXPECT_GE(h.connect_failures, 5u);
   EXPECT_EQ(h.state, DriverState::kConnecting);
@@ -105,7 +106,8 @@ TEST(DeviceReaderTest, SilentLineNamesTheRatesTried) {
   LaserReader r(o);
   r.Start();
   const Time deadline = Now() + std::chrono::seconds(5);
-  while (r.Health().connect_failures < 1 && Now() < deadline) std::this_thread::sleep_for(milliseconds(5));
+  while (r.Health().connect_failures < 1 && Now() < deadline)
+    std::this_thread::sleep_for(milliseconds(5));
   const std::string e = r.Health().last_error;
   EXPECT_NE(e.find("no answer to the status request at 9600, 500000, 38400, 19200 baud"),
             std::string::npos)

@@ -36,8 +36,7 @@ class GapResync {
     if (held == 0) return false;
     std::array<uint8_t, kCapacity> copy;
     const std::size_t n = std::min<std::size_t>({held, kCapacity, total_});
-    for (std::size_t i = 0; i < n; ++i)
-      copy[i] = ring_[(head_ + kCapacity - n + i) % kCapacity];
+    for (std::size_t i = 0; i < n; ++i) copy[i] = ring_[(head_ + kCapacity - n + i) % kCapacity];
     decoder.Reset();
     if (n > 1) {
       double_counted_ += n - 1;

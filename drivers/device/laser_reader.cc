@@ -105,7 +105,9 @@ bool LaserReader::Connect(std::string* error) {
     std::optional<sick::StatusReply> status;
     const Reply r = Transact(
         sick::EncodeStatusRequest(), sick::kReplyStatus,
-        [&](const sick::TelegramView& t) { return (status = sick::DecodeStatusReply(t)).has_value(); },
+        [&](const sick::TelegramView& t) {
+          return (status = sick::DecodeStatusReply(t)).has_value();
+        },
         &why);
     if (r == Reply::kGone) {
       *error = why;
@@ -113,12 +115,11 @@ bool LaserReader::Connect(std::string* error) {
     }
     if (r == Reply::kOk) {
       found = rate;
-      health_.SetDeviceStatus("scanner " + status->software_version + " status 0x" +
-                              [&] {
-                                char b[8];
-                                std::snprintf(b, sizeof(b), "%02X", status->status.raw);
-                                return std::string(b);
-                              }());
+      health_.SetDeviceStatus("scanner " + status->software_version + " status 0x" + [&] {
+        char b[8];
+        std::snprintf(b, sizeof(b), "%02X", status->status.raw);
+        return std::string(b);
+      }());
       break;
     }
   }
@@ -203,10 +204,8 @@ void LaserReader::HandleTelegram(const sick::TelegramView& t, Time stamp) {
 
 DeviceReader::SessionEnd LaserReader::ReadUntilGone(std::string* error) {
   uint8_t buf[4096];
-  const int gap_ms = static_cast<int>(
-      std::max<int64_t>(1, std::chrono::duration_cast<std::chrono::milliseconds>(
-                               options_.truncation_gap)
-                               .count()));
+  const int gap_ms = static_cast<int>(std::max<int64_t>(
+      1, std::chrono::duration_cast<std::chrono::milliseconds>(options_.truncation_gap).count()));
   while (!Stopping()) {
     const int timeout = decoder_.buffered() > 0 ? gap_ms : 50;
     SerialResult r = port_.Read(buf, sizeof(buf), timeout);

@@ -1,6 +1,7 @@
 // Latency of the laser path: from the write() of a whole LMS 0xB0 telegram to the pty (so the
-// figure includes the write call: an upper bound on "from the last byte written") to the decoded LaserScan popped from the reader's queue by a consumer
-// polling it (as the step loop does). 10,000 scans of 361 beams; reports median and p99.
+// figure includes the write call: an upper bound on "from the last byte written") to the decoded
+// LaserScan popped from the reader's queue by a consumer polling it (as the step loop does). 10,000
+// scans of 361 beams; reports median and p99.
 //
 //   build-devio/bin/atlas_device_benchmark --benchmark_filter=LaserTelegramToQueue
 #include <benchmark/benchmark.h>
@@ -27,25 +28,26 @@ bool AnswerStartUp(PseudoTerminal& pty) {
   while (!streaming && Now() < deadline) {
     const long n = pty.Read(buf, sizeof(buf), 20);
     if (n <= 0) continue;
-    dec.FeedAll(std::span<const uint8_t>(buf, static_cast<size_t>(n)), [&](const sick::StreamEvent& e) {
-      if (e.kind != sick::StreamEventKind::kTelegram) return;
-      const sick::HostCommand c = sick::DecodeHostCommand(e.telegram);
-      std::vector<uint8_t> reply;
-      switch (c.kind) {
-        case sick::HostCommand::Kind::kStatus:
-          reply = sick::EncodeStatusReply(0x10);
-          break;
-        case sick::HostCommand::Kind::kVariant:
-          reply = sick::EncodeVariantReply(true, c.angle_deg, c.resolution_centideg, 0x10);
-          break;
-        case sick::HostCommand::Kind::kModeContinuous:
-          streaming = true;
-          [[fallthrough]];
-        default:
-          reply = sick::EncodeModeReply(true, 0x10);
-      }
-      pty.WriteAll(reply.data(), reply.size());
-    });
+    dec.FeedAll(
+        std::span<const uint8_t>(buf, static_cast<size_t>(n)), [&](const sick::StreamEvent& e) {
+          if (e.kind != sick::StreamEventKind::kTelegram) return;
+          const sick::HostCommand c = sick::DecodeHostCommand(e.telegram);
+          std::vector<uint8_t> reply;
+          switch (c.kind) {
+            case sick::HostCommand::Kind::kStatus:
+              reply = sick::EncodeStatusReply(0x10);
+              break;
+            case sick::HostCommand::Kind::kVariant:
+              reply = sick::EncodeVariantReply(true, c.angle_deg, c.resolution_centideg, 0x10);
+              break;
+            case sick::HostCommand::Kind::kModeContinuous:
+              streaming = true;
+              [[fallthrough]];
+            default:
+              reply = sick::EncodeModeReply(true, 0x10);
+          }
+          pty.WriteAll(reply.data(), reply.size());
+        });
   }
   return streaming;
 }
@@ -76,7 +78,8 @@ void BM_LaserTelegramToQueue(benchmark::State& state) {
   scan.ranges.resize(361);
   for (size_t i = 0; i < scan.ranges.size(); ++i)
     scan.ranges[i] = (i % 17 == 0) ? kNoReturn : 0.5f + 0.01f * static_cast<float>(i);
-  const std::vector<uint8_t> telegram = *sick::EncodeMeasuredValues(scan, sick::Unit::kCentimetre, 0x10);
+  const std::vector<uint8_t> telegram =
+      *sick::EncodeMeasuredValues(scan, sick::Unit::kCentimetre, 0x10);
 
   std::vector<double> latencies_us;
   latencies_us.reserve(static_cast<size_t>(state.max_iterations));
@@ -106,8 +109,9 @@ void BM_LaserTelegramToQueue(benchmark::State& state) {
   auto pct = [&](double p) {
     return latencies_us.empty()
                ? 0.0
-               : latencies_us[std::min(latencies_us.size() - 1,
-                                       static_cast<size_t>(p * static_cast<double>(latencies_us.size())))];
+               : latencies_us[std::min(
+                     latencies_us.size() - 1,
+                     static_cast<size_t>(p * static_cast<double>(latencies_us.size())))];
   };
   state.counters["median_us"] = pct(0.5);
   state.counters["p99_us"] = pct(0.99);

@@ -111,8 +111,9 @@ bool SonarReader::Connect(std::string* error) {
     return false;
   }
   std::string why;
-  if (!Exchange(p2os::EncodeSync(1), [](const p2os::PacketView& p) { return p2os::SyncEcho(p) == 1; },
-                &why)) {
+  if (!Exchange(
+          p2os::EncodeSync(1), [](const p2os::PacketView& p) { return p2os::SyncEcho(p) == 1; },
+          &why)) {
     *error = who + ": SYNC1: " + why;
     return false;
   }

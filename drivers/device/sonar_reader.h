@@ -1,12 +1,12 @@
 #pragma once
 // The P2OS sonar reader thread (shared/specs/devices.md, section 3). Start-up: open the line at
 // 9600 8N1 raw (or the next probe rate if no SYNC0 echo comes; SIPs instead of an echo mean
-// the controller is still open from an earlier session: CLOSE, then SYNC0 again), the SYNC0/SYNC1/SYNC2
-// handshake (each echoed; SYNC2's echo names the robot), OPEN, sonar on (command 28, 1); then a
-// PULSE at least every pulse_period or the controller closes the connection. Standard SIPs are
-// decoded by drivers/p2os, their sonar returns converted with the configured range factor and
-// ring geometry, and each SIP with returns is pushed as a SonarReading stamped at arrival.
-// Bad checksums, bad counts, garbage and truncated packets are counted; EOF/EIO ends the
+// the controller is still open from an earlier session: CLOSE, then SYNC0 again), the
+// SYNC0/SYNC1/SYNC2 handshake (each echoed; SYNC2's echo names the robot), OPEN, sonar on (command
+// 28, 1); then a PULSE at least every pulse_period or the controller closes the connection.
+// Standard SIPs are decoded by drivers/p2os, their sonar returns converted with the configured
+// range factor and ring geometry, and each SIP with returns is pushed as a SonarReading stamped at
+// arrival. Bad checksums, bad counts, garbage and truncated packets are counted; EOF/EIO ends the
 // session and the line is reopened with capped backoff (handshake again).
 
 #include <string>

@@ -131,7 +131,8 @@ void FakeAgilexBase::Loop() {
       bus_.Close();
       counts_.drops.fetch_add(1);
       const Time until = now + Duration(static_cast<int64_t>(f.drop_for_s * 1e9));
-      while (!stop_.load() && Now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      while (!stop_.load() && Now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
       std::string error;
       while (!stop_.load() && !bus_.Listen(options_.socket_path, &error))
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -153,8 +154,8 @@ void FakeAgilexBase::Loop() {
       ++tick;
     }
     const Time next = clock_->WallAt(clock_->log_start() + period * static_cast<int64_t>(tick));
-    const Duration wait = std::clamp<Duration>(next - Now(), Duration::zero(),
-                                               std::chrono::milliseconds(5));
+    const Duration wait =
+        std::clamp<Duration>(next - Now(), Duration::zero(), std::chrono::milliseconds(5));
     std::this_thread::sleep_for(wait);
   }
 }

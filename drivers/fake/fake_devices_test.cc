@@ -133,7 +133,8 @@ TEST(FakeLmsTest, ScannerStillAtHighRateIsFound) {
   LaserReader reader(lo);
   reader.Start();
   const Time deadline = Now() + std::chrono::seconds(5);
-  while (!lms.streaming() && Now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (!lms.streaming() && Now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   ASSERT_TRUE(lms.streaming()) << reader.Health().last_error;
   EXPECT_EQ(reader.found_baud(), 500000);
   EXPECT_GE(lms.commands_ignored_wrong_rate(), 1u);  // the 9600 probe
@@ -173,7 +174,8 @@ TEST(FakeLmsTest, BaudSwitchIsFollowed) {
   LaserReader reader(lo);
   reader.Start();
   const Time deadline = Now() + std::chrono::seconds(5);
-  while (!lms.streaming() && Now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (!lms.streaming() && Now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   EXPECT_TRUE(lms.streaming());
   EXPECT_EQ(reader.found_baud(), 9600);
   EXPECT_EQ(lms.baud(), 500000);

@@ -52,11 +52,10 @@ void FakeLms::Answer(const sick::HostCommand& c) {
       SendReply(sick::EncodeModeReply(true, st));
       break;
     case K::kVariant: {
-      const bool ok = (c.angle_deg == 180 && (c.resolution_centideg == 100 ||
-                                              c.resolution_centideg == 50)) ||
-                      (c.angle_deg == 100 && (c.resolution_centideg == 100 ||
-                                              c.resolution_centideg == 50 ||
-                                              c.resolution_centideg == 25));
+      const bool ok =
+          (c.angle_deg == 180 && (c.resolution_centideg == 100 || c.resolution_centideg == 50)) ||
+          (c.angle_deg == 100 && (c.resolution_centideg == 100 || c.resolution_centideg == 50 ||
+                                  c.resolution_centideg == 25));
       SendReply(sick::EncodeVariantReply(ok, c.angle_deg, c.resolution_centideg, st));
       break;
     }

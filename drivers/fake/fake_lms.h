@@ -24,7 +24,7 @@ struct FakeLmsOptions {
   std::string link;          // symlink to (re)create at the pty's slave; empty: none
   int power_up_baud = 9600;  // the scanner's rate after (re)power
   sick::Unit unit = sick::Unit::kCentimetre;
-  uint8_t status = 0x10;     // STATUS byte of every reply
+  uint8_t status = 0x10;  // STATUS byte of every reply
   FaultOptions faults;
   std::string Validate() const;
 };

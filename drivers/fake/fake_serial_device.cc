@@ -54,7 +54,8 @@ bool FakeSerialDevice::SendMessage(std::vector<uint8_t> bytes) {
   ++message_index_;
   auto every = [&](int n) { return n > 0 && message_index_ % static_cast<uint64_t>(n) == 0; };
   if (every(faults_.garbage_every)) {
-    const std::string g = GarbageBytes(faults_.garbage_bytes, static_cast<uint32_t>(message_index_));
+    const std::string g =
+        GarbageBytes(faults_.garbage_bytes, static_cast<uint32_t>(message_index_));
     if (pty_.WriteAll(reinterpret_cast<const uint8_t*>(g.data()), g.size(), 1000))
       counts_.garbage.fetch_add(1, std::memory_order_relaxed);
   }
@@ -113,7 +114,8 @@ void FakeSerialDevice::Loop() {
     Time next = now + std::chrono::milliseconds(20);
     if (clock_->started()) next = std::min(next, Tick(now));
     const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(next - Now());
-    const long n = pty_.Read(buf, sizeof(buf), static_cast<int>(std::clamp<int64_t>(wait.count(), 0, 20)));
+    const long n =
+        pty_.Read(buf, sizeof(buf), static_cast<int>(std::clamp<int64_t>(wait.count(), 0, 20)));
     if (n > 0) OnHostBytes(std::span<const uint8_t>(buf, static_cast<size_t>(n)), Now());
   }
 }

@@ -15,10 +15,10 @@
 namespace atlas::fake {
 
 struct Recording {
-  std::vector<LaserScan> scans;           // stamps in log time, increasing
-  std::vector<OdometrySample> odometry;   // stamps in log time, increasing
-  Time begin{};                           // earliest stamp
-  Time end{};                             // latest stamp
+  std::vector<LaserScan> scans;          // stamps in log time, increasing
+  std::vector<OdometrySample> odometry;  // stamps in log time, increasing
+  Time begin{};                          // earliest stamp
+  Time end{};                            // latest stamp
   // The odometry pose at log time t, linearly interpolated (angles along the short way),
   // clamped at both ends. The recording must have odometry.
   Pose2 OdometryAt(Time t) const;

@@ -18,10 +18,9 @@ struct BaudCode {
   int baud;
   speed_t code;
 };
-constexpr BaudCode kBauds[] = {{1200, B1200},     {2400, B2400},     {4800, B4800},
-                               {9600, B9600},     {19200, B19200},   {38400, B38400},
-                               {57600, B57600},   {115200, B115200}, {230400, B230400},
-                               {500000, B500000}};
+constexpr BaudCode kBauds[] = {
+    {1200, B1200},   {2400, B2400},   {4800, B4800},     {9600, B9600},     {19200, B19200},
+    {38400, B38400}, {57600, B57600}, {115200, B115200}, {230400, B230400}, {500000, B500000}};
 
 bool IsGoneErrno(int err) { return err == EIO || err == ENXIO || err == ENODEV || err == EBADF; }
 

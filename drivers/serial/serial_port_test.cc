@@ -47,8 +47,7 @@ TEST(SerialPortTest, PermissionDeniedMentionsDialout) {
     SerialPort port;
     std::string e;
     const bool opened = port.Open({pty.slave_path(), 9600, true}, &e);
-    _exit(!opened && e.find("dialout") != std::string::npos &&
-                  e.find("EACCES") != std::string::npos
+    _exit(!opened && e.find("dialout") != std::string::npos && e.find("EACCES") != std::string::npos
               ? 0
               : 1);
   }

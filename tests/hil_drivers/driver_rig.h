@@ -138,9 +138,12 @@ class DriverRig {
     }
     const Time deadline = Now() + timeout;
     while (Now() < deadline) {
-      const bool l = !lms_ || (laser_->Health().state == DriverState::kRunning && lms_->streaming());
-      const bool b = !base_ || (odo_->Health().state == DriverState::kRunning && base_->clients() > 0);
-      const bool s = !p2os_ || (sonar_->Health().state == DriverState::kRunning && p2os_->is_open());
+      const bool l =
+          !lms_ || (laser_->Health().state == DriverState::kRunning && lms_->streaming());
+      const bool b =
+          !base_ || (odo_->Health().state == DriverState::kRunning && base_->clients() > 0);
+      const bool s =
+          !p2os_ || (sonar_->Health().state == DriverState::kRunning && p2os_->is_open());
       if (l && b && s) {
         clock_->Start();
         return true;
@@ -204,7 +207,8 @@ class DriverRig {
     while (Now() < deadline) {
       if (Drain()) quiet_since = Now();
       if (Finished() && states_at_end.empty()) {
-        for (DeviceReader* r : std::initializer_list<DeviceReader*>{laser_.get(), odo_.get(), sonar_.get()})
+        for (DeviceReader* r :
+             std::initializer_list<DeviceReader*>{laser_.get(), odo_.get(), sonar_.get()})
           if (r) states_at_end.push_back(r->Health().state);
       }
       if (Finished() && Now() - quiet_since > std::chrono::milliseconds(300)) break;

@@ -52,8 +52,8 @@ class FakedevProcess {
   bool WaitForDevices(int timeout_ms) {
     for (int t = 0; t < timeout_ms; t += 10) {
       struct stat st;
-      if (lstat((dir_ + "/laser").c_str(), &st) == 0 && lstat((dir_ + "/sonar").c_str(), &st) == 0 &&
-          lstat((dir_ + "/can").c_str(), &st) == 0)
+      if (lstat((dir_ + "/laser").c_str(), &st) == 0 &&
+          lstat((dir_ + "/sonar").c_str(), &st) == 0 && lstat((dir_ + "/can").c_str(), &st) == 0)
         return true;
       if (Exited()) return false;
       usleep(10000);

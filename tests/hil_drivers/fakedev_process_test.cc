@@ -13,8 +13,8 @@ int RunQuiet(const std::string& args) {
 
 TEST(FakedevProcessTest, HelpAndBadArguments) {
   EXPECT_EQ(WEXITSTATUS(RunQuiet("--help")), 0);
-  EXPECT_EQ(WEXITSTATUS(RunQuiet("")), 2);                      // no --log
-  EXPECT_EQ(WEXITSTATUS(RunQuiet("--log x --speed -1")), 2);     // bad speed
+  EXPECT_EQ(WEXITSTATUS(RunQuiet("")), 2);                        // no --log
+  EXPECT_EQ(WEXITSTATUS(RunQuiet("--log x --speed -1")), 2);      // bad speed
   EXPECT_EQ(WEXITSTATUS(RunQuiet("--log /nonexistent.clf")), 2);  // unreadable log
   EXPECT_EQ(WEXITSTATUS(RunQuiet("--log x --only wheel")), 2);
   EXPECT_EQ(WEXITSTATUS(RunQuiet("--bogus")), 2);

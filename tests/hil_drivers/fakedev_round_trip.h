@@ -17,8 +17,15 @@ inline void RunFakedevRoundTrip(size_t max_scans, double speed) {
   char tmpl[] = "/tmp/atlas_fakedev_XXXXXX";
   const std::string dir = mkdtemp(tmpl);
   FakedevProcess proc;
-  std::vector<std::string> args = {"--log", MitCsailPath(), "--speed", std::to_string(speed),
-                                   "--dir", dir, "--wait-for-drivers", "--progress-every", "5"};
+  std::vector<std::string> args = {"--log",
+                                   MitCsailPath(),
+                                   "--speed",
+                                   std::to_string(speed),
+                                   "--dir",
+                                   dir,
+                                   "--wait-for-drivers",
+                                   "--progress-every",
+                                   "5"};
   if (max_scans > 0) {
     args.push_back("--max-scans");
     args.push_back(std::to_string(max_scans));
@@ -30,8 +37,9 @@ inline void RunFakedevRoundTrip(size_t max_scans, double speed) {
   o.external_dir = dir;
   DriverRig rig(rec, o);
   ASSERT_TRUE(rig.Start(&error)) << error << "\n" << proc.Output();
-  const Time limit = Now() + std::chrono::seconds(static_cast<int64_t>(
-                                 ToSeconds(rec->end - rec->begin) / speed + 30));
+  const Time limit =
+      Now() +
+      std::chrono::seconds(static_cast<int64_t>(ToSeconds(rec->end - rec->begin) / speed + 30));
   while (!proc.Exited() && Now() < limit) {
     rig.Drain();
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -53,10 +61,10 @@ inline void RunFakedevRoundTrip(size_t max_scans, double speed) {
     for (float r : s.ranges) no_return_log += !IsReturn(r), ++beams;
   for (const auto& s : rig.scans)
     for (float r : s.ranges) no_return_out += !IsReturn(r);
-  std::printf("laser: %zu scans in the log, %lu sent, %zu out, %zu differ; beams %zu, no-return "
-              "%zu in the log, %zu out\n",
-              rec->scans.size(), sent.scans, rig.scans.size(), bad, beams, no_return_log,
-              no_return_out);
+  std::printf(
+      "laser: %zu scans in the log, %lu sent, %zu out, %zu differ; beams %zu, no-return "
+      "%zu in the log, %zu out\n",
+      rec->scans.size(), sent.scans, rig.scans.size(), bad, beams, no_return_log, no_return_out);
   EXPECT_EQ(sent.scans, rec->scans.size());
   EXPECT_EQ(rig.scans.size(), rec->scans.size());
   EXPECT_EQ(bad, 0u) << first;
@@ -71,12 +79,13 @@ inline void RunFakedevRoundTrip(size_t max_scans, double speed) {
   CheckSonar(ExpectedSonar(*rec), rig.sonar, /*expect_all=*/false);
 
   for (const DriverHealth& h : {rig.laser_->Health(), rig.odo_->Health(), rig.sonar_->Health()}) {
-    std::printf("  %-42s msgs %6llu samples %6llu bytes %9llu crc %llu garbage %llu trunc %llu "
-                "disc %llu drops %llu\n",
-                h.device.c_str(), (unsigned long long)h.messages, (unsigned long long)h.samples,
-                (unsigned long long)h.bytes, (unsigned long long)h.bad_crc,
-                (unsigned long long)h.garbage_bytes, (unsigned long long)h.truncated,
-                (unsigned long long)h.discontinuities, (unsigned long long)h.drops);
+    std::printf(
+        "  %-42s msgs %6llu samples %6llu bytes %9llu crc %llu garbage %llu trunc %llu "
+        "disc %llu drops %llu\n",
+        h.device.c_str(), (unsigned long long)h.messages, (unsigned long long)h.samples,
+        (unsigned long long)h.bytes, (unsigned long long)h.bad_crc,
+        (unsigned long long)h.garbage_bytes, (unsigned long long)h.truncated,
+        (unsigned long long)h.discontinuities, (unsigned long long)h.drops);
     EXPECT_EQ(h.bad_crc, 0u) << h.device;
     EXPECT_EQ(h.discontinuities, 0u) << h.device;
     EXPECT_EQ(h.drops, 0u) << h.device;

@@ -41,13 +41,13 @@ inline void CheckOdometry(const std::vector<fake::SentOdometry>& sent,
     end_xy = std::hypot(want.x - have.x, want.y - have.y);
     end_th = std::abs(WrapAngle(want.theta - have.theta));
   }
-  std::printf("odometry: %zu frames 0x311 sent intact, %zu samples out; worst step error %.4f m "
-              "%.5f rad (log's own sideways motion up to %.4f m per step); end-to-end error "
-              "%.4f m %.5f rad over %.1f m of log\n",
-              sent.size(), got.size(), worst_xy, worst_th, worst_sideways, end_xy, end_th,
-              n > 1 ? std::hypot(sent[n - 1].pose.x - sent[0].pose.x,
-                                 sent[n - 1].pose.y - sent[0].pose.y)
-                    : 0.0);
+  std::printf(
+      "odometry: %zu frames 0x311 sent intact, %zu samples out; worst step error %.4f m "
+      "%.5f rad (log's own sideways motion up to %.4f m per step); end-to-end error "
+      "%.4f m %.5f rad over %.1f m of log\n",
+      sent.size(), got.size(), worst_xy, worst_th, worst_sideways, end_xy, end_th,
+      n > 1 ? std::hypot(sent[n - 1].pose.x - sent[0].pose.x, sent[n - 1].pose.y - sent[0].pose.y)
+            : 0.0);
   // Counters are whole millimetres: each wheel's change over a step is within 1 mm of the
   // exact one, so the arc length within 1 mm and the heading within 2 mm / 0.58 m.
   EXPECT_LT(worst_xy, 0.0015);
@@ -97,9 +97,10 @@ inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
   size_t no_return = 0;
   for (const auto& s : rig.scans)
     for (float r : s.ranges) no_return += !IsReturn(r);
-  std::printf("laser: %zu scans in the slice, %zu sent intact, %zu out, %zu differ, "
-              "%zu no-return beams out\n",
-              rig.rec_->scans.size(), sent.size(), rig.scans.size(), bad, no_return);
+  std::printf(
+      "laser: %zu scans in the slice, %zu sent intact, %zu out, %zu differ, "
+      "%zu no-return beams out\n",
+      rig.rec_->scans.size(), sent.size(), rig.scans.size(), bad, no_return);
   EXPECT_EQ(bad, 0u) << first;
   if (expect_all) {
     EXPECT_EQ(sent.size(), rig.rec_->scans.size());
@@ -112,13 +113,14 @@ inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
 
 inline void PrintHealthAndCheck(const DriverRig& rig, bool expect_all) {
   for (const DriverHealth& h : {rig.laser_->Health(), rig.odo_->Health(), rig.sonar_->Health()}) {
-    std::printf("  %-40s %-8s msgs %6llu samples %6llu crc %llu garbage %llu trunc %llu "
-                "disc %llu drops %llu reconnects %llu rate %.1f Hz\n",
-                h.device.c_str(), ToString(h.state), (unsigned long long)h.messages,
-                (unsigned long long)h.samples, (unsigned long long)h.bad_crc,
-                (unsigned long long)h.garbage_bytes, (unsigned long long)h.truncated,
-                (unsigned long long)h.discontinuities, (unsigned long long)h.drops,
-                (unsigned long long)h.reconnects, h.message_rate_hz);
+    std::printf(
+        "  %-40s %-8s msgs %6llu samples %6llu crc %llu garbage %llu trunc %llu "
+        "disc %llu drops %llu reconnects %llu rate %.1f Hz\n",
+        h.device.c_str(), ToString(h.state), (unsigned long long)h.messages,
+        (unsigned long long)h.samples, (unsigned long long)h.bad_crc,
+        (unsigned long long)h.garbage_bytes, (unsigned long long)h.truncated,
+        (unsigned long long)h.discontinuities, (unsigned long long)h.drops,
+        (unsigned long long)h.reconnects, h.message_rate_hz);
     if (expect_all) {
       EXPECT_EQ(h.bad_crc, 0u) << h.device;
       EXPECT_EQ(h.drops, 0u) << h.device;

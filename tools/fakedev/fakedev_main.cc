@@ -207,8 +207,8 @@ int main(int argc, char** argv) {
   if (!fake::LoadCarmenRecording(log, static_cast<size_t>(max_scans), rec.get(), &error))
     return Fail("cannot play the log: " + error);
   const double length_s = ToSeconds(rec->end - rec->begin);
-  std::printf("%zu scans, %zu odometry poses, %.1f s of log; at %.3gx: %.1f s\n",
-              rec->scans.size(), rec->odometry.size(), length_s, speed, length_s / speed);
+  std::printf("%zu scans, %zu odometry poses, %.1f s of log; at %.3gx: %.1f s\n", rec->scans.size(),
+              rec->odometry.size(), length_s, speed, length_s / speed);
 
   auto clock = std::make_shared<fake::PlaybackClock>(rec->begin, speed);
   std::unique_ptr<fake::FakeLms> lms;
@@ -273,12 +273,13 @@ int main(int argc, char** argv) {
     std::printf("%s %.1f s:", what, ToSeconds(Now() - start));
     if (lms) {
       const auto& f = lms->fault_counts();
-      std::printf(" laser %zu scans intact / %llu sent (garbage %llu corrupt %llu trunc %llu "
-                  "drops %llu stalls %llu);",
-                  lms->SentIntact().size(), (unsigned long long)lms->messages_sent(),
-                  (unsigned long long)f.garbage, (unsigned long long)f.corrupted,
-                  (unsigned long long)f.truncated, (unsigned long long)f.drops,
-                  (unsigned long long)f.stalls);
+      std::printf(
+          " laser %zu scans intact / %llu sent (garbage %llu corrupt %llu trunc %llu "
+          "drops %llu stalls %llu);",
+          lms->SentIntact().size(), (unsigned long long)lms->messages_sent(),
+          (unsigned long long)f.garbage, (unsigned long long)f.corrupted,
+          (unsigned long long)f.truncated, (unsigned long long)f.drops,
+          (unsigned long long)f.stalls);
     }
     if (base) {
       const auto& f = base->fault_counts();
