@@ -33,25 +33,27 @@ std::string SimulationOptions::Validate() const {
   return motion_options.Validate();
 }
 
+int StartNode(const World& world) {
+  const Bounds b = WorldBounds(world);
+  const Vec2 mid = 0.5 * (b.min + b.max);
+  std::vector<int> degree(world.nodes.size(), 0);
+  for (const RouteEdge& e : world.edges) ++degree[e.from], ++degree[e.to];
+  int start = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < world.nodes.size(); ++i) {
+    const double d = (world.nodes[i].position - mid).norm();
+    if (degree[i] >= 2 && world.nodes[i].kind == NodeKind::kCorridor && d < best) {
+      best = d;
+      start = static_cast<int>(i);
+    }
+  }
+  return start;
+}
+
 SimulationSummary Simulate(const World& world, const SimulationOptions& o, SimulationSink& sink,
                            const std::function<void(double)>& progress) {
   SimulationSummary summary;
-  // Start at the corridor node nearest the middle of the building, so loops on all sides.
-  int start = -1;
-  {
-    const Bounds b = WorldBounds(world);
-    const Vec2 mid = 0.5 * (b.min + b.max);
-    std::vector<int> degree(world.nodes.size(), 0);
-    for (const RouteEdge& e : world.edges) ++degree[e.from], ++degree[e.to];
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < world.nodes.size(); ++i) {
-      const double d = (world.nodes[i].position - mid).norm();
-      if (degree[i] >= 2 && world.nodes[i].kind == NodeKind::kCorridor && d < best) {
-        best = d;
-        start = static_cast<int>(i);
-      }
-    }
-  }
+  const int start = StartNode(world);
   // Plan a little longer than asked: the follower's path is a bit shorter than the graph's.
   const std::vector<int> route =
       PlanRoute(world, o.length_m * 1.05 + 10.0, start, SubSeed(o.seed, 1));

@@ -60,6 +60,10 @@ struct SimulationSummary {
 // The pose a fraction f in [0, 1] of the way from a to b (linear in x, y and wrapped theta).
 Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f);
 
+// Where a run starts: the corridor node of degree >= 2 nearest the middle of the world's
+// bounding box (so that there are loops on all sides), or -1 if the world has none.
+int StartNode(const World& world);
+
 // Runs the whole simulation. `progress` (may be empty) is called now and then with the
 // distance driven so far.
 SimulationSummary Simulate(const World& world, const SimulationOptions& options,

@@ -61,6 +61,9 @@ int main(int argc, char** argv) {
       draw.draw_route_graph = true;
       continue;
     }
+    if (a != "--run" && a != "--png" && a != "--svg" && a != "--width" && a != "--scans" &&
+        a != "--title")
+      return Fail("unknown option '" + a + "'");
     if (i + 1 >= argc) return Fail("option " + a + " needs a value");
     const std::string v = argv[++i];
     auto integer = [&](long lo, long hi) {
@@ -85,8 +88,6 @@ int main(int argc, char** argv) {
       read.max_scans = integer(0, 1000000);
     } else if (a == "--title") {
       draw.title = v;
-    } else {
-      return Fail("unknown option '" + a + "'");
     }
   }
   if (dir.empty()) return Fail("--run DIR is required (an atlas-sim output directory)");

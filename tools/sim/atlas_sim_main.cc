@@ -1,6 +1,7 @@
 // atlas-sim: simulates a robot driving through a generated (or loaded) building and writes the
 // run as files every atlasd tool reads (docs/formats.md, "Simulated run").
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <string>
 
 #include "drivers/sim/building_generator.h"
@@ -150,6 +152,26 @@ int main(int argc, char** argv) {
       quiet = true;
       continue;
     }
+    static const char* const kWithValue[] = {"--out",
+                                             "--world",
+                                             "--rooms",
+                                             "--length-km",
+                                             "--seed",
+                                             "--speed",
+                                             "--odometry-hz",
+                                             "--laser-beams",
+                                             "--laser-hz",
+                                             "--laser-max-range",
+                                             "--laser-noise",
+                                             "--sonar",
+                                             "--sonar-hz",
+                                             "--track-width",
+                                             "--wheel-noise",
+                                             "--left-scale-error",
+                                             "--right-scale-error",
+                                             "--track-width-error"};
+    if (std::find(std::begin(kWithValue), std::end(kWithValue), a) == std::end(kWithValue))
+      return Fail("unknown option '" + a + "'");
     if (i + 1 >= argc) return Fail("option " + a + " needs a value");
     const char* v = argv[++i];
     double x = 0.0;
@@ -197,8 +219,6 @@ int main(int argc, char** argv) {
       sim.odometry_options.right_scale_error = number(-0.5, 0.5);
     } else if (a == "--track-width-error") {
       sim.odometry_options.track_width_error = number(-0.5, 0.5);
-    } else {
-      return Fail("unknown option '" + a + "'");
     }
   }
   if (out_dir.empty()) return Fail("--out DIR is required (where to write the run)");
@@ -226,6 +246,10 @@ int main(int argc, char** argv) {
     world = std::move(parsed.world);
   }
 
+  if (StartNode(world) < 0)
+    return Fail((world_file.empty() ? std::string("generated world") : world_file) +
+                ": no route graph to drive (needs 'node' and 'edge' lines with a corridor node "
+                "of degree >= 2; see docs/formats.md)");
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) return Fail("cannot create output directory '" + out_dir + "': " + ec.message());
