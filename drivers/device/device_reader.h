@@ -7,14 +7,19 @@
 //
 // Stop() is prompt: reads poll with a short timeout and the backoff sleep is interruptible.
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <mutex>
+#include <span>
 #include <string>
 #include <thread>
 
 #include "core/common/time.h"
 #include "drivers/device/driver_health.h"
+#include "drivers/device/gap_resync.h"
+#include "drivers/serial/serial_port.h"
 
 namespace atlas {
 
@@ -66,6 +71,51 @@ class DeviceReader {
   // Silence bookkeeping for ReadUntilGone: call on every read with or without data. Returns
   // true when the silence has lasted reopen_after_silence (the session should end as gone).
   bool TrackSilence(bool got_data, Time now);
+
+  // The session loop of a serial device (laser, sonar): polls `port`, feeds every byte to
+  // `decoder` (and records it in `resync`), hands what the decoder finds to
+  // on_event(event, arrival_time), abandons a partial frame after a silent `gap` (counted as
+  // truncated), calls before_read() first on every turn (false: the device is gone, *error
+  // set), keeps the counters in step with sync_counters(), and ends the session as gone after
+  // reopen_after_silence without a byte (*error = who + ": silent ..." + what_next).
+  template <typename Decoder, std::size_t N, typename OnEvent, typename BeforeRead,
+            typename SyncCounters>
+  SessionEnd ReadSerialUntilGone(SerialPort& port, Decoder& decoder, GapResync<N>& resync,
+                                 Duration gap, OnEvent&& on_event, BeforeRead&& before_read,
+                                 SyncCounters&& sync_counters, const std::string& who,
+                                 const char* what_next, std::string* error) {
+    uint8_t buf[4096];
+    const int gap_ms = static_cast<int>(
+        std::max<int64_t>(1, std::chrono::duration_cast<std::chrono::milliseconds>(gap).count()));
+    while (!Stopping()) {
+      if (!before_read()) return SessionEnd::kGone;
+      const int timeout = decoder.buffered() > 0 ? gap_ms : 50;
+      const SerialResult r = port.Read(buf, sizeof(buf), timeout);
+      const Time now = Now();
+      auto handle = [&](const auto& event) { on_event(event, now); };
+      if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
+        *error = r.error;
+        sync_counters();
+        return SessionEnd::kGone;
+      }
+      if (r.status == SerialIo::kTimeout && decoder.buffered() > 0) {
+        health_.truncated.fetch_add(1, std::memory_order_relaxed);
+        resync.Resync(decoder, handle);
+      }
+      if (r.status == SerialIo::kData) {
+        resync.Record(std::span<const uint8_t>(buf, r.n));
+        decoder.FeedAll(std::span<const uint8_t>(buf, r.n), handle);
+      }
+      sync_counters();
+      if (TrackSilence(r.status == SerialIo::kData, now)) {
+        *error = who + ": silent for " +
+                 std::to_string(ToSeconds(reconnect_.reopen_after_silence)).substr(0, 4) + " s; " +
+                 what_next;
+        return SessionEnd::kGone;
+      }
+    }
+    return SessionEnd::kStopped;
+  }
 
   DriverHealthRecorder health_;
   const ReconnectOptions reconnect_;

@@ -72,7 +72,9 @@ LaserReader::Reply LaserReader::Transact(const std::vector<uint8_t>& command, ui
         result = Reply::kRejected;
         done = true;
       } else if (e.kind == sick::StreamEventKind::kTelegram) {
-        if (e.telegram.command == reply_code) {
+        if (e.telegram.command == sick::kReplyValues && reply_code != sick::kReplyValues) {
+          HandleTelegram(e.telegram, Now());  // a scan already streaming: keep it
+        } else if (e.telegram.command == reply_code) {
           result = accept(e.telegram) ? Reply::kOk : Reply::kRejected;
           done = true;
         } else if (e.telegram.command == sick::kReplyIncorrectCommand) {
@@ -203,38 +205,13 @@ void LaserReader::HandleTelegram(const sick::TelegramView& t, Time stamp) {
 }
 
 DeviceReader::SessionEnd LaserReader::ReadUntilGone(std::string* error) {
-  uint8_t buf[4096];
-  const int gap_ms = static_cast<int>(std::max<int64_t>(
-      1, std::chrono::duration_cast<std::chrono::milliseconds>(options_.truncation_gap).count()));
-  while (!Stopping()) {
-    const int timeout = decoder_.buffered() > 0 ? gap_ms : 50;
-    SerialResult r = port_.Read(buf, sizeof(buf), timeout);
-    const Time now = Now();
-    auto on_event = [&](const sick::StreamEvent& e) {
-      if (e.kind == sick::StreamEventKind::kTelegram) HandleTelegram(e.telegram, now);
-    };
-    if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
-      *error = r.error;
-      SyncCounters();
-      return SessionEnd::kGone;
-    }
-    if (r.status == SerialIo::kTimeout && decoder_.buffered() > 0) {
-      health_.truncated.fetch_add(1, std::memory_order_relaxed);
-      resync_.Resync(decoder_, on_event);
-    }
-    if (r.status == SerialIo::kData) {
-      resync_.Record(std::span<const uint8_t>(buf, r.n));
-      decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), on_event);
-    }
-    SyncCounters();
-    if (TrackSilence(r.status == SerialIo::kData, now)) {
-      *error = "laser " + options_.device + ": silent for " +
-               std::to_string(ToSeconds(reconnect_.reopen_after_silence)).substr(0, 4) +
-               " s; restarting the scanner";
-      return SessionEnd::kGone;
-    }
-  }
-  return SessionEnd::kStopped;
+  return ReadSerialUntilGone(
+      port_, decoder_, resync_, options_.truncation_gap,
+      [&](const sick::StreamEvent& e, Time arrival) {
+        if (e.kind == sick::StreamEventKind::kTelegram) HandleTelegram(e.telegram, arrival);
+      },
+      [] { return true; }, [&] { SyncCounters(); }, "laser " + options_.device,
+      "restarting the scanner", error);
 }
 
 }  // namespace atlas

@@ -149,42 +149,18 @@ void SonarReader::HandlePacket(const p2os::PacketView& p, Time stamp) {
 }
 
 DeviceReader::SessionEnd SonarReader::ReadUntilGone(std::string* error) {
-  uint8_t buf[2048];
-  const int gap_ms = static_cast<int>(std::max<int64_t>(
-      1, std::chrono::duration_cast<std::chrono::milliseconds>(options_.truncation_gap).count()));
-  while (!Stopping()) {
-    const Time before = Now();
-    if (before - last_pulse_ >= options_.pulse_period) {
-      if (!Send(p2os::EncodePulse(), error)) return SessionEnd::kGone;
-      pulses_.fetch_add(1, std::memory_order_relaxed);
-      last_pulse_ = before;
-    }
-    const int timeout = decoder_.buffered() > 0 ? gap_ms : 50;
-    SerialResult r = port_.Read(buf, sizeof(buf), timeout);
+  auto pulse_if_due = [&] {
     const Time now = Now();
-    auto on_event = [&](const p2os::PacketView& p) { HandlePacket(p, now); };
-    if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
-      *error = r.error;
-      SyncCounters();
-      return SessionEnd::kGone;
-    }
-    if (r.status == SerialIo::kTimeout && decoder_.buffered() > 0) {
-      health_.truncated.fetch_add(1, std::memory_order_relaxed);
-      resync_.Resync(decoder_, on_event);
-    }
-    if (r.status == SerialIo::kData) {
-      resync_.Record(std::span<const uint8_t>(buf, r.n));
-      decoder_.FeedAll(std::span<const uint8_t>(buf, r.n), on_event);
-    }
-    SyncCounters();
-    if (TrackSilence(r.status == SerialIo::kData, now)) {
-      *error = "sonar " + options_.device + ": silent for " +
-               std::to_string(ToSeconds(reconnect_.reopen_after_silence)).substr(0, 4) +
-               " s; handshaking again";
-      return SessionEnd::kGone;
-    }
-  }
-  return SessionEnd::kStopped;
+    if (now - last_pulse_ < options_.pulse_period) return true;
+    if (!Send(p2os::EncodePulse(), error)) return false;
+    pulses_.fetch_add(1, std::memory_order_relaxed);
+    last_pulse_ = now;
+    return true;
+  };
+  return ReadSerialUntilGone(
+      port_, decoder_, resync_, options_.truncation_gap,
+      [&](const p2os::PacketView& p, Time arrival) { HandlePacket(p, arrival); }, pulse_if_due,
+      [&] { SyncCounters(); }, "sonar " + options_.device, "handshaking again", error);
 }
 
 }  // namespace atlas
