@@ -96,6 +96,9 @@ int main(int argc, char** argv) {
 
   RunData run;
   if (const std::string e = ReadRun(dir, read, &run); !e.empty()) return Fail(e);
+  struct ReleaseAtExit {
+    ~ReleaseAtExit() { ReleaseDrawingCaches(); }
+  } release_at_exit;
   int height = 0;
   ViewTransform view;
   LayoutRun(run, draw, &height, &view);

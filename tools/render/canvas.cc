@@ -1,6 +1,7 @@
 #include "tools/render/canvas.h"
 
 #include <cairo-svg.h>
+#include <fontconfig/fontconfig.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -8,6 +9,11 @@
 #include <numbers>
 
 namespace atlas::draw {
+
+void ReleaseDrawingCaches() {
+  cairo_debug_reset_static_data();
+  FcFini();
+}
 
 ViewTransform ViewTransform::Fit(const Vec2& world_min, const Vec2& world_max, double left_px,
                                  double top_px, double width_px, double height_px) {

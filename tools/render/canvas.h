@@ -57,6 +57,11 @@ struct LegendEntry {
   bool points = false;  // drawn as a dot instead of a line
 };
 
+// Frees cairo's and fontconfig's process-wide caches (font lists, glyphs). Call once when no
+// canvas exists any more and none will be made (end of a tool, test teardown), so that leak
+// checkers see a clean exit.
+void ReleaseDrawingCaches();
+
 class Canvas {
  public:
   // A white canvas of width x height px that Finish() writes to `path`. On failure returns

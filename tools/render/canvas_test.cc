@@ -164,6 +164,14 @@ TEST(RunData, ReadsAndDrawsASimulatedRun) {
   std::filesystem::remove_all(dir);
 }
 
+// Frees the font caches after the last test, so that the leak checker sees a clean exit.
+class DrawingCachesEnvironment : public ::testing::Environment {
+ public:
+  void TearDown() override { ReleaseDrawingCaches(); }
+};
+const auto* const kDrawingCaches =
+    ::testing::AddGlobalTestEnvironment(new DrawingCachesEnvironment);
+
 TEST(RunData, MissingDirectoryIsAClearError) {
   RunData run;
   const std::string e = ReadRun("/nonexistent/run", RunReadOptions{}, &run);
