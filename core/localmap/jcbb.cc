@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace atlas {
 namespace {
@@ -49,22 +50,32 @@ struct TieHypothesis {
 
 class Search {
  public:
+  static constexpr size_t kMaxTies = 8;
   Search(int num_observations, const std::vector<CandidatePair>& candidates,
          const JointCovariance& cov, const JcbbOptions& options)
       : cands_(candidates), cov_(cov), options_(options) {
-    by_obs_.assign(num_observations, {});
+    // Candidates grouped by observation (CSR), each group by increasing individual distance.
+    start_.assign(num_observations + 1, 0);
+    for (const CandidatePair& c : candidates) {
+      if (c.observation >= 0 && c.observation < num_observations) ++start_[c.observation + 1];
+    }
+    for (int j = 0; j < num_observations; ++j) start_[j + 1] += start_[j];
+    grouped_.resize(start_[num_observations]);
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
     for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
       const int j = candidates[c].observation;
-      if (j >= 0 && j < num_observations) by_obs_[j].push_back(c);
+      if (j >= 0 && j < num_observations) grouped_[fill[j]++] = c;
     }
     for (int j = 0; j < num_observations; ++j) {
-      if (by_obs_[j].empty()) continue;
-      std::sort(by_obs_[j].begin(), by_obs_[j].end(),
+      if (start_[j] == start_[j + 1]) continue;
+      std::sort(grouped_.begin() + start_[j], grouped_.begin() + start_[j + 1],
                 [&](int a, int b) { return candidates[a].d2 < candidates[b].d2; });
       order_.push_back(j);
     }
-    std::stable_sort(order_.begin(), order_.end(),
-                     [&](int a, int b) { return by_obs_[a].size() < by_obs_[b].size(); });
+    std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) {
+      return start_[a + 1] - start_[a] < start_[b + 1] - start_[b];
+    });
+    ties.reserve(kMaxTies);
     const int n = static_cast<int>(order_.size());
     const double z = NormalQuantile(options.joint_gate);
     gate_.resize(n + 1);
@@ -77,6 +88,8 @@ class Search {
     y_.assign(dim, 0.0);
     x_.assign(2 * static_cast<size_t>(dim), 0.0);
     stack_.assign(n, -1);
+    version_.assign(n, 0);
+    cache_.resize(static_cast<size_t>(n) * candidates.size());
     current_pair_of_.assign(num_observations, -1);
     int max_feature = 0;
     for (const CandidatePair& c : candidates) max_feature = std::max(max_feature, c.feature);
@@ -126,28 +139,34 @@ class Search {
       return;
     }
     const int j = order_[level];
-    for (int c : by_obs_[j]) {
+    for (int g = start_[j]; g < start_[j + 1]; ++g) {
+      const int c = grouped_[g];
       const CandidatePair& p = cands_[c];
       const bool feature_ok = p.feature >= 0 && p.feature < static_cast<int>(feature_use_.size());
       if (!feature_ok) continue;
       if (!options_.allow_shared_features && feature_use_[p.feature] > 0) continue;
-      // Cross covariances C (2k x 2) with the pairings already in the hypothesis; solve L X = C.
+      // Cross covariances C (2k x 2) with the pairings already in the hypothesis; X = L^-1 C.
+      // Rows of X for level m depend only on the pairings at levels 0..m: cached per level.
       const int r0 = 2 * k;
       for (int m = 0; m < k; ++m) {
-        const Mat2 cm = cov_.Cross(cands_[stack_[m]], p);
-        x_[2 * (2 * m) + 0] = cm(0, 0);
-        x_[2 * (2 * m) + 1] = cm(0, 1);
-        x_[2 * (2 * m + 1) + 0] = cm(1, 0);
-        x_[2 * (2 * m + 1) + 1] = cm(1, 1);
-      }
-      for (int r = 0; r < r0; ++r) {
-        double s0 = x_[2 * r], s1 = x_[2 * r + 1];
-        for (int q = 0; q < r; ++q) {
-          s0 -= L(r, q) * x_[2 * q];
-          s1 -= L(r, q) * x_[2 * q + 1];
+        CacheEntry& e = cache_[static_cast<size_t>(m) * cands_.size() + c];
+        if (e.version != version_[m]) {
+          const Mat2 cm = cov_.Cross(cands_[stack_[m]], p);
+          for (int h = 0; h < 2; ++h) {
+            const int r = 2 * m + h;
+            double s0 = cm(h, 0), s1 = cm(h, 1);
+            for (int q = 0; q < r; ++q) {
+              s0 -= L(r, q) * x_[2 * q];
+              s1 -= L(r, q) * x_[2 * q + 1];
+            }
+            x_[2 * r] = s0 / L(r, r);
+            x_[2 * r + 1] = s1 / L(r, r);
+          }
+          std::copy(x_.begin() + 4 * m, x_.begin() + 4 * m + 4, e.x);
+          e.version = version_[m];
+        } else {
+          std::copy(e.x, e.x + 4, x_.begin() + 4 * m);
         }
-        x_[2 * r] = s0 / L(r, r);
-        x_[2 * r + 1] = s1 / L(r, r);
       }
       // Schur complement S_p - X^T X, its Cholesky factor, and the new part of y.
       double s00 = p.S(0, 0), s01 = p.S(0, 1), s11 = p.S(1, 1);
@@ -180,6 +199,7 @@ class Search {
       y_[r0] = y0;
       y_[r0 + 1] = y1;
       stack_[k] = c;
+      version_[k] = ++version_counter_;
       current_pair_of_[j] = c;
       ++feature_use_[p.feature];
       Visit(level + 1, k + 1, d2_new);
@@ -193,7 +213,14 @@ class Search {
   const std::vector<CandidatePair>& cands_;
   const JointCovariance& cov_;
   const JcbbOptions& options_;
-  std::vector<std::vector<int>> by_obs_;
+  std::vector<int> start_, grouped_;
+  struct CacheEntry {
+    uint64_t version = 0;
+    double x[4];
+  };
+  std::vector<CacheEntry> cache_;
+  std::vector<uint64_t> version_;
+  uint64_t version_counter_ = 0;
   std::vector<int> order_;
   std::vector<double> gate_;
   std::vector<double> l_, y_, x_;

@@ -52,6 +52,19 @@ class LineEkfMap final : public LocalMap {
   // The update of Update() on lines already extracted, in the ROBOT frame.
   ScanUpdate UpdateWithLines(const std::vector<ObservedLine>& observed, bool allow_new_features);
 
+  // Hooks for other measurement models on the same joint state (core/sonar uses them).
+  // A batch EKF update with externally computed measurements: innovations `nu` (m), Jacobian
+  // `h` (m x StateSize) over the full state, measurement covariance `r` (m x m). Returns false
+  // (state unchanged) if the innovation covariance is not positive definite.
+  bool UpdateWithMeasurements(const Eigen::VectorXd& nu, const Eigen::MatrixXd& h,
+                              const Eigen::MatrixXd& r);
+  // Adds a feature from a line observed in the ROBOT frame with covariance z.cov, independent of
+  // the state, by the same inverse model as a laser feature (cross covariances with the robot
+  // and the map). Returns its id, or -1 at capacity.
+  int AddObservedFeature(const ObservedLine& z);
+  // Grows the tracked extent of feature k to cover the map-frame points a and b.
+  void GrowFeatureExtent(int k, const Vec2& a, const Vec2& b);
+
   // eq. 5 over the recent window, with the current robot covariance.
   double Quality() const;
   const RecentObservations& Recent() const { return recent_; }
@@ -88,6 +101,8 @@ class LineEkfMap final : public LocalMap {
   };
   Pose2 Robot() const { return Pose2{x_(0), x_(1), x_(2)}; }
   void AddFeature(const ObservedLine& z);
+  // Mahalanobis distance squared between an observation and the prediction of feature k.
+  double SquaredDistanceTo(const ObservedLine& z, int k) const;
   void GrowExtent(int k, const ObservedLine& z);
 
   LocalMapOptions options_;

@@ -1,6 +1,5 @@
 #include "core/localmap/line_extraction.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -34,15 +33,26 @@ int FarthestFromChord(const std::vector<Vec2>& p, int begin, int end, double& di
 // Max normal distance of the points to their unweighted total-least-squares line.
 double MaxResidualTls(const std::vector<Vec2>& p, int begin, int end) {
   const int n = end - begin;
-  Vec2 c = Vec2::Zero();
-  for (int i = begin; i < end; ++i) c += p[i];
-  c /= n;
-  Mat2 m = Mat2::Zero();
-  for (int i = begin; i < end; ++i) m += (p[i] - c) * (p[i] - c).transpose();
-  Eigen::SelfAdjointEigenSolver<Mat2> es(m);
-  const Vec2 normal = es.eigenvectors().col(0);
+  double cx = 0.0, cy = 0.0;
+  for (int i = begin; i < end; ++i) {
+    cx += p[i].x();
+    cy += p[i].y();
+  }
+  cx /= n;
+  cy /= n;
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (int i = begin; i < end; ++i) {
+    const double dx = p[i].x() - cx, dy = p[i].y() - cy;
+    sxx += dx * dx;
+    syy += dy * dy;
+    sxy += dx * dy;
+  }
+  const double alpha = 0.5 * std::atan2(-2.0 * sxy, syy - sxx);
+  const double ca = std::cos(alpha), sa = std::sin(alpha);
   double worst = 0.0;
-  for (int i = begin; i < end; ++i) worst = std::max(worst, std::abs(normal.dot(p[i] - c)));
+  for (int i = begin; i < end; ++i) {
+    worst = std::max(worst, std::abs((p[i].x() - cx) * ca + (p[i].y() - cy) * sa));
+  }
   return worst;
 }
 
@@ -52,47 +62,63 @@ bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_v
              double model_var, ObservedLine& line) {
   const int n = static_cast<int>(points.size());
   if (n < 2) return false;
-  // Start from the unweighted fit, then reweight twice with the fitted angle.
+  // Unweighted fit, then reweighted twice with the fitted angle: the normal variance of point i
+  // is range_var_i (u_i . normal)^2 + model_var, u_i the unit bearing of the point.
   double alpha = 0.0, rho = 0.0;
-  std::vector<double> w(n, 1.0);
+  double w_buf[512];
+  std::vector<double> w_heap;
+  double* w = w_buf;
+  if (n > 512) {
+    w_heap.resize(n);
+    w = w_heap.data();
+  }
+  for (int i = 0; i < n; ++i) w[i] = 1.0;
   for (int iter = 0; iter < 3; ++iter) {
     if (iter > 0) {
+      const double ca = std::cos(alpha), sa = std::sin(alpha);
       for (int i = 0; i < n; ++i) {
-        const double phi = std::atan2(points[i].y(), points[i].x());
-        const double c = std::cos(phi - alpha);
-        w[i] = 1.0 / std::max(range_var[i] * c * c + model_var, 1e-12);
+        const double r2 = points[i].squaredNorm();
+        const double c = points[i].x() * ca + points[i].y() * sa;  // r cos(phi - alpha)
+        w[i] = 1.0 / std::max(r2 > 0.0 ? range_var[i] * c * c / r2 + model_var : model_var, 1e-12);
       }
     }
-    double sw = 0.0;
-    Vec2 c = Vec2::Zero();
+    double sw = 0.0, cx = 0.0, cy = 0.0;
     for (int i = 0; i < n; ++i) {
       sw += w[i];
-      c += w[i] * points[i];
+      cx += w[i] * points[i].x();
+      cy += w[i] * points[i].y();
     }
-    c /= sw;
-    Mat2 m = Mat2::Zero();
-    for (int i = 0; i < n; ++i) m += w[i] * (points[i] - c) * (points[i] - c).transpose();
-    const double sxx = m(0, 0), syy = m(1, 1), sxy = m(0, 1);
+    cx /= sw;
+    cy /= sw;
+    double sxx = 0.0, syy = 0.0, sxy = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double dx = points[i].x() - cx, dy = points[i].y() - cy;
+      sxx += w[i] * dx * dx;
+      syy += w[i] * dy * dy;
+      sxy += w[i] * dx * dy;
+    }
     // Normal angle minimising sum w (n . (p - c))^2.
     alpha = 0.5 * std::atan2(-2.0 * sxy, syy - sxx);
-    rho = c.x() * std::cos(alpha) + c.y() * std::sin(alpha);
+    rho = cx * std::cos(alpha) + cy * std::sin(alpha);
     if (rho < 0.0) {
       rho = -rho;
       alpha += std::numbers::pi;
     }
     alpha = WrapAngle(alpha);
   }
-  Mat2 info = Mat2::Zero();
+  double i00 = 0.0, i01 = 0.0, i11 = 0.0;
   const double ca = std::cos(alpha), sa = std::sin(alpha);
   for (int i = 0; i < n; ++i) {
-    const Eigen::RowVector2d j(-1.0, -points[i].x() * sa + points[i].y() * ca);
-    info += w[i] * j.transpose() * j;
+    const double j1 = -points[i].x() * sa + points[i].y() * ca;
+    i00 += w[i];
+    i01 -= w[i] * j1;
+    i11 += w[i] * j1 * j1;
   }
-  const double det = info.determinant();
+  const double det = i00 * i11 - i01 * i01;
   if (!(det > 1e-300) || !std::isfinite(det)) return false;
   line.rho = rho;
   line.alpha = alpha;
-  line.cov = info.inverse();
+  line.cov << i11 / det, -i01 / det, -i01 / det, i00 / det;
   const double ta = PositionAlongLine(alpha, points.front());
   const double tb = PositionAlongLine(alpha, points.back());
   line.endpoint_a = PointOnLine(rho, alpha, ta);
@@ -171,15 +197,36 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
 
   std::vector<Vec2> seg_pts;
   std::vector<double> seg_var;
+  const double model_var = options.model_sigma * options.model_sigma;
   for (const Segment& s : segments) {
     if (s.end - s.begin < options.min_points) continue;
-    seg_pts.assign(pts.begin() + s.begin, pts.begin() + s.end);
-    seg_var.assign(var.begin() + s.begin, var.begin() + s.end);
+    // Fit, then trim end points that do not belong to the line (the neighbour wall's points
+    // near a corner, mixed pixels) and refit.
+    int b = s.begin, e = s.end;
     ObservedLine line;
-    if (!FitLine(seg_pts, seg_var, options.model_sigma * options.model_sigma, line)) continue;
-    if (line.Length() < options.min_length) continue;
-    line.first_beam = beam_of[s.begin];
-    line.last_beam = beam_of[s.end - 1];
+    bool ok = false;
+    for (int round = 0; round < 4; ++round) {
+      seg_pts.assign(pts.begin() + b, pts.begin() + e);
+      seg_var.assign(var.begin() + b, var.begin() + e);
+      ok = FitLine(seg_pts, seg_var, model_var, line);
+      if (!ok) break;
+      const double ca = std::cos(line.alpha), sa = std::sin(line.alpha);
+      const auto outlier = [&](int i) {
+        const double proj = pts[i].x() * ca + pts[i].y() * sa;
+        const double d = proj - line.rho;
+        const double c2 = proj * proj / std::max(pts[i].squaredNorm(), 1e-12);
+        return d * d > 9.0 * (var[i] * c2 + model_var);
+      };
+      const int b0 = b, e0 = e;
+      while (e - b > options.min_points && outlier(b)) ++b;
+      while (e - b > options.min_points && outlier(e - 1)) --e;
+      if (b == b0 && e == e0) break;
+    }
+    if (!ok || e - b < options.min_points || line.Length() < options.min_length) continue;
+    line.cov(0, 0) += options.min_rho_sigma * options.min_rho_sigma;
+    line.cov(1, 1) += options.min_alpha_sigma * options.min_alpha_sigma;
+    line.first_beam = beam_of[b];
+    line.last_beam = beam_of[e - 1];
     lines.push_back(line);
   }
   if (static_cast<int>(lines.size()) > options.max_lines) {

@@ -16,6 +16,8 @@
 //    cos^2(phi_i - alpha) + model_sigma^2): the range noise projected on the line normal. The
 //    (rho, alpha) covariance is the inverse of the Gauss-Newton information
 //    sum_i w_i J_i^T J_i, J_i = d d_i / d(rho, alpha) = (-1, -x_i sin(alpha) + y_i cos(alpha)).
+//    End points farther than 3 sigma from the fit are trimmed and the segment refitted; the
+//    floors min_rho_sigma^2, min_alpha_sigma^2 are then added to the variances.
 // 5. Endpoints are the first and last point projected on the line; lines shorter than
 //    min_length are dropped. At most max_lines lines are returned (longest kept).
 //

@@ -16,6 +16,8 @@ std::string LineExtractionOptions::Validate() const {
   if (!In(model_sigma, 0.0, 1.0)) return "extraction.model_sigma must be in [0, 1] m";
   if (range_sigma <= 0.0 && range_sigma_per_m <= 0.0 && model_sigma <= 0.0)
     return "extraction: range_sigma, range_sigma_per_m and model_sigma cannot all be 0";
+  if (!In(min_rho_sigma, 0.0, 10.0)) return "extraction.min_rho_sigma must be in [0, 10] m";
+  if (!In(min_alpha_sigma, 0.0, 1.0)) return "extraction.min_alpha_sigma must be in [0, 1] rad";
   if (!In(split_distance, 1e-4, 10.0)) return "extraction.split_distance must be in [1e-4, 10] m";
   if (!In(max_gap, 1e-3, 100.0)) return "extraction.max_gap must be in [1e-3, 100] m";
   if (min_points < 3 || min_points > 10000) return "extraction.min_points must be in [3, 10000]";

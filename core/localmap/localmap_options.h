@@ -14,6 +14,10 @@ struct LineExtractionOptions {
   double range_sigma_per_m = 0.0;
   // Extra noise normal to the line per point (walls that are not perfectly straight), metres.
   double model_sigma = 0.0;
+  // Floors added to every fitted line's (rho, alpha) variances: model error that does not
+  // average out over the points (walls that bend, furniture, calibration), metres and radians.
+  double min_rho_sigma = 0.0;
+  double min_alpha_sigma = 0.0;
   // A point farther than this from the chord of its segment splits the segment (metres).
   double split_distance = 0.05;
   // Consecutive points farther apart than this never share a segment (metres).

@@ -1,0 +1,619 @@
+// atlas-localmap-eval: evaluation of the line-feature EKF local map (issue 3).
+//
+//   atlas-localmap-eval mc   [--runs N] [--minutes M] [--seed S] [--capacity C]
+//       Monte Carlo consistency in a simulated corridor (drivers/sim ray caster, laser and
+//       wheel-odometry models): average NEES of the robot pose and of the features per step
+//       against the 95 % chi-square band.
+//   atlas-localmap-eval real [--log F] [--relations F] [--stretch M] [--capacity C] [--png F]
+//       mit-csail: one local map per stretch of M metres of travel (no Genesis), scored on the
+//       relations whose two poses lie in one stretch, against dead reckoning on the same ones;
+//       optionally draws one local map over its scans.
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/eval/error_stats.h"
+#include "core/eval/relations_metric.h"
+#include "core/localmap/fake_wall_scanner.h"
+#include "core/localmap/jcbb.h"
+#include "core/localmap/line_ekf_map.h"
+#include "drivers/carmen/carmen_log.h"
+#include "drivers/sim/laser_model.h"
+#include "drivers/sim/ray_caster.h"
+#include "drivers/sim/route.h"
+#include "drivers/sim/wheel_odometry_model.h"
+#include "tools/eval/trajectory_files.h"
+#include "tools/render/canvas.h"
+
+namespace atlas {
+namespace {
+
+constexpr char kUsage[] =
+    "usage: atlas-localmap-eval mc   [--runs N=50] [--minutes M=4] [--seed S=1] [--capacity C=20]\n"
+    "       atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
+    "C=100]\n"
+    "                                [--png F] [--draw-stretch K=3] [--set name=v,...]\n"
+    "\n"
+    "mc:   Monte Carlo consistency of the line EKF in a simulated 20 m corridor (seeded runs of\n"
+    "      M minutes each). Prints the 95 %% chi-square band of the average NEES (robot: 3 dof;\n"
+    "      features: joint NEES per dof) and the fraction of steps inside it.\n"
+    "real: mit-csail.clf.gz, one local map per stretch of M metres of travel, restarting at\n"
+    "      each stretch (no Genesis). Scores the relations whose two poses lie in one stretch\n"
+    "      and dead reckoning on the same relations. --png draws stretch K's map over its scans.\n"
+    "      Defaults: " ATLAS_SHARED_DIR "/datasets/mit-csail/mit-csail.clf.gz and .relations\n";
+
+struct Args {
+  std::map<std::string, std::string> values;
+  std::string error;
+};
+
+Args ParseArgs(int argc, char** argv, int first, const std::vector<std::string>& known) {
+  Args a;
+  for (int i = first; i < argc; ++i) {
+    const std::string k = argv[i];
+    bool ok = false;
+    for (const std::string& n : known) ok = ok || k == n;
+    if (!ok) {
+      a.error = "unknown option '" + k + "'";
+      return a;
+    }
+    if (i + 1 >= argc) {
+      a.error = "option '" + k + "' needs a value";
+      return a;
+    }
+    a.values[k] = argv[++i];
+  }
+  return a;
+}
+
+bool GetNumber(const Args& a, const std::string& key, double lo, double hi, double& out,
+               std::string& error) {
+  auto it = a.values.find(key);
+  if (it == a.values.end()) return true;
+  double v = 0.0;
+  if (!eval::ParseArgumentNumber(it->second.c_str(), v) || v < lo || v > hi) {
+    error = key + " must be a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+            "], got '" + it->second + "'";
+    return false;
+  }
+  out = v;
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Monte Carlo consistency.
+
+struct StepNees {
+  double robot = 0.0;
+  double features = 0.0;
+  int feature_dof = 0;
+};
+
+LocalMapOptions SimFilterOptions(int capacity, const WheelOdometryNoiseOptions& wheel,
+                                 const sim::LaserOptions& laser) {
+  LocalMapOptions o;
+  o.capacity = capacity;
+  o.extraction.range_sigma = laser.range_sigma;
+  o.odometry.track_width = wheel.track_width_m;
+  o.odometry.wheel_var_per_m = wheel.wheel_noise_per_m;
+  o.odometry.xy_var_per_m = 0.0;
+  o.odometry.xy_var_per_rad = 0.0;
+  o.odometry.theta_var_per_m = 0.0;
+  o.odometry.theta_var_per_rad = 0.0;
+  return o;
+}
+
+// The true line of the wall most beams of an observation hit.
+bool TrueLineOf(const ObservedLine& z, const Pose2& truth, const LaserScan& scan,
+                const sim::RayCaster& caster, const std::vector<sim::Wall>& walls, Vec2& line) {
+  std::map<int, int> votes;
+  const Pose2 sensor = Compose(truth, scan.sensor_pose);
+  for (int i = z.first_beam; i <= z.last_beam; ++i) {
+    const double phi =
+        sensor.theta + scan.angle_min + i * static_cast<double>(scan.angle_increment);
+    const sim::RayHit hit =
+        caster.Cast(Vec2(sensor.x, sensor.y), Vec2(std::cos(phi), std::sin(phi)), scan.max_range);
+    if (hit.hit()) ++votes[hit.wall];
+  }
+  int best = -1, best_votes = 0;
+  for (const auto& [w, v] : votes) {
+    if (v > best_votes) {
+      best = w;
+      best_votes = v;
+    }
+  }
+  if (best < 0) return false;
+  line = FakeWallScanner::WallLine(Wall{walls[best].a, walls[best].b});
+  return true;
+}
+
+std::vector<StepNees> RunOnce(uint64_t seed, double minutes, int capacity,
+                              const std::vector<sim::Wall>& walls, const sim::RayCaster& caster,
+                              int& features_out) {
+  WheelOdometryNoiseOptions wheel;
+  wheel.left_scale_error = wheel.right_scale_error = wheel.track_width_error = 0.0;
+  sim::LaserOptions laser;
+  laser.beams = 361;
+  laser.range_sigma = 0.01;
+  laser.max_range = 30.0;
+  const LocalMapOptions options = SimFilterOptions(capacity, wheel, laser);
+  LineEkfMap map(options);
+  WheelOdometryModel odometry(wheel, seed * 7919 + 1);
+  sim::LaserModel scanner(laser, seed * 104729 + 3);
+  // Back and forth along the corridor centre, weaving a little.
+  std::vector<Vec2> waypoints;
+  for (int lap = 0; lap < 40; ++lap) {
+    for (int i = 0; i <= 6; ++i) {
+      const int k = lap % 2 == 0 ? i : 6 - i;
+      waypoints.push_back(Vec2(1.0 + 3.0 * k, (k % 2 == 0 ? 0.25 : -0.25)));
+    }
+  }
+  sim::MotionOptions motion;
+  motion.max_speed = 0.6;
+  sim::DiffDriveFollower follower(motion, waypoints);
+  const double dt = 0.02;  // 50 Hz odometry
+  const int steps = static_cast<int>(minutes * 60.0 / dt);
+  const int scan_every = 5;  // 10 Hz laser
+  std::vector<StepNees> out;
+  out.reserve(steps / scan_every + 1);
+  // The map-frame is the world frame: the robot starts at its first pose, known exactly.
+  const Pose2 origin = follower.pose();
+  Pose2 last_odo = odometry.Step(TruthSample{Time{}, origin}).pose;
+  std::map<int, Vec2> true_line;  // feature id -> true line, map-frame
+  for (int s = 1; s <= steps; ++s) {
+    follower.Step(dt);
+    const Pose2 truth_world = follower.pose();
+    const Pose2 odo = odometry.Step(TruthSample{FromSeconds(s * dt), truth_world}).pose;
+    map.Predict(Between(last_odo, odo));
+    last_odo = odo;
+    if (s % scan_every != 0) continue;
+    const LaserScan scan = scanner.Scan(caster, truth_world, FromSeconds(s * dt));
+    const ScanUpdate up = map.Update(scan, true);
+    const Pose2 truth = Between(origin, truth_world);
+    if (up.added > 0) {
+      for (size_t j = 0; j < map.LastObservations().size(); ++j) {
+        const int id = map.LastAssociation()[j];
+        if (id < 0 || true_line.count(id)) continue;
+        Vec2 line_world;
+        if (!TrueLineOf(map.LastObservations()[j], truth_world, scan, caster, walls, line_world))
+          continue;
+        // World line -> map-frame line.
+        LinePrediction p = PredictLine(origin, line_world(0), line_world(1));
+        double rho = p.z(0), alpha = p.z(1);
+        CanonicalizeLine(rho, alpha);
+        true_line[id] = Vec2(rho, alpha);
+      }
+    }
+    StepNees n;
+    const UncertainPose est = map.RobotPose();
+    const Vec3 e(truth.x - est.mean.x, truth.y - est.mean.y,
+                 WrapAngle(truth.theta - est.mean.theta));
+    n.robot = e.dot(est.cov.ldlt().solve(e));
+    std::vector<int> idx;
+    std::vector<double> err;
+    for (int k = 0; k < map.Complexity(); ++k) {
+      auto it = true_line.find(map.FeatureId(k));
+      if (it == true_line.end()) continue;
+      double rho = map.State()(3 + 2 * k), alpha = map.State()(4 + 2 * k);
+      CanonicalizeLine(rho, alpha);
+      idx.push_back(3 + 2 * k);
+      // Error in the state's own representation (flip sign of the rho error if flipped).
+      const double sign = map.State()(3 + 2 * k) < 0.0 ? -1.0 : 1.0;
+      err.push_back(sign * (it->second(0) - rho));
+      err.push_back(WrapAngle(it->second(1) - alpha));
+    }
+    if (!idx.empty()) {
+      const int d = 2 * static_cast<int>(idx.size());
+      Eigen::MatrixXd pf(d, d);
+      for (int a = 0; a < static_cast<int>(idx.size()); ++a) {
+        for (int b = 0; b < static_cast<int>(idx.size()); ++b) {
+          pf.block<2, 2>(2 * a, 2 * b) = map.Covariance().block<2, 2>(idx[a], idx[b]);
+        }
+      }
+      const Eigen::VectorXd ef = Eigen::Map<Eigen::VectorXd>(err.data(), d);
+      n.features = ef.dot(pf.ldlt().solve(ef));
+      if (std::getenv("LOCALMAP_DEBUG") && s == steps - steps % scan_every) {
+        for (int a = 0; a < static_cast<int>(idx.size()); ++a) {
+          const Eigen::Vector2d ea = ef.segment<2>(2 * a);
+          const Eigen::Matrix2d pa = pf.block<2, 2>(2 * a, 2 * a);
+          std::fprintf(stderr, "feature %d (%.3f %.3f): err %.5f %.6f sd %.5f %.6f nees %.2f\n",
+                       idx[a], map.State()(idx[a]), map.State()(idx[a] + 1), ea(0), ea(1),
+                       std::sqrt(pa(0, 0)), std::sqrt(pa(1, 1)), ea.dot(pa.inverse() * ea));
+        }
+      }
+      n.feature_dof = d;
+    }
+    out.push_back(n);
+  }
+  features_out = map.Complexity();
+  return out;
+}
+
+std::vector<sim::Wall> SimCorridor() {
+  std::vector<sim::Wall> walls;
+  for (const Wall& w : CorridorWorld(20.0, 2.4)) walls.push_back(sim::Wall{w.a, w.b});
+  return walls;
+}
+
+int RunMonteCarlo(const Args& args) {
+  double runs = 50, minutes = 4, seed = 1, capacity = 20;
+  std::string error;
+  if (!GetNumber(args, "--runs", 1, 10000, runs, error) ||
+      !GetNumber(args, "--minutes", 0.05, 600, minutes, error) ||
+      !GetNumber(args, "--seed", 0, 1e15, seed, error) ||
+      !GetNumber(args, "--capacity", 1, 1000, capacity, error)) {
+    std::fprintf(stderr, "atlas-localmap-eval mc: %s\n", error.c_str());
+    return 2;
+  }
+  const std::vector<sim::Wall> walls = SimCorridor();
+  const sim::RayCaster caster(walls);
+  const int r_count = static_cast<int>(runs);
+  std::vector<std::vector<StepNees>> all;
+  double mean_features = 0.0;
+  for (int r = 0; r < r_count; ++r) {
+    int features = 0;
+    all.push_back(RunOnce(static_cast<uint64_t>(seed) + r, minutes, static_cast<int>(capacity),
+                          walls, caster, features));
+    mean_features += features;
+    std::fprintf(stderr, "\rrun %d/%d done (%zu steps, %d features)   ", r + 1, r_count,
+                 all.back().size(), features);
+  }
+  std::fprintf(stderr, "\n");
+  size_t steps = all[0].size();
+  for (const auto& a : all) steps = std::min(steps, a.size());
+  const double lo = ChiSquareQuantile(0.025, 3 * r_count) / r_count;
+  const double hi = ChiSquareQuantile(0.975, 3 * r_count) / r_count;
+  int robot_in = 0, feat_in = 0, feat_steps = 0;
+  double robot_mean = 0.0, feat_mean = 0.0;
+  std::vector<double> robot_avg(steps), feat_avg(steps, -1.0);
+  for (size_t k = 0; k < steps; ++k) {
+    double sum = 0.0, fsum = 0.0;
+    int dof = 0;
+    for (const auto& a : all) {
+      sum += a[k].robot;
+      fsum += a[k].features;
+      dof += a[k].feature_dof;
+    }
+    robot_avg[k] = sum / r_count;
+    robot_mean += robot_avg[k];
+    if (robot_avg[k] >= lo && robot_avg[k] <= hi) ++robot_in;
+    if (dof > 0) {
+      const double f = fsum / dof;  // average NEES per degree of freedom
+      feat_avg[k] = f;
+      feat_mean += f;
+      ++feat_steps;
+      if (f >= ChiSquareQuantile(0.025, dof) / dof && f <= ChiSquareQuantile(0.975, dof) / dof)
+        ++feat_in;
+    }
+  }
+  std::printf(
+      "Monte Carlo: %d runs x %.1f min (%zu scan steps each, 10 Hz laser, 50 Hz odometry),"
+      " corridor 20 m, capacity %d, mean final features %.1f\n",
+      r_count, minutes, steps, static_cast<int>(capacity), mean_features / r_count);
+  std::printf(
+      "robot NEES (3 dof), average over %d runs: 95%% band [%.3f, %.3f]; mean %.3f; "
+      "steps inside %d/%zu = %.1f%%\n",
+      r_count, lo, hi, robot_mean / steps, robot_in, steps, 100.0 * robot_in / steps);
+  const int fd = all[0].back().feature_dof;
+  const double flo = fd > 0 ? ChiSquareQuantile(0.025, fd * r_count) / (fd * r_count) : 0.0;
+  const double fhi = fd > 0 ? ChiSquareQuantile(0.975, fd * r_count) / (fd * r_count) : 0.0;
+  std::printf(
+      "feature NEES per dof (joint over all features, summed over runs): band at the "
+      "last step [%.3f, %.3f] (%d dof per run); mean %.3f; steps inside %d/%d = %.1f%%\n",
+      flo, fhi, fd, feat_steps ? feat_mean / feat_steps : 0.0, feat_in, feat_steps,
+      feat_steps ? 100.0 * feat_in / feat_steps : 0.0);
+  // A coarse profile over time.
+  std::printf("time profile (step: robot NEES avg, feature NEES/dof avg):\n");
+  for (size_t k = 0; k < steps; k += std::max<size_t>(1, steps / 12)) {
+    std::printf("  %5zu  %.3f  %.3f\n", k, robot_avg[k], feat_avg[k]);
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Real data.
+
+LocalMapOptions RealFilterOptions(int capacity) {
+  LocalMapOptions o;
+  o.capacity = capacity;
+  o.extraction.range_sigma = 0.01;
+  o.extraction.model_sigma = 0.015;
+  o.extraction.split_distance = 0.06;
+  o.extraction.min_points = 10;
+  o.extraction.min_length = 0.6;
+  o.odometry.track_width = 0.5;
+  o.odometry.wheel_var_per_m = 1e-4;
+  o.odometry.xy_var_per_m = 1e-4;
+  o.odometry.xy_var_per_rad = 1e-4;
+  o.odometry.theta_var_per_m = 2e-4;
+  o.odometry.theta_var_per_rad = 1e-3;
+  o.extraction.min_rho_sigma = 0.02;
+  o.extraction.min_alpha_sigma = 0.01;
+  o.association.new_feature_min_length = 1.0;
+  return o;
+}
+
+// --set name=value,name=value: overrides of the filter options (see the table).
+std::string ApplyOverrides(const std::string& spec, LocalMapOptions& o) {
+  const std::map<std::string, double*> table = {
+      {"range_sigma", &o.extraction.range_sigma},
+      {"model_sigma", &o.extraction.model_sigma},
+      {"min_rho_sigma", &o.extraction.min_rho_sigma},
+      {"min_alpha_sigma", &o.extraction.min_alpha_sigma},
+      {"split_distance", &o.extraction.split_distance},
+      {"min_length", &o.extraction.min_length},
+      {"max_gap", &o.extraction.max_gap},
+      {"wheel_var_per_m", &o.odometry.wheel_var_per_m},
+      {"xy_var_per_m", &o.odometry.xy_var_per_m},
+      {"xy_var_per_rad", &o.odometry.xy_var_per_rad},
+      {"theta_var_per_m", &o.odometry.theta_var_per_m},
+      {"theta_var_per_rad", &o.odometry.theta_var_per_rad},
+      {"individual_gate", &o.association.individual_gate},
+      {"joint_gate", &o.association.joint_gate},
+      {"max_extent_gap", &o.association.max_extent_gap},
+      {"ambiguity_margin", &o.association.ambiguity_margin},
+      {"new_feature_min_length", &o.association.new_feature_min_length},
+  };
+  size_t pos = 0;
+  while (pos < spec.size()) {
+    size_t end = spec.find(',', pos);
+    if (end == std::string::npos) end = spec.size();
+    const std::string item = spec.substr(pos, end - pos);
+    const size_t eq = item.find('=');
+    double v = 0.0;
+    if (eq == std::string::npos || !table.count(item.substr(0, eq)) ||
+        !eval::ParseArgumentNumber(item.substr(eq + 1).c_str(), v)) {
+      std::string names;
+      for (const auto& [n, p] : table) names += " " + n;
+      return "--set: bad item '" + item + "' (want name=number; names:" + names + ")";
+    }
+    *table.at(item.substr(0, eq)) = v;
+    pos = end + 1;
+  }
+  return o.Validate();
+}
+
+struct ScanRecord {
+  Time stamp{};
+  int stretch = 0;
+  Pose2 estimate;  // in the stretch's map-frame
+  Pose2 odometry;
+  const LaserScan* scan = nullptr;
+};
+
+int RunReal(const Args& args) {
+  std::string log_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.clf.gz";
+  std::string rel_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.relations";
+  if (args.values.count("--log")) log_path = args.values.at("--log");
+  if (args.values.count("--relations")) rel_path = args.values.at("--relations");
+  double stretch_m = 30, capacity = 100, draw_stretch = 3;
+  std::string error;
+  if (!GetNumber(args, "--stretch", 1, 1e6, stretch_m, error) ||
+      !GetNumber(args, "--capacity", 1, 10000, capacity, error) ||
+      !GetNumber(args, "--draw-stretch", 0, 1e6, draw_stretch, error)) {
+    std::fprintf(stderr, "atlas-localmap-eval real: %s\n", error.c_str());
+    return 2;
+  }
+  std::fprintf(stderr, "reading %s ...\n", log_path.c_str());
+  const carmen::CarmenReadResult read = carmen::ReadCarmenLog(log_path, carmen::CarmenLogOptions());
+  if (!read.ok()) {
+    std::fprintf(stderr, "atlas-localmap-eval real: cannot read the log: %s (give --log FILE)\n",
+                 read.error.c_str());
+    return 1;
+  }
+  const eval::TextFile rel_text = eval::ReadTextFile(rel_path);
+  if (!rel_text.error.empty()) {
+    std::fprintf(stderr, "atlas-localmap-eval real: %s (give --relations FILE)\n",
+                 rel_text.error.c_str());
+    return 1;
+  }
+  const eval::RelationsParse rels = eval::ParseRelations(rel_text.text, rel_path);
+  if (!rels.error.empty()) {
+    std::fprintf(stderr, "atlas-localmap-eval real: %s\n", rels.error.c_str());
+    return 1;
+  }
+  LocalMapOptions options = RealFilterOptions(static_cast<int>(capacity));
+  const std::string invalid =
+      ApplyOverrides(args.values.count("--set") ? args.values.at("--set") : "", options);
+  if (!invalid.empty()) {
+    std::fprintf(stderr, "atlas-localmap-eval real: bad filter options: %s\n", invalid.c_str());
+    return 1;
+  }
+  std::vector<ScanRecord> records;
+  std::unique_ptr<LineEkfMap> map;
+  std::unique_ptr<LineEkfMap> drawn;
+  std::vector<size_t> drawn_records;
+  int stretch = -1;
+  double travelled = 0.0;
+  Pose2 last_odo;
+  bool have_odo = false;
+  int updates = 0, matched = 0, observed = 0, ambiguous = 0;
+  for (const carmen::CarmenEvent& ev : read.log.events) {
+    const LaserScan* scan = std::get_if<LaserScan>(&ev.event);
+    if (scan == nullptr || !ev.odometry_pose) continue;
+    const Pose2 odo = *ev.odometry_pose;
+    Pose2 delta;
+    if (have_odo) {
+      delta = Between(last_odo, odo);
+      travelled += std::hypot(delta.x, delta.y);
+    }
+    if (!map || travelled >= stretch_m) {
+      if (map && stretch == static_cast<int>(draw_stretch)) drawn = std::move(map);
+      map = std::make_unique<LineEkfMap>(options);
+      ++stretch;
+      travelled = 0.0;
+    } else {
+      map->Predict(delta);
+    }
+    last_odo = odo;
+    have_odo = true;
+    const ScanUpdate up = map->Update(*scan, true);
+    ++updates;
+    matched += up.matched;
+    observed += up.observations;
+    ambiguous += up.ambiguous ? 1 : 0;
+    records.push_back(ScanRecord{scan->stamp, stretch, map->RobotPose().mean, odo, scan});
+    if (stretch == static_cast<int>(draw_stretch)) drawn_records.push_back(records.size() - 1);
+  }
+  if (map && stretch == static_cast<int>(draw_stretch)) drawn = std::move(map);
+  std::fprintf(stderr,
+               "%d scans, %d stretches of %.0f m; %d lines observed, %d matched (%.1f%%), "
+               "%d scans with an ambiguous association\n",
+               updates, stretch + 1, stretch_m, observed, matched,
+               100.0 * matched / std::max(1, observed), ambiguous);
+
+  // Relations with both poses in one stretch.
+  auto find = [&](Time t) -> const ScanRecord* {
+    auto it = std::lower_bound(records.begin(), records.end(), t,
+                               [](const ScanRecord& r, Time x) { return r.stamp < x; });
+    const ScanRecord* best = nullptr;
+    Duration best_d = eval::kDefaultMatchTolerance + Duration(1);
+    for (auto c : {it, it == records.begin() ? it : it - 1}) {
+      if (c == records.end()) continue;
+      const Duration d = c->stamp > t ? c->stamp - t : t - c->stamp;
+      if (d < best_d) {
+        best_d = d;
+        best = &*c;
+      }
+    }
+    return best_d <= eval::kDefaultMatchTolerance ? best : nullptr;
+  };
+  std::vector<double> est_t, est_r, dr_t, dr_r;
+  int unmatched = 0, cross_stretch = 0;
+  for (const eval::Relation& rel : rels.relations) {
+    const ScanRecord* a = find(rel.t1);
+    const ScanRecord* b = find(rel.t2);
+    if (a == nullptr || b == nullptr) {
+      ++unmatched;
+      continue;
+    }
+    if (a->stretch != b->stretch) {
+      ++cross_stretch;
+      continue;
+    }
+    const eval::RelationError e = eval::RelationErrorOf(rel, Between(a->estimate, b->estimate));
+    const eval::RelationError d = eval::RelationErrorOf(rel, Between(a->odometry, b->odometry));
+    est_t.push_back(e.translation_m);
+    est_r.push_back(e.rotation_deg);
+    dr_t.push_back(d.translation_m);
+    dr_r.push_back(d.rotation_deg);
+  }
+  const eval::ErrorStats et = eval::Summarize(est_t), er = eval::Summarize(est_r);
+  const eval::ErrorStats dt = eval::Summarize(dr_t), dr = eval::Summarize(dr_r);
+  std::printf(
+      "mit-csail: %zu relations; scored %zu (both poses in one %.0f m stretch), %d across "
+      "stretches, %d without a scan\n",
+      rels.relations.size(), est_t.size(), stretch_m, cross_stretch, unmatched);
+  std::printf(
+      "  local map EKF  : trans %.4f +- %.4f m (rmse %.4f, max %.3f), rot %.3f +- %.3f deg\n",
+      et.mean, et.stddev, et.rmse, et.max, er.mean, er.stddev);
+  std::printf(
+      "  dead reckoning : trans %.4f +- %.4f m (rmse %.4f, max %.3f), rot %.3f +- %.3f deg\n",
+      dt.mean, dt.stddev, dt.rmse, dt.max, dr.mean, dr.stddev);
+  std::printf("  ratio dead reckoning / EKF: translation %.2f, rotation %.2f (target >= 5)\n",
+              dt.mean / std::max(et.mean, 1e-12), dr.mean / std::max(er.mean, 1e-12));
+
+  if (args.values.count("--png") && drawn && !drawn_records.empty()) {
+    const std::string png = args.values.at("--png");
+    std::vector<Vec2> points;
+    std::vector<Vec2> path;
+    Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
+    for (size_t i : drawn_records) {
+      const ScanRecord& r = records[i];
+      const Pose2 sensor = Compose(r.estimate, r.scan->sensor_pose);
+      path.push_back(Vec2(r.estimate.x, r.estimate.y));
+      for (size_t b = 0; b < r.scan->ranges.size(); ++b) {
+        const float range = r.scan->ranges[b];
+        if (!IsReturn(range) || range > 15.0f) continue;
+        const double phi = r.scan->angle_min + b * static_cast<double>(r.scan->angle_increment);
+        const Vec2 p = sensor.TransformPoint(Vec2(range * std::cos(phi), range * std::sin(phi)));
+        points.push_back(p);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    }
+    std::string err;
+    draw::ImageFormat format;
+    if (!draw::ImageFormatOf(png, &format)) {
+      std::fprintf(stderr, "atlas-localmap-eval: --png must end in .png or .svg\n");
+      return 1;
+    }
+    const draw::ViewTransform view =
+        draw::ViewTransform::Fit(lo - Vec2(1, 1), hi + Vec2(1, 1), 10, 40, 1580, 1150);
+    auto canvas = draw::Canvas::Create(format, png, 1600, 1200, view, &err);
+    if (!canvas) {
+      std::fprintf(stderr, "atlas-localmap-eval: %s\n", err.c_str());
+      return 1;
+    }
+    canvas->Points(points, draw::Color{0.55, 0.55, 0.55, 0.35}, 0.7);
+    canvas->Polyline(path, draw::Stroke{draw::Color{0.1, 0.4, 0.9, 1.0}, 2.0, false});
+    for (const MapLine& l : drawn->Lines()) {
+      canvas->Line(l.endpoint_a, l.endpoint_b,
+                   draw::Stroke{draw::Color{0.85, 0.1, 0.1, 1.0}, 3.0, false});
+      canvas->CovarianceEllipse(
+          0.5 * (l.endpoint_a + l.endpoint_b),
+          Eigen::Matrix2d(Eigen::Vector2d(l.cov(0, 0), l.cov(0, 0)).asDiagonal()), 3.0,
+          draw::Stroke{draw::Color{0.85, 0.1, 0.1, 0.6}, 1.0, false});
+    }
+    const UncertainPose rp = drawn->RobotPose();
+    canvas->Pose(rp.mean, 0.25, draw::Color{0.1, 0.4, 0.9, 1.0});
+    canvas->CovarianceEllipse(Vec2(rp.mean.x, rp.mean.y), rp.cov.topLeftCorner<2, 2>(), 3.0,
+                              draw::Stroke{draw::Color{0.1, 0.4, 0.9, 1.0}, 1.5, false});
+    char title[200];
+    std::snprintf(title, sizeof(title),
+                  "mit-csail stretch %d: %zu scans, %d lines (EKF, map-frame of the stretch)",
+                  static_cast<int>(draw_stretch), drawn_records.size(), drawn->Complexity());
+    canvas->TextPx(Vec2(12, 28), title, 20, draw::Color{}, true);
+    canvas->ScaleBar();
+    canvas->Legend(Vec2(12, 1185), {{"scan points (estimated poses)", {0.55, 0.55, 0.55, 1}, true},
+                                    {"map lines (extent)", {0.85, 0.1, 0.1, 1}, false},
+                                    {"robot path, 3-sigma pose", {0.1, 0.4, 0.9, 1}, false}});
+    const std::string fin = canvas->Finish();
+    if (!fin.empty()) {
+      std::fprintf(stderr, "atlas-localmap-eval: %s\n", fin.c_str());
+      return 1;
+    }
+    std::printf("wrote %s (stretch %d)\n", png.c_str(), static_cast<int>(draw_stretch));
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace atlas
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
+    std::fputs(atlas::kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string cmd = argv[1];
+  if (cmd == "mc") {
+    const atlas::Args a =
+        atlas::ParseArgs(argc, argv, 2, {"--runs", "--minutes", "--seed", "--capacity"});
+    if (!a.error.empty()) {
+      std::fprintf(stderr, "atlas-localmap-eval mc: %s\n%s", a.error.c_str(), atlas::kUsage);
+      return 2;
+    }
+    return atlas::RunMonteCarlo(a);
+  }
+  if (cmd == "real") {
+    const atlas::Args a = atlas::ParseArgs(
+        argc, argv, 2,
+        {"--log", "--relations", "--stretch", "--capacity", "--png", "--draw-stretch", "--set"});
+    if (!a.error.empty()) {
+      std::fprintf(stderr, "atlas-localmap-eval real: %s\n%s", a.error.c_str(), atlas::kUsage);
+      return 2;
+    }
+    return atlas::RunReal(a);
+  }
+  std::fprintf(stderr, "atlas-localmap-eval: unknown command '%s'\n%s", cmd.c_str(), atlas::kUsage);
+  return 2;
+}
