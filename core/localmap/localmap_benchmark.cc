@@ -1,10 +1,11 @@
 // Speed of the local map's per-scan work (issue 3): line extraction from a 361-beam real scan,
 // one EKF update with 10 features, JCBB with 10 features and 10 observations in its worst case.
 #include <benchmark/benchmark.h>
+#include <zlib.h>
 
 #include <Eigen/LU>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 #include <sstream>
 #include <string>
 
@@ -16,26 +17,39 @@
 namespace atlas {
 namespace {
 
-// A real scan: the first FLASER line of the uncompressed test excerpt if present, else a
-// synthetic 361-beam corridor scan (the benchmark says which).
+// A real scan: FLASER line 300 of mit-csail.clf.gz from ../shared/datasets, read with zlib;
+// a synthetic 361-beam corridor scan if the file is absent (the label says which).
 LaserScan BenchmarkScan(bool* real) {
   *real = false;
-  std::ifstream in(std::string(ATLAS_SOURCE_DIR) + "/core/localmap/testdata/mit_csail_scan.txt");
-  std::string word;
-  int n = 0;
-  if (in >> word >> n && word == "FLASER" && n == 361) {
-    LaserScan scan;
-    scan.angle_min = static_cast<float>(-M_PI / 2);
-    scan.angle_increment = static_cast<float>(M_PI / 360);
-    scan.max_range = 80.0f;
-    scan.ranges.resize(n);
-    for (float& r : scan.ranges) {
-      in >> r;
-      if (r >= 80.0f) r = kNoReturn;
+  const std::string path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.clf.gz";
+  if (gzFile f = gzopen(path.c_str(), "rb")) {
+    std::string line;
+    char buf[65536];
+    int seen = 0;
+    while (gzgets(f, buf, sizeof(buf)) != nullptr) {
+      if (std::strncmp(buf, "FLASER 361 ", 11) == 0 && ++seen == 300) {
+        line = buf;
+        break;
+      }
     }
-    if (in) {
-      *real = true;
-      return scan;
+    gzclose(f);
+    std::istringstream in(line);
+    std::string word;
+    int n = 0;
+    if (in >> word >> n && n == 361) {
+      LaserScan scan;
+      scan.angle_min = static_cast<float>(-M_PI / 2);
+      scan.angle_increment = static_cast<float>(M_PI / 360);
+      scan.max_range = 80.0f;
+      scan.ranges.resize(n);
+      for (float& r : scan.ranges) {
+        in >> r;
+        if (r >= 80.0f) r = kNoReturn;
+      }
+      if (in) {
+        *real = true;
+        return scan;
+      }
     }
   }
   FakeWallScanner scanner(CorridorWorld(30.0, 2.4), FakeLaserOptions(), 1);

@@ -331,12 +331,12 @@ LocalMapOptions RealFilterOptions(int capacity) {
   o.extraction.min_length = 0.6;
   o.odometry.track_width = 0.5;
   o.odometry.wheel_var_per_m = 1e-4;
-  o.odometry.xy_var_per_m = 1e-4;
+  o.odometry.xy_var_per_m = 1e-3;
   o.odometry.xy_var_per_rad = 1e-4;
-  o.odometry.theta_var_per_m = 2e-4;
-  o.odometry.theta_var_per_rad = 1e-3;
-  o.extraction.min_rho_sigma = 0.02;
-  o.extraction.min_alpha_sigma = 0.01;
+  o.odometry.theta_var_per_m = 5e-3;
+  o.odometry.theta_var_per_rad = 3e-2;
+  o.extraction.min_rho_sigma = 0.03;
+  o.extraction.min_alpha_sigma = 0.02;
   o.association.new_feature_min_length = 1.0;
   return o;
 }
@@ -518,6 +518,14 @@ int RunReal(const Args& args) {
   std::printf(
       "  dead reckoning : trans %.4f +- %.4f m (rmse %.4f, max %.3f), rot %.3f +- %.3f deg\n",
       dt.mean, dt.stddev, dt.rmse, dt.max, dr.mean, dr.stddev);
+  auto median = [](std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  std::printf(
+      "  medians: EKF trans %.4f m rot %.3f deg; dead reckoning trans %.4f m rot %.3f deg\n",
+      median(est_t), median(est_r), median(dr_t), median(dr_r));
   std::printf("  ratio dead reckoning / EKF: translation %.2f, rotation %.2f (target >= 5)\n",
               dt.mean / std::max(et.mean, 1e-12), dr.mean / std::max(er.mean, 1e-12));
 
