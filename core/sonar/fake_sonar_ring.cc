@@ -1,0 +1,50 @@
+#include "core/sonar/fake_sonar_ring.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/localmap/line_model.h"
+#include "core/sonar/sonar_geometry.h"
+
+namespace atlas {
+
+std::vector<SonarTransducer> FakeSonarRing24() {
+  std::vector<SonarTransducer> ring;
+  for (int i = 0; i < 24; ++i) {
+    const double a = WrapAngle((7.5 + 15.0 * i) * std::numbers::pi / 180.0);
+    SonarTransducer s;
+    s.pose = Pose2{0.26 * std::cos(a), 0.26 * std::sin(a), a};
+    s.max_range = 6.0;
+    ring.push_back(s);
+  }
+  return ring;
+}
+
+SonarReading FireFakeSonarRing(const std::vector<FakeSonarWall>& walls,
+                               const std::vector<SonarTransducer>& ring, const Pose2& robot,
+                               double noise_sigma, std::mt19937_64& rng) {
+  std::normal_distribution<double> n01;
+  SonarReading reading;
+  reading.returns.reserve(ring.size());
+  for (int i = 0; i < static_cast<int>(ring.size()); ++i) {
+    double best = kNoReturn;
+    for (const FakeSonarWall& w : walls) {
+      const double len = (w.b - w.a).norm();
+      if (!(len > 0.0)) continue;
+      const Vec2 d = (w.b - w.a) / len;
+      const Vec2 n(-d.y(), d.x());
+      double rho = n.dot(w.a), alpha = std::atan2(n.y(), n.x());
+      CanonicalizeLine(rho, alpha);
+      const SonarRangePrediction p = PredictSonarRange(robot, ring[i], rho, alpha);
+      const double t = (p.foot - w.a).dot(d);
+      if (!p.in_cone || t < 0.0 || t > len || p.range > ring[i].max_range) continue;
+      best = std::min(best, p.range);
+    }
+    const float r =
+        std::isfinite(best) ? static_cast<float>(best + noise_sigma * n01(rng)) : kNoReturn;
+    reading.returns.push_back(SonarReturn{i, r});
+  }
+  return reading;
+}
+
+}  // namespace atlas

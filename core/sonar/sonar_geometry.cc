@@ -1,0 +1,60 @@
+#include "core/sonar/sonar_geometry.h"
+
+#include <cmath>
+
+#include "core/localmap/line_model.h"
+
+namespace atlas {
+
+SonarRangePrediction PredictSonarRange(const Pose2& robot, const SonarTransducer& mount, double rho,
+                                       double alpha) {
+  SonarRangePrediction p;
+  const Pose2 s = Compose(robot, mount.pose);
+  const double c = std::cos(alpha), sn = std::sin(alpha);
+  const double e = rho - s.x * c - s.y * sn;  // signed distance, transducer to line along n
+  const double sign = e >= 0.0 ? 1.0 : -1.0;
+  p.range = std::abs(e);
+  const double normal = sign > 0.0 ? alpha : alpha + std::numbers::pi;
+  p.incidence = WrapAngle(normal - s.theta);
+  p.in_cone = std::abs(p.incidence) <= 0.5 * mount.beam_width;
+  p.foot = Vec2(s.x, s.y) + e * Vec2(c, sn);
+  // d(s.x, s.y)/d(robot): identity in x, y; d/dtheta = (-mx sin - my cos, mx cos - my sin).
+  const double ct = std::cos(robot.theta), st = std::sin(robot.theta);
+  const double dsx_dth = -mount.pose.x * st - mount.pose.y * ct;
+  const double dsy_dth = mount.pose.x * ct - mount.pose.y * st;
+  p.d_pose << -sign * c, -sign * sn, -sign * (c * dsx_dth + sn * dsy_dth);
+  p.d_line << sign, sign * (s.x * sn - s.y * c);
+  return p;
+}
+
+Vec2 TangentLine(const Pose2& sensor, double range, double phi) {
+  const double a = sensor.theta + phi;
+  double rho = sensor.x * std::cos(a) + sensor.y * std::sin(a) + range;
+  double alpha = a;
+  CanonicalizeLine(rho, alpha);
+  return Vec2(rho, alpha);
+}
+
+int CommonTangentLines(const Pose2& s1, double r1, double h1, const Pose2& s2, double r2, double h2,
+                       Vec2 out[2]) {
+  // Oriented line n . p = rho with rho - n . c_i = r_i: n . (c1 - c2) = r2 - r1.
+  const Vec2 d(s1.x - s2.x, s1.y - s2.y);
+  const double len = d.norm();
+  if (len < 1e-9) return 0;
+  const double ratio = (r2 - r1) / len;
+  if (std::abs(ratio) > 1.0) return 0;
+  const double beta = std::atan2(d.y(), d.x());
+  const double gamma = std::acos(ratio);
+  int count = 0;
+  for (const double a : {beta + gamma, beta - gamma}) {
+    if (std::abs(WrapAngle(a - s1.theta)) > h1 || std::abs(WrapAngle(a - s2.theta)) > h2) continue;
+    if (count == 1 && gamma < 1e-12) break;
+    double rho = s1.x * std::cos(a) + s1.y * std::sin(a) + r1;
+    double alpha = a;
+    CanonicalizeLine(rho, alpha);
+    out[count++] = Vec2(rho, alpha);
+  }
+  return count;
+}
+
+}  // namespace atlas

@@ -1,0 +1,101 @@
+#pragma once
+// Feature initialisation from several vantage points (paper, Section IV, Fig. 9): RANSAC
+// grouping of buffered sonar returns with delayed decision making (Leonard and Rikoski).
+//
+// Buffer: returns that no mapped feature explains are kept with the vantage point they were
+// fired from. A vantage point is the robot pose at firing expressed in the CURRENT robot
+// frame, with the covariance of that relative pose accumulated from the odometry noise of
+// every Predict since (V <- (-)u (+) V, eq. 2 with J(-) as in eq. 15). Everything is relative to
+// the robot, so ResetRobotPose/Genesis/traversal do not disturb the buffer. Bounded: at most
+// max_returns returns and max_vantage vantage points, none farther than window_m away.
+//
+// Decide(): up to `iterations` RANSAC hypotheses. Each draws two returns from vantage points at
+// least min_pair_baseline apart and takes the (at most two) lines tangent to both arcs with the
+// normal inside both cones (CommonTangentLines). Its consensus is the set of returns whose range
+// matches the distance to the line within inlier_sigmas (range noise plus the vantage pose's
+// uncertainty) with the line inside the cone. The best consensus is refined by Gauss-Newton
+// (weighted least squares over (rho, alpha) in the robot frame) and accepted only when the
+// decision is clear:
+//   - support >= min_support returns from >= min_vantage vantage points spanning >= min_baseline;
+//   - no rival: no other hypothesis with a clearly different line claims rival_overlap of the
+//     same returns with rival_ratio of the support (else kAmbiguous: wait for more returns).
+// An accepted line leaves the buffer with its inliers and is returned in the ROBOT frame with
+// covariance (H^T W H)^-1 plus floors, to be added to the map by the inverse model
+// LineEkfMap::AddObservedFeature (cross covariances with the robot pose and every feature).
+//
+// Approximations (documented, see the sonar NEES figures): the vantage points' relative poses
+// are treated as independent of each other and of the current map state (they share odometry
+// increments, which the map has already used for the robot pose); past poses are thus not kept
+// in the state as full delayed-state SLAM would, only their odometry-relative uncertainty enters
+// the line's covariance.
+
+#include <Eigen/Core>
+#include <random>
+#include <vector>
+
+#include "core/common/sensor_types.h"
+#include "core/localmap/line_model.h"
+#include "core/sonar/sonar_options.h"
+
+namespace atlas {
+
+enum class GroupingOutcome { kAccepted, kAmbiguous, kInsufficient };
+
+struct SonarVantage {
+  Pose2 pose;  // robot pose at firing, in the current robot frame
+  Mat3 cov = Mat3::Zero();
+};
+
+struct BufferedReturn {
+  int vantage = 0;        // index into Vantages()
+  SonarTransducer mount;  // beam width already scaled by cone_scale
+  double range = 0.0;
+};
+
+struct InitialisedLine {
+  ObservedLine line;                 // robot frame, canonical, covariance over (rho, alpha)
+  std::vector<Pose2> vantage;        // robot-frame vantage points of the supporting returns
+  std::vector<Vec2> tangent_points;  // robot frame
+  std::vector<Pose2> sensors;        // robot-frame transducer poses of the supporting returns
+  std::vector<double> ranges;        // their ranges
+  int support = 0;
+  double baseline = 0.0;
+};
+
+struct GroupingDecision {
+  GroupingOutcome outcome = GroupingOutcome::kInsufficient;
+  std::vector<InitialisedLine> lines;  // accepted this call (may be non-empty with kAmbiguous)
+  int hypotheses = 0;                  // RANSAC hypotheses scored
+};
+
+class SonarLineInitializer {
+ public:
+  SonarLineInitializer(const SonarInitOptions& init, const SonarModelOptions& model);
+
+  // The robot moved by u (robot frame) with odometry noise covariance q over u.
+  void Predict(const Pose2& u, const Mat3& q);
+  // Buffers one return fired now (from the current robot pose) by the transducer `mount`.
+  void Add(const SonarTransducer& mount, double range);
+  // One decision (see above); accepted lines are removed from the buffer.
+  GroupingDecision Decide();
+  void Clear();
+
+  const std::vector<SonarVantage>& Vantages() const { return vantage_; }
+  const std::vector<BufferedReturn>& Returns() const { return returns_; }
+  // Variance of return j's range about the line (rho, alpha) (robot frame), incl. its pose.
+  double ReturnVariance(const BufferedReturn& r, double rho, double alpha) const;
+
+ private:
+  void DropOld();
+  int CountInliers(const Vec2& line, std::vector<char>& mask) const;
+  bool Refine(Vec2& line, const std::vector<char>& mask, Mat2& cov) const;
+
+  SonarInitOptions o_;
+  SonarModelOptions m_;
+  std::vector<SonarVantage> vantage_;
+  std::vector<BufferedReturn> returns_;
+  bool moved_since_vantage_ = true;
+  std::mt19937_64 rng_;
+};
+
+}  // namespace atlas

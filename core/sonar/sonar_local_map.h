@@ -1,0 +1,88 @@
+#pragma once
+// A line-feature local map that runs on laser alone, sonar alone, or both
+// (SonarLocalMapOptions::sensors): the paper's laser and sonar experiments (Section IV,
+// Fig. 8(a) and 8(b)) on one EKF.
+//
+// It wraps the laser path's LineEkfMap (same state, same Predict, same inverse model for new
+// features) and adds the sonar path:
+// - UpdateSonar(reading, ring, allow_new_features): each return with a usable range is paired
+//   with the mapped line it can see (PredictSonarRange: normal inside the cone, tangent point
+//   within the feature's extent plus max_extent_gap) when its squared Mahalanobis distance
+//   passes the chi-square gate (1 dof) and no second feature is nearly as compatible; all
+//   pairings are applied in one batch EKF update (LineEkfMap::UpdateWithMeasurements,
+//   measurement z = range, h = d range / d(robot, line), R = range variance).
+// - Returns compatible with no feature (at the loose gate) go to the SonarLineInitializer; if
+//   the caller allows new features (mature hypotheses, Section III-E) and there is capacity,
+//   its RANSAC + delayed-decision grouping may initialise lines, added with
+//   LineEkfMap::AddObservedFeature unless compatible with an existing feature (duplicate).
+// - Update(scan) is the laser path (LineEkfMap::Update) when the laser is enabled; in
+//   sonar-only mode it returns an empty ScanUpdate and changes nothing.
+//
+// How the Atlas calls it: per hypothesis, Predict(odometry) up to each sensor event's stamp,
+// then Update(scan, mature) for a laser scan or UpdateSonar(reading, ring, mature) for a sonar
+// reading (the ring is configuration: drivers/p2os P3dxSonarRing/B21SonarRing). For q (eq. 5)
+// the SonarUpdate's (usable returns, matched) play the role of (||Z||, eta_a); Quality() does
+// that over the recent window of whichever sensors are enabled.
+//
+// Serialize() stores the EKF (the LineEkfMap image) only: the initialiser's buffer of pending
+// returns is a delay line and starts empty after Deserialize().
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/localmap/line_ekf_map.h"
+#include "core/localmap/quality.h"
+#include "core/sonar/sonar_line_initializer.h"
+#include "core/sonar/sonar_options.h"
+
+namespace atlas {
+
+struct SonarUpdate {
+  int returns = 0;    // returns in the reading
+  int usable = 0;     // with a range in [min_range, max_range_fraction * max_range)
+  int matched = 0;    // applied to a feature
+  int ambiguous = 0;  // compatible with two features alike: not used
+  int buffered = 0;   // kept for initialisation
+  int added = 0;      // features initialised
+  GroupingOutcome grouping = GroupingOutcome::kInsufficient;
+  std::vector<InitialisedLine> initialised;  // robot frame at this reading
+};
+
+class SonarLocalMap final : public LocalMap {
+ public:
+  // `options` must be valid (Validate() empty).
+  explicit SonarLocalMap(const SonarLocalMapOptions& options = SonarLocalMapOptions());
+
+  std::unique_ptr<LocalMap> Clone() const override;
+  void Predict(const Pose2& odometry_delta) override;
+  ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override;
+  UncertainPose RobotPose() const override { return ekf_.RobotPose(); }
+  void ResetRobotPose(const UncertainPose& pose) override { ekf_.ResetRobotPose(pose); }
+  int Complexity() const override { return ekf_.Complexity(); }
+  int Capacity() const override { return ekf_.Capacity(); }
+  std::vector<MapLine> Lines() const override { return ekf_.Lines(); }
+  std::string Serialize() const override;
+  bool Deserialize(const std::string& bytes) override;
+
+  // The sonar path (see above). Returns naming a transducer outside `ring` are skipped.
+  SonarUpdate UpdateSonar(const SonarReading& reading, const std::vector<SonarTransducer>& ring,
+                          bool allow_new_features);
+
+  // eq. 5 over the recent window of the enabled sensors.
+  double Quality() const;
+
+  const LineEkfMap& Ekf() const { return ekf_; }
+  const SonarLineInitializer& Initializer() const { return init_; }
+  const SonarLocalMapOptions& Options() const { return o_; }
+
+ private:
+  bool Duplicate(const ObservedLine& z) const;
+
+  SonarLocalMapOptions o_;
+  LineEkfMap ekf_;
+  SonarLineInitializer init_;
+  RecentObservations sonar_recent_;
+};
+
+}  // namespace atlas

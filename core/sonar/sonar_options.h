@@ -1,0 +1,82 @@
+#pragma once
+// Options of the sonar line mapping (module atlas_sonar): the wide-beam measurement model,
+// the gated EKF update, and RANSAC grouping with delayed decision making for new features
+// (paper, Section IV, Fig. 9). One struct with defaults, validated once by Validate().
+
+#include <cstdint>
+#include <string>
+
+#include "core/localmap/localmap_options.h"
+
+namespace atlas {
+
+// Which sensors a SonarLocalMap uses (laser alone, sonar alone, or both).
+enum class RangeSensors { kLaser, kSonar, kBoth };
+
+struct SonarModelOptions {
+  // Range noise of one return: sigma = range_sigma + range_sigma_per_m * range (metres), plus
+  // model_sigma for walls that are not quite where the tangent model puts them.
+  double range_sigma = 0.01;
+  double range_sigma_per_m = 0.01;
+  double model_sigma = 0.02;
+  // The cone used for interpretation is the transducer's beam_width times this (>= 1 widens it).
+  double cone_scale = 1.0;
+  // Returns at or beyond this fraction of the transducer's max_range are not used.
+  double max_range_fraction = 0.95;
+  double min_range = 0.1;  // metres
+
+  std::string Validate() const;
+};
+
+struct SonarUpdateOptions {
+  double gate = 0.99;  // chi-square probability (1 dof) for pairing a return with a feature
+  // A return compatible with a feature at this looser probability is never kept for
+  // initialising new features (it belongs to a mapped wall, or to none).
+  double loose_gate = 0.9999;
+  // The tangent point must lie within the feature's extent, or at most this far beyond it.
+  double max_extent_gap = 1.0;
+  // Two features within the gate: the return is ambiguous unless the best one's squared
+  // distance is smaller than the other's minus this margin.
+  double ambiguity_margin = 4.0;
+
+  std::string Validate() const;
+};
+
+// RANSAC grouping of buffered returns with delayed decision making (Leonard and Rikoski).
+struct SonarInitOptions {
+  int max_returns = 256;            // buffer capacity (oldest dropped first)
+  int max_vantage = 128;            // vantage points kept (oldest dropped first)
+  double window_m = 6.0;            // vantage points farther than this from the robot are dropped
+  int iterations = 120;             // RANSAC hypotheses per decision (work bound)
+  double min_pair_baseline = 0.25;  // metres between the two vantage points of a sample
+  double inlier_sigmas = 2.5;       // |r - predicted| within this many sigmas
+  int min_support = 6;              // inlier returns
+  int min_vantage = 4;              // distinct vantage points among the inliers
+  double min_baseline = 1.0;        // metres spanned by the inliers' vantage points
+  // Rival: a different line (|d alpha| > rival_alpha or |d rho| > rival_rho) sharing at least
+  // rival_overlap of the best line's inliers. It makes the grouping ambiguous when its support
+  // is at least rival_ratio of the best's: the decision is delayed.
+  double rival_alpha = 0.15;
+  double rival_rho = 0.2;
+  double rival_overlap = 0.3;
+  double rival_ratio = 0.7;
+  int max_new_per_decision = 2;
+  // Floors on the initialised line's standard deviations (rho metres, alpha radians).
+  double min_rho_sigma = 0.01;
+  double min_alpha_sigma = 0.005;
+  uint64_t seed = 1;
+
+  std::string Validate() const;
+};
+
+struct SonarLocalMapOptions {
+  RangeSensors sensors = RangeSensors::kSonar;
+  LocalMapOptions line_map;  // the EKF (odometry noise, capacity, laser path)
+  SonarModelOptions model;
+  SonarUpdateOptions update;
+  SonarInitOptions init;
+
+  std::string Validate() const;
+};
+
+}  // namespace atlas
