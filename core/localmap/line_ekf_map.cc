@@ -237,8 +237,15 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
     }
     std::stable_sort(fresh.begin(), fresh.end(),
                      [&](int a, int b) { return observed[a].Length() > observed[b].Length(); });
+    const int first_new = Complexity();
     for (int j : fresh) {
       if (Complexity() >= Capacity()) break;
+      // Two segments of one new wall in the same scan make one feature.
+      bool duplicate = false;
+      for (int k = first_new; k < Complexity() && !duplicate; ++k) {
+        duplicate = SquaredDistanceTo(observed[j], k) < loose_gate;
+      }
+      if (duplicate) continue;
       AddFeature(observed[j]);
       last_association_[j] = ids_.back();
       ++out.added;
@@ -280,6 +287,19 @@ void LineEkfMap::GrowFeatureExtent(int k, const Vec2& a, const Vec2& b) {
   z.endpoint_a = a;
   z.endpoint_b = b;
   GrowExtent(k, z);
+}
+
+double LineEkfMap::SquaredDistanceTo(const ObservedLine& z, int k) const {
+  const int ik = 3 + 2 * k;
+  LinePrediction pred = PredictLine(Robot(), x_(ik), x_(ik + 1));
+  const Vec2 nu = LineInnovation(Vec2(z.rho, z.alpha), pred);
+  Eigen::Matrix<double, 2, 5> h;
+  h << pred.d_pose, pred.d_line;
+  Eigen::Matrix<double, 5, 5> p;
+  p << P_.topLeftCorner<3, 3>(), P_.block<3, 2>(0, ik), P_.block<2, 3>(ik, 0),
+      P_.block<2, 2>(ik, ik);
+  const Mat2 s = h * p * h.transpose() + z.cov;
+  return nu.dot(s.ldlt().solve(nu));
 }
 
 void LineEkfMap::AddFeature(const ObservedLine& z) {

@@ -101,6 +101,8 @@ class LineEkfMap final : public LocalMap {
   };
   Pose2 Robot() const { return Pose2{x_(0), x_(1), x_(2)}; }
   void AddFeature(const ObservedLine& z);
+  // Mahalanobis distance squared between an observation and the prediction of feature k.
+  double SquaredDistanceTo(const ObservedLine& z, int k) const;
   void GrowExtent(int k, const ObservedLine& z);
 
   LocalMapOptions options_;
