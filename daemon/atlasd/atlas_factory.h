@@ -1,0 +1,41 @@
+#pragma once
+// Builds the Atlas that atlasd steps: line-EKF local maps (core/localmap) behind the Atlas
+// framework (core/atlas), with w (eq. 12) bound by LineMapBootstrapper.
+//
+// MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
+// daemon_setup.cc. It exists because daemon/config/daemon_options.h and
+// core/localmap/localmap_options.h both define atlas::OdometryNoiseOptions, so no translation
+// unit may include both; this header includes neither.
+
+#include <memory>
+#include <string>
+
+#include "core/atlas/atlas.h"
+
+namespace atlas {
+
+struct MapperSettings {
+  int map_capacity = 10;
+  int max_hypotheses = 4;
+  int probation_steps = 8;
+  double quality_alpha = 0.5;
+  double max_sigma_x = 0.5;
+  double max_sigma_y = 0.5;
+  double max_sigma_theta = 0.2;
+  int frames_examined_per_step = 24;
+  int match_candidates_per_step = 1;
+  double track_width_m = 0.4;
+  double laser_range_sigma_m = 0.01;
+};
+
+// Empty when the settings give valid atlas and local-map options, else the first problem.
+std::string ValidateMapperSettings(const MapperSettings& s);
+
+// A new, empty atlas; settings must be valid.
+std::unique_ptr<Atlas> MakeAtlas(const MapperSettings& s);
+
+// Covariance of an odometry increment under the local maps' odometry noise model (the same
+// Q(u) the maps' Predict uses): for dead reckoning while the laser is away.
+Mat3 OdometryIncrementNoise(const Pose2& delta, const MapperSettings& s);
+
+}  // namespace atlas

@@ -1,0 +1,84 @@
+#include "daemon/atlasd/daemon_setup.h"
+
+#include <cmath>
+
+#include "drivers/p2os/p2os_messages.h"
+
+namespace atlas {
+namespace {
+constexpr double kDegToRad = M_PI / 180.0;
+}
+
+MapperSettings ToMapperSettings(const DaemonOptions& o) {
+  MapperSettings s;
+  s.map_capacity = o.atlas.map_capacity;
+  s.max_hypotheses = o.atlas.max_hypotheses;
+  s.probation_steps = o.atlas.probation_steps;
+  s.quality_alpha = o.atlas.quality_alpha;
+  s.max_sigma_x = o.atlas.max_sigma_x;
+  s.max_sigma_y = o.atlas.max_sigma_y;
+  s.max_sigma_theta = o.atlas.max_sigma_theta;
+  s.frames_examined_per_step = o.atlas.frames_examined_per_step;
+  s.match_candidates_per_step = o.atlas.match_candidates_per_step;
+  s.track_width_m = o.odometry.track_width_m;
+  s.laser_range_sigma_m = o.noise.laser.range_sigma_m;
+  return s;
+}
+
+StepLoopOptions ToStepLoopOptions(const DaemonOptions& o) {
+  StepLoopOptions l;
+  l.step_budget = std::chrono::duration_cast<Duration>(
+      std::chrono::duration<double, std::milli>(o.loop.step_budget_ms));
+  l.max_pending_scans = o.loop.max_pending_scans;
+  l.max_range_m = o.laser.max_range_m;
+  return l;
+}
+
+LaserReaderOptions ToLaserReaderOptions(const DaemonOptions& o) {
+  LaserReaderOptions l;
+  l.device = o.laser.device;
+  l.baud = o.laser.baud;
+  l.angle_deg = static_cast<uint16_t>(o.laser.angular_range_deg);
+  l.resolution_centideg = static_cast<uint16_t>(std::lround(o.laser.angular_resolution_deg * 100));
+  l.sensor_pose = Pose2{o.laser.mount.x_m, o.laser.mount.y_m, o.laser.mount.theta_deg * kDegToRad};
+  l.queue_capacity = static_cast<size_t>(o.laser.queue_capacity);
+  return l;
+}
+
+OdometryReaderOptions ToOdometryReaderOptions(const DaemonOptions& o) {
+  OdometryReaderOptions r;
+  r.interface_name = o.odometry.interface;
+  r.odometry.track_width_m = o.odometry.track_width_m;
+  r.odometry.max_speed_mps = o.odometry.max_speed_mps;
+  r.queue_capacity = static_cast<size_t>(o.odometry.queue_capacity);
+  return r;
+}
+
+SonarReaderOptions ToSonarReaderOptions(const DaemonOptions& o) {
+  SonarReaderOptions s;
+  s.device = o.sonar.device;
+  // The configured rate first after the power-up rate.
+  s.probe_rates = {9600};
+  for (int b : {o.sonar.baud, 19200, 38400, 57600, 115200})
+    if (std::find(s.probe_rates.begin(), s.probe_rates.end(), b) == s.probe_rates.end())
+      s.probe_rates.push_back(b);
+  s.sonar.range_factor_mm = o.sonar.range_factor_mm;
+  s.sonar.ring = o.sonar.ring == SonarRing::kB21_24 ? p2os::B21SonarRing() : p2os::P3dxSonarRing();
+  s.queue_capacity = static_cast<size_t>(o.sonar.queue_capacity);
+  return s;
+}
+
+std::string ValidateDerivedOptions(const DaemonOptions& o) {
+  std::string out;
+  auto add = [&out](const char* what, const std::string& e) {
+    if (!e.empty()) out += std::string(what) + ": " + e + "\n";
+  };
+  add("atlas", ValidateMapperSettings(ToMapperSettings(o)));
+  add("loop", ToStepLoopOptions(o).Validate());
+  if (o.laser.enabled) add("laser", ToLaserReaderOptions(o).Validate());
+  add("odometry", ToOdometryReaderOptions(o).Validate());
+  if (o.sonar.enabled) add("sonar", ToSonarReaderOptions(o).Validate());
+  return out;
+}
+
+}  // namespace atlas

@@ -1,0 +1,364 @@
+#include "daemon/atlasd/live_daemon.h"
+
+#include <pthread.h>
+#include <sched.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "daemon/atlasd/daemon_setup.h"
+#include "daemon/atlasd/health_report.h"
+#include "daemon/config/config_loader.h"
+#include "daemon/lcm_out/atlas_publisher.h"
+#include "daemon/notify/service_notifier.h"
+
+namespace atlas {
+namespace {
+
+Duration SecondsToDuration(double s) {
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s));
+}
+
+// Publishes the loop's outputs at their periods (wall-clock periods of the loop thread).
+class LcmSink final : public StepSink {
+ public:
+  LcmSink(AtlasPublisher* publisher, const LcmOptions& o) : publisher_(publisher) { SetPeriods(o); }
+  void SetPeriods(const LcmOptions& o) {
+    graph_period_ = SecondsToDuration(o.graph_period_s);
+    map_period_ = SecondsToDuration(o.local_map_period_s);
+  }
+  void OnPose(Time stamp, const DominantOutput& pose, PoseSource) override {
+    publisher_->Pose(stamp, pose);
+  }
+  void OnStep(Time stamp, const Atlas& atlas) override {
+    const Time now = Now();
+    if (now - last_graph_ >= graph_period_) {
+      last_graph_ = now;
+      publisher_->Graph(stamp, atlas);
+      publisher_->Hypotheses(stamp, atlas);
+    }
+    if (now - last_map_ >= map_period_) {
+      last_map_ = now;
+      publisher_->LocalMap(stamp, atlas);
+    }
+  }
+
+ private:
+  AtlasPublisher* publisher_;
+  Duration graph_period_{}, map_period_{};
+  Time last_graph_{}, last_map_{};
+};
+
+struct Shared {
+  std::atomic<bool> stop{false};
+  std::atomic<int64_t> heartbeat_ns{0};
+  std::atomic<bool> loop_running{false};
+  std::atomic<int64_t> stall_until_ns{0};
+  std::mutex mutex;
+  std::string status;  // one-line summary, under mutex
+  bool reload_pending = false;
+  DaemonOptions reloaded;  // under mutex
+};
+
+void ApplyScheduling(const SchedulingOptions& s) {
+  if (s.policy != SchedPolicy::kOther) {
+    sched_param p{};
+    p.sched_priority = s.priority;
+    const int policy = s.policy == SchedPolicy::kFifo ? SCHED_FIFO : SCHED_RR;
+    if (int e = pthread_setschedparam(pthread_self(), policy, &p); e != 0)
+      std::fprintf(stderr,
+                   "atlasd: warning: scheduling.policy/priority refused (%s); the loop runs "
+                   "with the default policy (grant CAP_SYS_NICE or LimitRTPRIO to allow it)\n",
+                   std::strerror(e));
+  }
+  if (!s.cpu_affinity.empty()) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    for (int c : s.cpu_affinity) CPU_SET(c, &set);
+    if (int e = pthread_setaffinity_np(pthread_self(), sizeof(set), &set); e != 0)
+      std::fprintf(stderr,
+                   "atlasd: warning: scheduling.cpu_affinity refused (%s); the loop may run on "
+                   "any CPU\n",
+                   std::strerror(e));
+  }
+}
+
+class LiveDaemon {
+ public:
+  LiveDaemon(const DaemonOptions& o, const LiveFlags& f) : options_(o), flags_(f) {}
+
+  int Run();
+
+ private:
+  void LoopThread();
+  void Drain();
+  void PublishHealth(Time now);
+  std::vector<DriverEntry> Drivers() const;
+  void ApplyReload(const DaemonOptions& loaded);
+
+  DaemonOptions options_;
+  LiveFlags flags_;
+  Shared shared_;
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<AtlasPublisher> publisher_;
+  std::unique_ptr<LcmSink> sink_;
+  std::unique_ptr<Atlas> atlas_;
+  std::unique_ptr<StepLoop> loop_;
+  std::unique_ptr<LaserReader> laser_;
+  std::unique_ptr<OdometryReader> odometry_;
+  std::unique_ptr<SonarReader> sonar_;
+  Time start_{};
+  Time last_health_{}, last_line_{};
+  bool republish_raw_ = false;
+  ServiceNotifier notifier_;
+};
+
+std::vector<DriverEntry> LiveDaemon::Drivers() const {
+  std::vector<DriverEntry> d;
+  if (laser_)
+    d.push_back({"laser", laser_->Health(), static_cast<int>(laser_->queue().SizeApprox()),
+                 static_cast<int>(laser_->queue().capacity())});
+  if (odometry_)
+    d.push_back({"odometry", odometry_->Health(), static_cast<int>(odometry_->queue().SizeApprox()),
+                 static_cast<int>(odometry_->queue().capacity())});
+  if (sonar_)
+    d.push_back({"sonar", sonar_->Health(), static_cast<int>(sonar_->queue().SizeApprox()),
+                 static_cast<int>(sonar_->queue().capacity())});
+  return d;
+}
+
+void LiveDaemon::Drain() {
+  OdometrySample o;
+  while (odometry_ && odometry_->Pop(&o)) {
+    if (republish_raw_) publisher_->RawOdometry(o);
+    loop_->AddOdometry(o);
+  }
+  SonarReading s;
+  while (sonar_ && sonar_->Pop(&s))
+    if (republish_raw_) publisher_->RawSonar(s);
+  LaserScan scan;
+  while (laser_ && laser_->Pop(&scan)) {
+    if (republish_raw_) publisher_->RawLaser(scan);
+    loop_->AddScan(std::move(scan));
+  }
+}
+
+void LiveDaemon::PublishHealth(Time now) {
+  HealthInputs in;
+  in.now = now;
+  in.start = start_;
+  in.loop = loop_.get();
+  in.period = loop_->TakePeriod();
+  in.step_budget_ms = options_.loop.step_budget_ms;
+  in.drivers = Drivers();
+  const atlas::health_t h = MakeHealthMessage(in);
+  publisher_->Health(h);
+  {
+    std::lock_guard<std::mutex> lock(shared_.mutex);
+    shared_.status = h.status;
+  }
+  const double line_period =
+      flags_.health_line_period_s > 0 ? flags_.health_line_period_s : options_.lcm.health_period_s;
+  if (!flags_.quiet &&
+      now - last_line_ >= SecondsToDuration(line_period) - std::chrono::milliseconds(5)) {
+    last_line_ = now;
+    std::fprintf(stderr, "atlasd: %s\n", h.status.c_str());
+  }
+}
+
+void LiveDaemon::ApplyReload(const DaemonOptions& loaded) {
+  const ReloadDiff diff = DiffForReload(options_, loaded);
+  std::string applied, restart;
+  for (const auto& k : diff.reloadable) {
+    if (k == "loop.step_budget_ms" || k.rfind("lcm.", 0) == 0) {
+      applied += " " + k;
+    } else {
+      restart += " " + k;  // atlas/noise parameters: the running atlas keeps its options
+    }
+  }
+  for (const auto& k : diff.needs_restart) restart += " " + k;
+  options_.loop.step_budget_ms = loaded.loop.step_budget_ms;
+  options_.lcm.health_period_s = loaded.lcm.health_period_s;
+  options_.lcm.graph_period_s = loaded.lcm.graph_period_s;
+  options_.lcm.local_map_period_s = loaded.lcm.local_map_period_s;
+  options_.lcm.republish_raw = loaded.lcm.republish_raw;
+  republish_raw_ = loaded.lcm.republish_raw;
+  loop_->SetStepBudget(ToStepLoopOptions(options_).step_budget);
+  sink_->SetPeriods(options_.lcm);
+  std::fprintf(stderr, "atlasd: reload: applied:%s%s\n",
+               applied.empty() ? " (nothing)" : applied.c_str(),
+               restart.empty() ? "" : ("; take effect at the next start:" + restart).c_str());
+}
+
+void LiveDaemon::LoopThread() {
+  ApplyScheduling(options_.scheduling);
+  shared_.loop_running.store(true);
+  while (!shared_.stop.load(std::memory_order_acquire)) {
+    const Time now = Now();
+    shared_.heartbeat_ns.store(now.time_since_epoch().count(), std::memory_order_release);
+    if (shared_.stall_until_ns.load() > now.time_since_epoch().count()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // test stall: no heartbeat
+      shared_.heartbeat_ns.store(0);
+      continue;
+    }
+    {
+      std::unique_lock<std::mutex> lock(shared_.mutex, std::try_to_lock);
+      if (lock.owns_lock() && shared_.reload_pending) {
+        shared_.reload_pending = false;
+        DaemonOptions loaded = shared_.reloaded;
+        lock.unlock();
+        ApplyReload(loaded);
+      }
+    }
+    Drain();
+    const bool stepped = loop_->StepOne(sink_.get());
+    if (now - last_health_ >= SecondsToDuration(options_.lcm.health_period_s)) {
+      last_health_ = now;
+      PublishHealth(now);
+    }
+    if (!stepped) std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  shared_.loop_running.store(false);
+}
+
+int LiveDaemon::Run() {
+  start_ = Now();
+  if (std::string e = ValidateDerivedOptions(options_); !e.empty()) {
+    std::fprintf(stderr, "atlasd: configuration rejected:\n%s", e.c_str());
+    return kExitConfigError;
+  }
+  // Signals are handled by the main thread only (sigtimedwait); block them before any thread.
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (int s : {SIGTERM, SIGINT, SIGHUP, SIGUSR1}) sigaddset(&signals, s);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  if (options_.scheduling.mlockall && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
+    std::fprintf(stderr,
+                 "atlasd: warning: scheduling.mlockall refused (%s); memory may be paged out "
+                 "(raise LimitMEMLOCK or grant CAP_IPC_LOCK)\n",
+                 std::strerror(errno));
+
+  lcm_ = std::make_unique<lcm::LCM>(options_.lcm.url);
+  if (!lcm_->good()) {
+    std::fprintf(stderr,
+                 "atlasd: cannot open LCM at lcm.url = \"%s\" (is there a multicast route? see "
+                 "docs/atlasd.md)\n",
+                 options_.lcm.url.c_str());
+    return 1;
+  }
+  publisher_ = std::make_unique<AtlasPublisher>(lcm_.get(), options_.lcm.channels);
+  sink_ = std::make_unique<LcmSink>(publisher_.get(), options_.lcm);
+  republish_raw_ = options_.lcm.republish_raw;
+  atlas_ = MakeAtlas(ToMapperSettings(options_));
+  loop_ = std::make_unique<StepLoop>(ToStepLoopOptions(options_), ToMapperSettings(options_),
+                                     atlas_.get());
+
+  odometry_ = std::make_unique<OdometryReader>(ToOdometryReaderOptions(options_));
+  odometry_->Start();
+  if (options_.laser.enabled) {
+    laser_ = std::make_unique<LaserReader>(ToLaserReaderOptions(options_));
+    laser_->Start();
+  }
+  if (options_.sonar.enabled) {
+    sonar_ = std::make_unique<SonarReader>(ToSonarReaderOptions(options_));
+    sonar_->Start();
+  }
+  std::thread loop_thread([this] { LoopThread(); });
+
+  // READY once every device runs (or after ready_timeout: a missing device is a fault the
+  // daemon reports and survives, not a reason to be killed by systemd's start timeout).
+  const Time ready_deadline = start_ + SecondsToDuration(flags_.ready_timeout_s);
+  bool ready = false;
+  const auto watchdog = ServiceNotifier::WatchdogInterval();
+  const Duration ping_period = watchdog.count() > 0
+                                   ? std::chrono::duration_cast<Duration>(watchdog / 2)
+                                   : Duration(std::chrono::seconds(1));
+  const Duration heartbeat_max = std::min<Duration>(ping_period, std::chrono::seconds(1));
+  Time last_ping{};
+  std::string last_status;
+  int exit_code = 0;
+  for (;;) {
+    timespec timeout{0, 50 * 1000 * 1000};
+    siginfo_t info;
+    const int sig = sigtimedwait(&signals, &info, &timeout);
+    const Time now = Now();
+    if (sig == SIGTERM || sig == SIGINT) break;
+    if (sig == SIGHUP) {
+      ConfigResult r = LoadConfigFile(flags_.config_path);
+      if (!r.ok()) {
+        std::fprintf(stderr, "atlasd: reload refused, the running configuration stays:\n");
+        for (const auto& e : r.errors) std::fprintf(stderr, "  %s\n", e.ToString().c_str());
+      } else {
+        std::lock_guard<std::mutex> lock(shared_.mutex);
+        shared_.reloaded = r.options;
+        shared_.reload_pending = true;
+      }
+    }
+    if (sig == SIGUSR1) {
+      if (flags_.debug_stall_on_usr1) {
+        std::fprintf(stderr, "atlasd: SIGUSR1: stalling the loop for %.1f s (test hook)\n",
+                     flags_.stall_seconds);
+        shared_.stall_until_ns.store(
+            (now + SecondsToDuration(flags_.stall_seconds)).time_since_epoch().count());
+      }
+    }
+    if (!ready) {
+      bool all = shared_.loop_running.load();
+      for (const auto& d : Drivers()) all = all && d.health.state == DriverState::kRunning;
+      if (all || now >= ready_deadline) {
+        ready = true;
+        notifier_.Ready();
+        if (!all) std::fprintf(stderr, "atlasd: ready without every device (see health)\n");
+      }
+    }
+    const bool healthy =
+        now - Time(Duration(shared_.heartbeat_ns.load(std::memory_order_acquire))) < heartbeat_max;
+    if (ready && now - last_ping >= ping_period) {
+      last_ping = now;
+      std::string status;
+      {
+        std::lock_guard<std::mutex> lock(shared_.mutex);
+        status = shared_.status;
+      }
+      if (!status.empty() && status != last_status) {
+        notifier_.Status(status);
+        last_status = status;
+      }
+      if (healthy && watchdog.count() > 0) notifier_.Watchdog();
+      if (!healthy) {
+        notifier_.Status("loop stalled: no watchdog ping");
+        last_status.clear();
+      }
+    }
+  }
+  notifier_.Stopping();
+  std::fprintf(stderr, "atlasd: stopping\n");
+  shared_.stop.store(true, std::memory_order_release);
+  loop_thread.join();
+  if (laser_) laser_->Stop();
+  if (odometry_) odometry_->Stop();
+  if (sonar_) sonar_->Stop();
+  std::fprintf(stderr, "atlasd: stopped after %lld steps\n",
+               static_cast<long long>(loop_->steps()));
+  return exit_code;
+}
+
+}  // namespace
+
+int RunLiveDaemon(const DaemonOptions& options, const LiveFlags& flags) {
+  LiveDaemon d(options, flags);
+  return d.Run();
+}
+
+}  // namespace atlas

@@ -1,0 +1,131 @@
+#include "daemon/atlasd/step_loop.h"
+
+#include <algorithm>
+
+namespace atlas {
+namespace {
+constexpr size_t kPeriodSample = 2048;
+}
+
+std::string StepLoopOptions::Validate() const {
+  if (step_budget <= Duration::zero()) return "step budget must be positive";
+  if (max_pending_scans < 1) return "max_pending_scans must be at least 1";
+  if (!(max_range_m > 0)) return "max_range_m must be positive";
+  if (laser_timeout <= Duration::zero()) return "laser_timeout must be positive";
+  if (odometry_capacity < 2) return "odometry_capacity must be at least 2";
+  return "";
+}
+
+StepLoop::StepLoop(const StepLoopOptions& options, const MapperSettings& settings, Atlas* atlas)
+    : options_(options),
+      settings_(settings),
+      atlas_(atlas),
+      track_(options.odometry_capacity),
+      pending_(static_cast<size_t>(options.max_pending_scans)) {
+  period_us_.reserve(kPeriodSample);
+  scratch_us_.reserve(kPeriodSample);
+}
+
+void StepLoop::AddOdometry(const OdometrySample& sample) {
+  if (track_.empty() && !have_previous_) {
+    // No scan yet: dead reckoning (if the laser never comes) starts at the first odometry.
+    previous_odometry_ = sample.pose;
+    last_scan_stamp_ = sample.stamp;
+  }
+  track_.Add(sample);
+  if (track_.Newest().stamp - last_scan_stamp_ > options_.laser_timeout && pending_size_ == 0)
+    laser_silent_ = true;
+}
+
+void StepLoop::AddScan(LaserScan&& scan) {
+  if (pending_size_ == pending_.size()) {
+    pending_head_ = (pending_head_ + 1) % pending_.size();
+    --pending_size_;
+    ++dropped_scans_;
+  }
+  pending_[(pending_head_ + pending_size_) % pending_.size()] = std::move(scan);
+  ++pending_size_;
+}
+
+bool StepLoop::StepOne(StepSink* sink) {
+  if (pending_size_ == 0) {
+    if (laser_silent_) DeadReckon(sink);
+    return false;
+  }
+  LaserScan& scan = pending_[pending_head_];
+  const float max_range = static_cast<float>(options_.max_range_m);
+  for (float& r : scan.ranges)
+    if (!(r < max_range)) r = kNoReturn;
+  Pose2 odometry;
+  const OdometryLookup lookup = track_.PoseAt(scan.stamp, &odometry);
+  if (lookup == OdometryLookup::kNoData) {
+    ++scans_without_odometry_;
+    odometry = have_previous_ ? previous_odometry_ : Pose2{};
+  }
+  const Pose2 delta = have_previous_ ? Between(previous_odometry_, odometry) : Pose2{};
+  if (!have_previous_) laser_silent_ = false;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  atlas_->Step(delta, scan);
+  const auto elapsed = std::chrono::steady_clock::now() - t0;
+
+  ++steps_;
+  if (elapsed > options_.step_budget) ++overruns_;
+  const float us = static_cast<float>(std::chrono::duration<double, std::micro>(elapsed).count());
+  if (period_count_ == 0) period_min_ = period_max_ = us;
+  period_min_ = std::min(period_min_, us);
+  period_max_ = std::max(period_max_, us);
+  if (period_us_.size() < kPeriodSample) period_us_.push_back(us);
+  ++period_count_;
+
+  have_previous_ = true;
+  previous_odometry_ = odometry;
+  last_scan_stamp_ = scan.stamp;
+  laser_silent_ = false;
+  last_dominant_ = atlas_->Dominant();
+  const Time stamp = scan.stamp;
+  pending_head_ = (pending_head_ + 1) % pending_.size();
+  --pending_size_;
+  sink->OnPose(stamp, last_dominant_, PoseSource::kScan);
+  sink->OnStep(stamp, *atlas_);
+  return true;
+}
+
+int StepLoop::StepAll(StepSink* sink) {
+  int n = 0;
+  while (StepOne(sink)) ++n;
+  return n;
+}
+
+void StepLoop::DeadReckon(StepSink* sink) {
+  if (track_.empty()) return;
+  const OdometrySample& newest = track_.Newest();
+  if (newest.stamp - last_dead_reckoning_ < options_.dead_reckoning_period) return;
+  last_dead_reckoning_ = newest.stamp;
+  const Pose2 delta = Between(previous_odometry_, newest.pose);
+  DominantOutput out = last_dominant_;
+  const UncertainPose increment{delta, OdometryIncrementNoise(delta, settings_)};
+  out.pose = Compose(last_dominant_.pose, increment);
+  sink->OnPose(newest.stamp, out, PoseSource::kOdometryOnly);
+}
+
+StepTimeSummary StepLoop::TakePeriod() {
+  StepTimeSummary s;
+  s.steps = static_cast<int>(period_count_);
+  if (period_count_ > 0) {
+    scratch_us_.assign(period_us_.begin(), period_us_.end());
+    const size_t n = scratch_us_.size();
+    std::nth_element(scratch_us_.begin(), scratch_us_.begin() + n / 2, scratch_us_.end());
+    s.median_us = scratch_us_[n / 2];
+    const size_t k = std::min(n - 1, static_cast<size_t>(0.99 * static_cast<double>(n)));
+    std::nth_element(scratch_us_.begin(), scratch_us_.begin() + k, scratch_us_.end());
+    s.p99_us = scratch_us_[k];
+    s.min_us = period_min_;
+    s.max_us = period_max_;
+  }
+  period_us_.clear();
+  period_count_ = 0;
+  return s;
+}
+
+}  // namespace atlas

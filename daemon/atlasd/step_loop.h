@@ -1,0 +1,108 @@
+#pragma once
+// The step loop's logic, without threads or devices, so that the live daemon and the offline
+// replay run the same code (issue 6, "The loop" and "Offline replay").
+//
+// Contract:
+// - AddOdometry / AddScan / Pending never block and never allocate beyond fixed capacities
+//   (scans are moved in; the pending ring holds `max_pending_scans`).
+// - When more than `max_pending_scans` scans wait, the OLDEST is dropped and counted
+//   (dropped_scans): the loop never queues work up when it falls behind.
+// - StepOne() steps the atlas with the oldest pending scan: the odometry increment is the
+//   difference of the odometry poses at the previous and the current scan stamps, each
+//   interpolated between the samples bracketing the stamp (OdometryTrack; extrapolated briefly
+//   when the scan is newer than every sample). Ranges beyond max_range_m become kNoReturn.
+//   The step time is measured; a step longer than step_budget is an overrun (counted).
+//   The pose is reported to the sink after every step.
+// - Dead reckoning: when the newest odometry is more than `laser_timeout` (data time) past the
+//   last stepped scan, the laser is considered away: every `dead_reckoning_period` of odometry
+//   the sink gets the last dominant pose moved by the odometry since that scan, with covariance
+//   grown by the maps' odometry noise model, and laser_silent() is true until a scan is stepped.
+// - Deterministic: given the same calls in the same order, the same outputs (replay relies on
+//   it); only the measured step times differ.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "core/atlas/atlas.h"
+#include "daemon/atlasd/atlas_factory.h"
+#include "daemon/atlasd/odometry_track.h"
+
+namespace atlas {
+
+struct StepLoopOptions {
+  Duration step_budget = std::chrono::milliseconds(10);
+  int max_pending_scans = 2;
+  double max_range_m = 8.0;
+  Duration laser_timeout = std::chrono::milliseconds(500);
+  Duration dead_reckoning_period = std::chrono::milliseconds(50);
+  size_t odometry_capacity = 512;
+  std::string Validate() const;
+};
+
+enum class PoseSource { kScan, kOdometryOnly };
+
+// What the loop reports; implemented by the LCM publisher and by the replay writer.
+class StepSink {
+ public:
+  virtual ~StepSink() = default;
+  // After every step (source kScan) and while dead reckoning (kOdometryOnly).
+  virtual void OnPose(Time stamp, const DominantOutput& pose, PoseSource source) = 0;
+  // After every step, with the atlas (for the periodic graph, map and hypothesis output).
+  virtual void OnStep(Time stamp, const Atlas& atlas) = 0;
+};
+
+// Step times since the last TakePeriod(), in microseconds (bounded sample).
+struct StepTimeSummary {
+  int steps = 0;
+  float min_us = 0, median_us = 0, p99_us = 0, max_us = 0;
+};
+
+class StepLoop {
+ public:
+  // `atlas` is owned by the caller and outlives the loop; settings as used to make it.
+  StepLoop(const StepLoopOptions& options, const MapperSettings& settings, Atlas* atlas);
+
+  void AddOdometry(const OdometrySample& sample);
+  void AddScan(LaserScan&& scan);
+  size_t Pending() const { return pending_size_; }
+  // Steps the oldest pending scan; false when none is pending.
+  bool StepOne(StepSink* sink);
+  // Steps every pending scan.
+  int StepAll(StepSink* sink);
+
+  // Options that a reload may change (step budget, periods); capacities stay.
+  void SetStepBudget(Duration budget) { options_.step_budget = budget; }
+
+  int64_t steps() const { return steps_; }
+  int64_t overruns() const { return overruns_; }
+  int64_t dropped_scans() const { return dropped_scans_; }
+  int64_t scans_without_odometry() const { return scans_without_odometry_; }
+  bool laser_silent() const { return laser_silent_; }
+  Time last_scan_stamp() const { return last_scan_stamp_; }
+  const Atlas& atlas() const { return *atlas_; }
+  StepTimeSummary TakePeriod();
+
+ private:
+  void DeadReckon(StepSink* sink);
+
+  StepLoopOptions options_;
+  MapperSettings settings_;
+  Atlas* atlas_;
+  OdometryTrack track_;
+  std::vector<LaserScan> pending_;  // ring
+  size_t pending_head_ = 0, pending_size_ = 0;
+  bool have_previous_ = false;
+  Pose2 previous_odometry_;
+  Time last_scan_stamp_{};
+  DominantOutput last_dominant_;
+  bool laser_silent_ = false;
+  Time last_dead_reckoning_{};
+  int64_t steps_ = 0, overruns_ = 0, dropped_scans_ = 0, scans_without_odometry_ = 0;
+  std::vector<float> period_us_, scratch_us_;
+  size_t period_count_ = 0;
+  float period_min_ = 0, period_max_ = 0;
+};
+
+}  // namespace atlas

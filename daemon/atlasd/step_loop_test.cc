@@ -1,0 +1,142 @@
+#include "daemon/atlasd/step_loop.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "core/atlas/atlas_test_world.h"
+
+namespace atlas {
+namespace {
+
+struct Recorded {
+  Time stamp;
+  DominantOutput pose;
+  PoseSource source;
+};
+
+class RecordingSink : public StepSink {
+ public:
+  void OnPose(Time stamp, const DominantOutput& pose, PoseSource source) override {
+    poses.push_back({stamp, pose, source});
+  }
+  void OnStep(Time, const Atlas& atlas) override { last_steps = atlas.StepCount(); }
+  std::vector<Recorded> poses;
+  int64_t last_steps = 0;
+};
+
+LaserScan ScanAt(double t) {
+  LaserScan s = TestScan();
+  s.stamp = FromSeconds(t);
+  return s;
+}
+
+class StepLoopTest : public ::testing::Test {
+ protected:
+  StepLoopTest() : atlas_(TestWorld::Options(), world_.Factory(), nullptr) {}
+  TestWorld world_;
+  Atlas atlas_;
+  MapperSettings settings_;
+};
+
+TEST_F(StepLoopTest, OdometryIsInterpolatedToTheScanStamp) {
+  StepLoopOptions o;
+  StepLoop loop(o, settings_, &atlas_);
+  RecordingSink sink;
+  loop.AddOdometry({FromSeconds(10.0), Pose2{0, 0, 0}});
+  loop.AddOdometry({FromSeconds(10.1), Pose2{1.0, 0, 0}});
+  loop.AddScan(ScanAt(10.0));
+  loop.AddScan(ScanAt(10.05));
+  EXPECT_EQ(loop.StepAll(&sink), 2);
+  ASSERT_EQ(sink.poses.size(), 2u);
+  ASSERT_TRUE(sink.poses[1].pose.valid);
+  EXPECT_EQ(sink.poses[1].source, PoseSource::kScan);
+  EXPECT_EQ(sink.poses[1].stamp, FromSeconds(10.05));
+  // The fake maps move the robot by exactly the odometry increment: 0.5 m of the 1 m.
+  EXPECT_NEAR(sink.poses[1].pose.pose.mean.x - sink.poses[0].pose.pose.mean.x, 0.5, 1e-6);
+  EXPECT_EQ(loop.steps(), 2);
+  EXPECT_EQ(sink.last_steps, 2);
+}
+
+TEST_F(StepLoopTest, DropsTheOldestScansWhenBehind) {
+  StepLoopOptions o;
+  o.max_pending_scans = 2;
+  StepLoop loop(o, settings_, &atlas_);
+  RecordingSink sink;
+  loop.AddOdometry({FromSeconds(0.0), Pose2{}});
+  for (int i = 0; i < 5; ++i) loop.AddScan(ScanAt(0.01 * i));
+  EXPECT_EQ(loop.dropped_scans(), 3);
+  EXPECT_EQ(loop.Pending(), 2u);
+  EXPECT_EQ(loop.StepAll(&sink), 2);
+  ASSERT_EQ(sink.poses.size(), 2u);
+  EXPECT_EQ(sink.poses[0].stamp, FromSeconds(0.03));  // the newest two survived, in order
+  EXPECT_EQ(sink.poses[1].stamp, FromSeconds(0.04));
+}
+
+TEST_F(StepLoopTest, CountsOverrunsAgainstTheBudget) {
+  StepLoopOptions o;
+  o.step_budget = Duration(1);  // 1 ns: every step overruns
+  StepLoop loop(o, settings_, &atlas_);
+  RecordingSink sink;
+  loop.AddOdometry({FromSeconds(0.0), Pose2{}});
+  loop.AddScan(ScanAt(0.0));
+  loop.StepAll(&sink);
+  EXPECT_EQ(loop.overruns(), 1);
+  const StepTimeSummary s = loop.TakePeriod();
+  EXPECT_EQ(s.steps, 1);
+  EXPECT_GT(s.max_us, 0.0f);
+  EXPECT_LE(s.min_us, s.median_us);
+  EXPECT_LE(s.median_us, s.p99_us);
+  EXPECT_LE(s.p99_us, s.max_us);
+  EXPECT_EQ(loop.TakePeriod().steps, 0);  // a period is taken once
+}
+
+TEST_F(StepLoopTest, DeadReckonsWhileTheLaserIsAwayAndRecovers) {
+  StepLoopOptions o;
+  o.laser_timeout = std::chrono::milliseconds(500);
+  o.dead_reckoning_period = std::chrono::milliseconds(100);
+  StepLoop loop(o, settings_, &atlas_);
+  RecordingSink sink;
+  loop.AddOdometry({FromSeconds(0.0), Pose2{}});
+  loop.AddScan(ScanAt(0.0));
+  loop.StepAll(&sink);
+  const DominantOutput at_scan = sink.poses.back().pose;
+  sink.poses.clear();
+  // 2 s of odometry at 50 Hz driving along x at 1 m/s, no scans.
+  for (int i = 1; i <= 100; ++i) {
+    loop.AddOdometry({FromSeconds(0.02 * i), Pose2{0.02 * i, 0, 0}});
+    EXPECT_FALSE(loop.StepOne(&sink));
+  }
+  EXPECT_TRUE(loop.laser_silent());
+  ASSERT_GE(sink.poses.size(), 10u);  // ~1.5 s of silence at 10 Hz
+  EXPECT_LE(sink.poses.size(), 16u);
+  const Recorded& last = sink.poses.back();
+  EXPECT_EQ(last.source, PoseSource::kOdometryOnly);
+  EXPECT_EQ(last.pose.frame, at_scan.frame);
+  // Moved by the odometry since the scan, up to the newest sample it was published at.
+  EXPECT_NEAR(last.pose.pose.mean.x - at_scan.pose.mean.x, ToSeconds(last.stamp), 1e-6);
+  EXPECT_GT(ToSeconds(last.stamp), 1.85);
+  EXPECT_GT(last.pose.pose.cov.trace(), at_scan.pose.cov.trace());  // uncertainty grew
+  // The laser is back.
+  loop.AddScan(ScanAt(2.0));
+  EXPECT_TRUE(loop.StepOne(&sink));
+  EXPECT_FALSE(loop.laser_silent());
+  EXPECT_EQ(sink.poses.back().source, PoseSource::kScan);
+}
+
+TEST_F(StepLoopTest, PublishesOnOdometryAloneWhenNoScanEverCame) {
+  StepLoopOptions o;
+  StepLoop loop(o, settings_, &atlas_);
+  RecordingSink sink;
+  for (int i = 0; i <= 50; ++i) {
+    loop.AddOdometry({FromSeconds(5.0 + 0.02 * i), Pose2{0.01 * i, 0, 0}});
+    loop.StepOne(&sink);
+  }
+  EXPECT_TRUE(loop.laser_silent());
+  ASSERT_FALSE(sink.poses.empty());
+  EXPECT_FALSE(sink.poses.back().pose.valid);  // no frame yet
+  EXPECT_NEAR(sink.poses.back().pose.pose.mean.x, 0.5, 1e-6);
+}
+
+}  // namespace
+}  // namespace atlas

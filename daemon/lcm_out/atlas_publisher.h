@@ -1,0 +1,44 @@
+#pragma once
+// Sends atlasd's outputs on the configured LCM channels (lcm.channels.*). Thin: every message
+// is made by lcm_convert.h; this class only knows the channel names. Not thread-safe: one
+// thread (the loop) publishes. A failed publish (e.g. no route) is counted, never fatal.
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "atlas/health_t.hpp"
+#include "daemon/config/daemon_options.h"
+#include "daemon/lcm_out/lcm_convert.h"
+
+namespace atlas {
+
+class AtlasPublisher {
+ public:
+  AtlasPublisher(lcm::LCM* lcm, const LcmChannels& channels) : lcm_(lcm), channels_(channels) {}
+
+  void Pose(Time stamp, const DominantOutput& d) { Send(channels_.pose, ToPoseMessage(stamp, d)); }
+  void Graph(Time stamp, const Atlas& a) { Send(channels_.graph, ToGraphMessage(stamp, a)); }
+  void Hypotheses(Time stamp, const Atlas& a) {
+    Send(channels_.hypotheses, ToHypothesesMessage(stamp, a));
+  }
+  void LocalMap(Time stamp, const Atlas& a) {
+    Send(channels_.local_map, ToLocalMapMessage(stamp, a));
+  }
+  void Health(const atlas::health_t& h) { Send(channels_.health, h); }
+  void RawLaser(const LaserScan& s) { Send(channels_.raw_laser, ToLaserMessage(s)); }
+  void RawOdometry(const OdometrySample& s) { Send(channels_.raw_odometry, ToOdometryMessage(s)); }
+  void RawSonar(const SonarReading& s) { Send(channels_.raw_sonar, ToSonarMessage(s)); }
+
+  uint64_t failures() const { return failures_; }
+
+ private:
+  template <typename M>
+  void Send(const std::string& channel, const M& message) {
+    if (lcm_->publish(channel, &message) != 0) ++failures_;
+  }
+
+  lcm::LCM* lcm_;
+  LcmChannels channels_;
+  uint64_t failures_ = 0;
+};
+
+}  // namespace atlas

@@ -1,0 +1,103 @@
+# Shared by the hardware-in-loop scripts (sourced). Needs ATLASD, FAKEDEV, LOG_SUMMARY and
+# DATASET in the environment (tests/hil/CMakeLists.txt sets them). Every process started here
+# is stopped by its own pid on exit.
+set -euo pipefail
+WORK=$(mktemp -d /tmp/atlasd-hil.XXXXXX)
+PIDS=()
+cleanup() {
+  local p
+  for p in "${PIDS[@]}"; do kill "$p" 2>/dev/null || true; done
+  sleep 0.2
+  for p in "${PIDS[@]}"; do kill -9 "$p" 2>/dev/null || true; done
+  if [ "${HIL_KEEP:-0}" = 1 ]; then echo "kept $WORK" >&2; else rm -rf "$WORK"; fi
+}
+trap cleanup EXIT
+
+fail() { echo "FAIL: $*" >&2; for f in "$WORK"/*.err; do [ -f "$f" ] && { echo "--- $f" >&2; tail -n 15 "$f" >&2; }; done; exit 1; }
+pass() { echo "PASS: $*"; }
+
+need_multicast() {
+  if [ -z "${LCM_DEFAULT_URL:-}" ] || ! ip route show 224.0.0.0/4 2>/dev/null | grep -q dev; then
+    echo "SKIP: needs a private network namespace with a multicast route (scripts/test.sh)" >&2
+    exit 77
+  fi
+}
+need_dataset() {
+  [ -f "$DATASET" ] || { echo "SKIP: dataset $DATASET absent" >&2; exit 77; }
+}
+
+# write_config FILE SPEED [extra TOML lines...]: atlasd on the fakes in $WORK/dev.
+write_config() {
+  local file=$1 speed=$2
+  shift 2
+  cat >"$file" <<TOML
+# hardware-in-loop configuration (written by tests/hil/hil_lib.sh)
+[laser]
+device = "$WORK/dev/laser"
+unit = "cm"
+max_range_m = 50.0
+[odometry]
+interface = "unix:$WORK/dev/can"
+# at SPEED times real time the wheels seem to turn SPEED times faster
+max_speed_mps = $(awk -v s="$speed" 'BEGIN { v = 3 * s; if (v > 20) v = 20; print v }')
+[sonar]
+enabled = true
+device = "$WORK/dev/sonar"
+[lcm]
+url = "${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}"
+republish_raw = true
+health_period_s = 0.5
+[state]
+directory = "$WORK/state"
+TOML
+  local line
+  for line in "$@"; do echo "$line" >>"$file"; done
+}
+
+# start_fakedev ARGS...: plays $DATASET into $WORK/dev; waits for the devices to exist.
+start_fakedev() {
+  "$FAKEDEV" --log "$DATASET" --dir "$WORK/dev" --wait-for-drivers --progress-every 0 "$@" \
+    >"$WORK/fakedev.out" 2>"$WORK/fakedev.err" &
+  FAKEDEV_PID=$!
+  PIDS+=("$FAKEDEV_PID")
+  local i
+  for i in $(seq 100); do
+    [ -e "$WORK/dev/laser" ] && [ -e "$WORK/dev/can" ] && [ -e "$WORK/dev/sonar" ] && return 0
+    kill -0 "$FAKEDEV_PID" 2>/dev/null || fail "atlas-fakedev exited at start"
+    sleep 0.05
+  done
+  fail "atlas-fakedev made no devices in 5 s"
+}
+
+start_logger() {
+  lcm-logger --quiet "$WORK/session.lcm" >"$WORK/logger.err" 2>&1 &
+  LOGGER_PID=$!
+  PIDS+=("$LOGGER_PID")
+  sleep 0.3
+}
+
+# start_atlasd CONFIG [args...]
+start_atlasd() {
+  local config=$1
+  shift
+  "$ATLASD" --config "$config" "$@" >"$WORK/atlasd.out" 2>"$WORK/atlasd.err" &
+  ATLASD_PID=$!
+  PIDS+=("$ATLASD_PID")
+}
+
+# stop_pid PID SECONDS: SIGTERM, and the time it took to exit must be under SECONDS.
+stop_pid() {
+  local pid=$1 limit=$2 t0 t1
+  t0=$(date +%s.%N)
+  kill -TERM "$pid"
+  local rc=0
+  wait "$pid" || rc=$?
+  t1=$(date +%s.%N)
+  awk -v a="$t0" -v b="$t1" -v l="$limit" 'BEGIN { exit !(b - a < l) }' ||
+    fail "pid $pid took $(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }') s to stop (limit $limit s)"
+  return "$rc"
+}
+
+summary_value() {  # summary_value FILE KEY
+  grep -E "^$2=" "$1" | head -n 1 | cut -d= -f2
+}

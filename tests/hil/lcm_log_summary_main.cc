@@ -1,0 +1,96 @@
+// atlas-lcm-log-summary: what an lcm-logger file of an atlasd session holds, as key=value
+// lines for the hardware-in-loop test scripts (tests/hil/*.sh). See --help.
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <lcm/lcm-cpp.hpp>
+#include <map>
+#include <string>
+
+#include "atlas/health_t.hpp"
+#include "atlas/pose_t.hpp"
+
+namespace {
+
+constexpr const char* kHelp = R"(usage: atlas-lcm-log-summary LOGFILE [--poses FILE]
+
+Prints key=value lines about an lcm-logger file recorded from atlasd (default channels):
+  events.CHANNEL            messages per channel
+  pose.count, pose.max_gap_s (largest gap between consecutive ATLAS_POSE receive times),
+  pose.max_gap_after_s      (the same, after the first pose)
+  health.count, health.laser_fault_seen (a status with LASER FAULT), health.last_steps,
+  health.max_overruns, health.dropped_scans,
+  health.<driver>.<counter> (last value: bad_crc garbage_bytes truncated discontinuities
+                             disconnects reconnects), health.<driver>.states (states seen, in order)
+--poses FILE writes the poses received: "t x y theta frame q" (t: utime in seconds).
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "--help")) {
+    std::fputs(kHelp, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  FILE* poses = nullptr;
+  if (argc == 4 && !std::strcmp(argv[2], "--poses")) poses = std::fopen(argv[3], "w");
+  lcm::LogFile log(argv[1], "r");
+  if (!log.good()) {
+    std::fprintf(stderr, "atlas-lcm-log-summary: cannot read %s\n", argv[1]);
+    return 1;
+  }
+  std::map<std::string, int64_t> events;
+  int64_t pose_count = 0, health_count = 0, last_pose_ts = -1;
+  double max_gap = 0;
+  bool fault = false;
+  atlas::health_t last{};
+  int64_t max_overruns = 0;
+  std::map<std::string, std::string> states;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    ++events[e->channel];
+    if (e->channel == "ATLAS_POSE") {
+      atlas::pose_t p{};
+      if (p.decode(e->data, 0, e->datalen) < 0) continue;
+      ++pose_count;
+      if (last_pose_ts >= 0) max_gap = std::max(max_gap, (e->timestamp - last_pose_ts) * 1e-6);
+      last_pose_ts = e->timestamp;
+      if (poses)
+        std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f\n", p.utime * 1e-6, p.x, p.y, p.theta,
+                     p.frame_id, p.q);
+    } else if (e->channel == "ATLAS_HEALTH") {
+      atlas::health_t h{};
+      if (h.decode(e->data, 0, e->datalen) < 0) continue;
+      ++health_count;
+      if (h.status.find("LASER FAULT") != std::string::npos) fault = true;
+      max_overruns = std::max<int64_t>(max_overruns, h.overruns);
+      for (const auto& d : h.drivers) {
+        static const char* kNames[] = {"stopped", "connecting",   "running",
+                                       "stalled", "reconnecting", "failed"};
+        const std::string s = d.state >= 0 && d.state <= 5 ? kNames[d.state] : "?";
+        std::string& seen = states[d.name];
+        if (seen.empty() || seen.substr(seen.rfind(',') + 1) != s)
+          seen += (seen.empty() ? "" : ",") + s;
+      }
+      last = h;
+    }
+  }
+  if (poses) std::fclose(poses);
+  for (const auto& [c, n] : events) std::printf("events.%s=%" PRId64 "\n", c.c_str(), n);
+  std::printf("pose.count=%" PRId64 "\npose.max_gap_s=%.3f\n", pose_count, max_gap);
+  std::printf("health.count=%" PRId64 "\nhealth.laser_fault_seen=%d\n", health_count, fault);
+  std::printf("health.last_steps=%" PRId64 "\nhealth.max_overruns=%" PRId64
+              "\nhealth.dropped_scans=%" PRId64 "\n",
+              last.steps, max_overruns, last.dropped_scans);
+  std::printf("health.num_frames=%d\n", last.num_frames);
+  for (const auto& d : last.drivers) {
+    const char* n = d.name.c_str();
+    std::printf("health.%s.bad_crc=%" PRId64 "\nhealth.%s.garbage_bytes=%" PRId64
+                "\nhealth.%s.truncated=%" PRId64 "\nhealth.%s.discontinuities=%" PRId64
+                "\nhealth.%s.disconnects=%" PRId64 "\nhealth.%s.reconnects=%" PRId64
+                "\nhealth.%s.messages=%" PRId64 "\n",
+                n, d.bad_crc, n, d.garbage_bytes, n, d.truncated, n, d.discontinuities, n,
+                d.disconnects, n, d.reconnects, n, d.messages);
+  }
+  for (const auto& [n, s] : states) std::printf("health.%s.states=%s\n", n.c_str(), s.c_str());
+  return 0;
+}
