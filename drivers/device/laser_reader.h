@@ -37,7 +37,9 @@ struct LaserReaderOptions {
   // Rates tried for the status check, in order; the first must be 9600 (power-up rate).
   std::vector<int> probe_rates = {9600, 500000, 38400, 19200};
   Duration reply_timeout = std::chrono::milliseconds(300);  // spec: replies within 60 ms
-  Duration truncation_gap = std::chrono::milliseconds(10);  // silence inside a telegram
+  // Silence inside a telegram that makes it truncated; well above the chunking of USB serial
+  // adapters (FTDI latency timer: 16 ms) and a loaded machine's scheduling delays.
+  Duration truncation_gap = std::chrono::milliseconds(100);
   size_t queue_capacity = 64;
   ReconnectOptions reconnect;
   std::string Validate() const;

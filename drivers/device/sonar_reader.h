@@ -28,7 +28,7 @@ struct SonarReaderOptions {
   p2os::SonarOptions sonar;
   Duration pulse_period = std::chrono::milliseconds(1000);
   Duration reply_timeout = std::chrono::milliseconds(300);
-  Duration truncation_gap = std::chrono::milliseconds(10);
+  Duration truncation_gap = std::chrono::milliseconds(100);  // see LaserReaderOptions
   size_t queue_capacity = 64;
   ReconnectOptions reconnect;
   std::string Validate() const;

@@ -139,13 +139,15 @@ bool SerialPort::Open(const SerialOptions& options, std::string* error) {
       return false;
     }
   }
+  // Bytes received before the line is at our rate are stale (or line noise): drop them, then
+  // set the rate, so that nothing sent at the new rate is lost.
+  tcflush(fd, TCIOFLUSH);
   std::string why;
   if (!ConfigureRawTerminal(fd, options.baud, &why)) {
     ::close(fd);
     *error = "serial " + options.device + ": " + why;
     return false;
   }
-  tcflush(fd, TCIOFLUSH);
   fd_ = fd;
   return true;
 }

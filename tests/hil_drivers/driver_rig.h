@@ -274,4 +274,32 @@ inline size_t CompareScans(const fake::Recording& rec, const std::vector<size_t>
   return bad;
 }
 
+// For runs with faults: every scan out must equal a scan sent intact, in order; scans sent
+// intact may be missing (written just before an unplug, or while the driver was reopening
+// the line). Returns the number of scans out that match none; *missing counts the others.
+inline size_t CompareScansInOrder(const fake::Recording& rec, const std::vector<size_t>& sent,
+                                  const std::vector<LaserScan>& got, size_t* missing) {
+  auto same = [&](const LaserScan& a, const LaserScan& b) {
+    if (a.ranges.size() != b.ranges.size()) return false;
+    for (size_t i = 0; i < a.ranges.size(); ++i) {
+      const bool ra = IsReturn(a.ranges[i]), rb = IsReturn(b.ranges[i]);
+      if (ra != rb || (ra && std::abs(a.ranges[i] - b.ranges[i]) > 0.0051f)) return false;
+    }
+    return true;
+  };
+  size_t unmatched = 0, j = 0, matched = 0;
+  for (const LaserScan& g : got) {
+    size_t k = j;
+    while (k < sent.size() && !same(rec.scans[sent[k]], g)) ++k;
+    if (k == sent.size()) {
+      ++unmatched;
+    } else {
+      j = k + 1;
+      ++matched;
+    }
+  }
+  *missing = sent.size() - matched;
+  return unmatched;
+}
+
 }  // namespace atlas::hil

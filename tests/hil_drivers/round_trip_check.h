@@ -93,7 +93,9 @@ inline void PrintHealthAndCheck(const DriverRig& rig, bool expect_all);
 inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
   const auto sent = rig.lms_->SentIntact();
   std::string first;
-  const size_t bad = CompareScans(*rig.rec_, sent, rig.scans, &first);
+  size_t missing = 0;
+  const size_t bad = expect_all ? CompareScans(*rig.rec_, sent, rig.scans, &first)
+                                : CompareScansInOrder(*rig.rec_, sent, rig.scans, &missing);
   size_t no_return = 0;
   for (const auto& s : rig.scans)
     for (float r : s.ranges) no_return += !IsReturn(r);
