@@ -81,8 +81,9 @@ void DrawRun(Canvas& canvas, const RunData& run, const RunDrawOptions& options) 
     line.reserve(run.truth.size());
     for (const TruthSample& t : run.truth) line.emplace_back(t.pose.x, t.pose.y);
     canvas.Polyline(line, Stroke{kTruthColor, 1.6});
-    canvas.Pose(run.truth.front().pose, 0.3, Color{0.1, 0.6, 0.2});
-    canvas.Pose(run.truth.back().pose, 0.3, Color{0.8, 0.1, 0.1});
+    const double marker_m = 5.0 / px_per_m;  // 5 px at any scale
+    canvas.Pose(run.truth.front().pose, marker_m, Color{0.1, 0.6, 0.2});
+    canvas.Pose(run.truth.back().pose, marker_m, Color{0.8, 0.1, 0.1});
   }
 
   // Header: title, then legend.

@@ -49,9 +49,9 @@ options:
   --sonar-hz HZ           sonar readings per second (default 10)
   --track-width M         odometry track width (default 0.4)
   --wheel-noise V         wheel distance variance per metre, m^2/m (default 5e-6)
-  --left-scale-error E    left wheel radius error, relative (default 0.0005)
-  --right-scale-error E   right wheel radius error, relative (default -0.0005)
-  --track-width-error E   track width error, relative (default 0.003)
+  --left-scale-error E    left wheel radius error, relative (default 0.0002)
+  --right-scale-error E   right wheel radius error, relative (default -0.0002)
+  --track-width-error E   track width error, relative (default 0.002)
   --quiet                 no progress output
   --help                  this text
 )";
