@@ -205,12 +205,11 @@ void LiveDaemon::LoopThread() {
   shared_.loop_running.store(true);
   while (!shared_.stop.load(std::memory_order_acquire)) {
     const Time now = Now();
-    shared_.heartbeat_ns.store(now.time_since_epoch().count(), std::memory_order_release);
     if (shared_.stall_until_ns.load() > now.time_since_epoch().count()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));  // test stall: no heartbeat
-      shared_.heartbeat_ns.store(0);
       continue;
     }
+    shared_.heartbeat_ns.store(now.time_since_epoch().count(), std::memory_order_release);
     {
       std::unique_lock<std::mutex> lock(shared_.mutex, std::try_to_lock);
       if (lock.owns_lock() && shared_.reload_pending) {
