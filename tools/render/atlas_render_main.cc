@@ -24,6 +24,7 @@ options:
   --width PX         picture width in pixels (default 1600); the height follows the building
   --scans N          draw about N scans, evenly spread over the run (default 400; 0 = none)
   --no-odometry      do not draw the odometry trajectory
+  --odometry-km X    draw the odometry of the first X km only (default 1; 0 = all)
   --fit-odometry     fit the view to the odometry too (by default it is clipped to the world)
   --route-graph      draw the world's route graph (dashed green)
   --title TEXT       title line (default: a summary of the run)
@@ -62,7 +63,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (a != "--run" && a != "--png" && a != "--svg" && a != "--width" && a != "--scans" &&
-        a != "--title")
+        a != "--odometry-km" && a != "--title")
       return Fail("unknown option '" + a + "'");
     if (i + 1 >= argc) return Fail("option " + a + " needs a value");
     const std::string v = argv[++i];
@@ -86,6 +87,12 @@ int main(int argc, char** argv) {
       draw.width_px = static_cast<int>(integer(200, 20000));
     } else if (a == "--scans") {
       read.max_scans = integer(0, 1000000);
+    } else if (a == "--odometry-km") {
+      char* end = nullptr;
+      const double km = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(km >= 0.0 && km <= 1e6))
+        return Fail("--odometry-km: '" + v + "' is not a distance in km (0 = all)");
+      draw.odometry_length_m = 1000.0 * km;
     } else if (a == "--title") {
       draw.title = v;
     }

@@ -70,8 +70,11 @@ void DrawRun(Canvas& canvas, const RunData& run, const RunDrawOptions& options) 
     const Pose2 to_world = OdometryToWorld(run);
     std::vector<Vec2> line;
     line.reserve(run.odometry.size());
+    double length = 0.0;
     for (const OdometrySample& o : run.odometry) {
       const Pose2 p = Compose(to_world, o.pose);
+      if (!line.empty()) length += (Vec2(p.x, p.y) - line.back()).norm();
+      if (options.odometry_length_m > 0.0 && length > options.odometry_length_m) break;
       line.emplace_back(p.x, p.y);
     }
     canvas.Polyline(line, Stroke{kOdometryColor, 1.2});
@@ -108,8 +111,15 @@ void DrawRun(Canvas& canvas, const RunData& run, const RunDrawOptions& options) 
   }
   canvas.TextPx(Vec2(kMarginPx, 22), title, 16, Color{0, 0, 0}, true);
   std::vector<LegendEntry> legend{{"walls", kWallColor}, {"true trajectory", kTruthColor}};
+  std::string odometry_label = "odometry (drifts)";
+  if (options.odometry_length_m > 0.0) {
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "odometry, first %.1f km (drifts)",
+                  options.odometry_length_m / 1000.0);
+    odometry_label = buf;
+  }
   if (options.draw_odometry && !run.odometry.empty())
-    legend.push_back({"odometry (drifts)", kOdometryColor});
+    legend.push_back({odometry_label, kOdometryColor});
   if (options.draw_scans && !run.scans.empty())
     legend.push_back({"laser returns", kScanColor, true});
   legend.push_back({"start", Color{0.1, 0.6, 0.2}, true});

@@ -13,6 +13,9 @@ namespace atlas::draw {
 struct RunDrawOptions {
   int width_px = 1600;
   bool draw_odometry = true;
+  // Draw the odometry of the first this many metres only (after that it has drifted far and
+  // hides the rest); <= 0: all of it.
+  double odometry_length_m = 1000.0;
   bool draw_scans = true;
   bool draw_route_graph = false;
   // Fit the view to the world and truth only (the odometry may drift far out and is clipped),
