@@ -9,7 +9,7 @@ packages=(
   liblcm-dev liblcm-bin liblcm-java  # LCM: messages, lcm-gen, lcm-logger, lcm.jar
   default-jdk-headless          # javac/jar for the LCM Java types; runs atlas-spy
   libjchart2d-java              # charts used by lcm.spy.Spy
-  libcairo2-dev                 # pictures (PNG, SVG)
+  libcairo2-dev libfontconfig-dev  # pictures (PNG, SVG); fontconfig to free its caches at exit
   zlib1g-dev                    # gzip CARMEN logs
   libtomlplusplus-dev           # the configuration file
   libsqlite3-dev                # the persistent atlas store
