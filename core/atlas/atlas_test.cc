@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 #include <set>
 
 #include "core/atlas/atlas_test_world.h"
@@ -214,6 +215,87 @@ TEST(Atlas, SerializeRoundTripsAndRejectsGarbage) {
   EXPECT_FALSE(c.Deserialize(bad));
   EXPECT_FALSE(c.Deserialize(image + "x"));
   EXPECT_TRUE(c.Serialize() == before);
+}
+
+}  // namespace
+}  // namespace atlas
+
+namespace atlas {
+namespace {
+
+// Loop closure through the step: the robot drives a 10 m square and comes back to the start.
+// Each fake map reports the world's walls within 6 m of its own origin, in its own frame (the
+// fake's dead reckoning is exact, so frame origins are known). Near the start, the current
+// frame and frame 0 share their walls but are not adjacent: map-matching must add an edge,
+// and every map-match edge must agree with the truth.
+TEST(Atlas, MapMatchingClosesTheLoop) {
+  TestWorld w;
+  w.radius = 2.0;
+  const std::vector<std::pair<Vec2, Vec2>> walls{
+      {{-3, -3}, {13, -3}}, {{13, -3}, {13, 13}}, {{13, 13}, {-3, 13}}, {{-3, 13}, {-3, -3}},
+      {{3, 3}, {7, 3}},     {{7, 3}, {7, 7}},     {{1, 5}, {2, 9}},     {{-1, 0}, {0, 2}},
+      {{10, 1}, {11, 0}},   {{9, 9}, {11, 10}},   {{0, 11}, {2, 12}},   {{5, -1}, {6, -2}}};
+  auto frame_in_world = std::make_shared<std::vector<Pose2>>();
+  w.script->lines = [walls, frame_in_world](int tag) {
+    std::vector<MapLine> out;
+    if (tag >= static_cast<int>(frame_in_world->size())) return out;
+    const Pose2 f = (*frame_in_world)[tag];
+    const Pose2 world_in_f = Inverse(f);
+    for (const auto& [p, q] : walls) {
+      const Vec2 o(f.x, f.y);
+      if ((p - o).norm() > 6.0 && (q - o).norm() > 6.0) continue;
+      const Vec2 a = world_in_f.TransformPoint(p), b = world_in_f.TransformPoint(q);
+      MapLine l;
+      const Vec2 d = (b - a).normalized();
+      Vec2 n(-d.y(), d.x());
+      l.rho = n.dot(a);
+      if (l.rho < 0) {
+        l.rho = -l.rho;
+        n = -n;
+      }
+      l.alpha = std::atan2(n.y(), n.x());
+      l.cov = Vec2(1e-4, 1e-5).asDiagonal();
+      l.endpoint_a = a;
+      l.endpoint_b = b;
+      out.push_back(l);
+    }
+    return out;
+  };
+  AtlasOptions o = TestWorld::Options();
+  Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+  Pose2 truth{};
+  int accepted = 0;
+  for (int i = 0; i < 200; ++i) {
+    Pose2 delta{0.25, 0.0, 0.0};
+    if (i > 0 && i % 40 == 0) delta.theta = std::numbers::pi / 2;
+    if (i > 0) truth = Compose(truth, delta);
+    // Frames made by this step are placed before their lines are asked for (next step).
+    const StepStats& s = atlas.Step(delta, TestScan());
+    CheckInvariants(atlas);
+    accepted += s.match_accepted;
+    // Place new frames: frame 0 is the world origin; a Genesis edge, just made, is exact.
+    const AtlasGraph& g = atlas.Graph();
+    for (FrameId f = static_cast<FrameId>(frame_in_world->size()); f < g.FrameCount(); ++f) {
+      Pose2 pose{};
+      for (const AtlasEdge& e : g.Edges())
+        if (e.origin == EdgeKind::kGenesis && e.b == f)
+          pose = Compose((*frame_in_world)[e.a], e.b_in_a.mean);
+      frame_in_world->push_back(pose);
+    }
+  }
+  EXPECT_GE(accepted, 1);
+  int loop_edges = 0;
+  for (const AtlasEdge& e : atlas.Graph().Edges()) {
+    if (e.origin != EdgeKind::kMapMatch) continue;
+    const Pose2 truth_b_in_a = Between((*frame_in_world)[e.a], (*frame_in_world)[e.b]);
+    EXPECT_NEAR(e.b_in_a.mean.x, truth_b_in_a.x, 0.05) << e.a << "-" << e.b;
+    EXPECT_NEAR(e.b_in_a.mean.y, truth_b_in_a.y, 0.05) << e.a << "-" << e.b;
+    EXPECT_NEAR(WrapAngle(e.b_in_a.mean.theta - truth_b_in_a.theta), 0.0, 0.01);
+    loop_edges += std::abs(e.a - e.b) > 5;
+  }
+  EXPECT_GE(loop_edges, 1) << "no edge closes the loop";
+  std::printf("frames %d, map-match edges accepted %d, loop edges %d\n", atlas.Graph().FrameCount(),
+              accepted, loop_edges);
 }
 
 }  // namespace
