@@ -28,19 +28,22 @@ void OdometryTrack::Add(const OdometrySample& sample) {
     return;
   }
   ring_[head_] = sample;
+  ++added_;
   head_ = (head_ + 1) % ring_.size();
   size_ = std::min(size_ + 1, ring_.size());
 }
 
-OdometryLookup OdometryTrack::PoseAt(Time t, Pose2* pose) const {
-  if (size_ == 0) return OdometryLookup::kNoData;
-  const OdometrySample& newest = Newest();
+OdometryLookup OdometryTrack::PoseAt(Time t, uint64_t known, Pose2* pose) const {
+  const uint64_t hidden = known >= added_ ? 0 : added_ - known;
+  if (hidden >= size_) return OdometryLookup::kNoData;
+  const size_t size = size_ - static_cast<size_t>(hidden);
+  const OdometrySample& newest = At(size - 1);
   if (t >= newest.stamp) {
-    if (size_ < 2 || t == newest.stamp) {
+    if (size < 2 || t == newest.stamp) {
       *pose = newest.pose;
-      return size_ < 2 && t != newest.stamp ? OdometryLookup::kHeld : OdometryLookup::kInterpolated;
+      return size < 2 && t != newest.stamp ? OdometryLookup::kHeld : OdometryLookup::kInterpolated;
     }
-    const OdometrySample& prev = At(size_ - 2);
+    const OdometrySample& prev = At(size - 2);
     const Time until = std::min(t, newest.stamp + max_extrapolation_);
     const double f = 1.0 + ToSeconds(until - newest.stamp) / ToSeconds(newest.stamp - prev.stamp);
     *pose = InterpolatePose(prev.pose, newest.pose, f);
@@ -51,7 +54,7 @@ OdometryLookup OdometryTrack::PoseAt(Time t, Pose2* pose) const {
     return t == At(0).stamp ? OdometryLookup::kInterpolated : OdometryLookup::kBeforeTrack;
   }
   // Binary search for the first sample after t.
-  size_t lo = 0, hi = size_ - 1;  // At(lo) < t < At(hi)
+  size_t lo = 0, hi = size - 1;  // At(lo) < t < At(hi)
   while (hi - lo > 1) {
     const size_t mid = (lo + hi) / 2;
     (At(mid).stamp <= t ? lo : hi) = mid;

@@ -26,7 +26,12 @@ class OdometryTrack {
                          Duration max_extrapolation = std::chrono::milliseconds(100));
 
   void Add(const OdometrySample& sample);
-  OdometryLookup PoseAt(Time t, Pose2* pose) const;
+  OdometryLookup PoseAt(Time t, Pose2* pose) const { return PoseAt(t, added_, pose); }
+  // The same, seeing only the first `known` samples ever added (samples added later are
+  // ignored): the loop passes the count at a scan's arrival, so that the result does not depend
+  // on how late the scan is stepped (live and replay then agree exactly).
+  OdometryLookup PoseAt(Time t, uint64_t known, Pose2* pose) const;
+  uint64_t added() const { return added_; }
 
   bool empty() const { return size_ == 0; }
   const OdometrySample& Newest() const;  // not empty
@@ -40,6 +45,7 @@ class OdometryTrack {
   size_t size_ = 0;
   Duration max_extrapolation_;
   uint64_t out_of_order_ = 0;
+  uint64_t added_ = 0;  // samples accepted so far
 };
 
 // Interpolates between a and b at fraction f in [0, 1] (extrapolates for f > 1).

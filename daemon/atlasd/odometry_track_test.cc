@@ -69,3 +69,23 @@ TEST(OdometryTrackTest, IgnoresOutOfOrderSamplesAndWrapsAtCapacity) {
 
 }  // namespace
 }  // namespace atlas
+
+namespace atlas {
+namespace {
+
+TEST(OdometryTrackTest, SeesOnlyTheSamplesKnownAtArrival) {
+  OdometryTrack track(8);
+  track.Add(At(1.0, 0.0));
+  track.Add(At(1.1, 1.0));
+  const uint64_t known = track.added();
+  track.Add(At(1.2, 1.5));  // arrives after the scan: ignored for it
+  Pose2 p;
+  EXPECT_EQ(track.PoseAt(FromSeconds(1.15), known, &p), OdometryLookup::kExtrapolated);
+  EXPECT_NEAR(p.x, 1.5, 1e-9);
+  EXPECT_EQ(track.PoseAt(FromSeconds(1.15), &p), OdometryLookup::kInterpolated);
+  EXPECT_NEAR(p.x, 1.25, 1e-9);
+  EXPECT_EQ(track.PoseAt(FromSeconds(1.15), 0, &p), OdometryLookup::kNoData);
+}
+
+}  // namespace
+}  // namespace atlas

@@ -21,7 +21,8 @@ StepLoop::StepLoop(const StepLoopOptions& options, const MapperSettings& setting
       settings_(settings),
       atlas_(atlas),
       track_(options.odometry_capacity),
-      pending_(static_cast<size_t>(options.max_pending_scans)) {
+      pending_(static_cast<size_t>(options.max_pending_scans)),
+      pending_odometry_(static_cast<size_t>(options.max_pending_scans)) {
   period_us_.reserve(kPeriodSample);
   scratch_us_.reserve(kPeriodSample);
 }
@@ -43,7 +44,9 @@ void StepLoop::AddScan(LaserScan&& scan) {
     --pending_size_;
     ++dropped_scans_;
   }
-  pending_[(pending_head_ + pending_size_) % pending_.size()] = std::move(scan);
+  const size_t slot = (pending_head_ + pending_size_) % pending_.size();
+  pending_[slot] = std::move(scan);
+  pending_odometry_[slot] = track_.added();
   ++pending_size_;
 }
 
@@ -57,7 +60,8 @@ bool StepLoop::StepOne(StepSink* sink) {
   for (float& r : scan.ranges)
     if (!(r < max_range)) r = kNoReturn;
   Pose2 odometry;
-  const OdometryLookup lookup = track_.PoseAt(scan.stamp, &odometry);
+  const OdometryLookup lookup =
+      track_.PoseAt(scan.stamp, pending_odometry_[pending_head_], &odometry);
   if (lookup == OdometryLookup::kNoData) {
     ++scans_without_odometry_;
     odometry = have_previous_ ? previous_odometry_ : Pose2{};

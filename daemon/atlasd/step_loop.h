@@ -10,7 +10,9 @@
 // - StepOne() steps the atlas with the oldest pending scan: the odometry increment is the
 //   difference of the odometry poses at the previous and the current scan stamps, each
 //   interpolated between the samples bracketing the stamp (OdometryTrack; extrapolated briefly
-//   when the scan is newer than every sample). Ranges beyond max_range_m become kNoReturn.
+//   when the scan is newer than every sample), using only the odometry that had arrived when
+//   the scan was added, so that a scan stepped late gives the same result as one stepped at
+//   once (live and replay agree). Ranges beyond max_range_m become kNoReturn.
 //   The step time is measured; a step longer than step_budget is an overrun (counted).
 //   The pose is reported to the sink after every step.
 // - Dead reckoning: when the newest odometry is more than `laser_timeout` (data time) past the
@@ -91,7 +93,8 @@ class StepLoop {
   MapperSettings settings_;
   Atlas* atlas_;
   OdometryTrack track_;
-  std::vector<LaserScan> pending_;  // ring
+  std::vector<LaserScan> pending_;          // ring
+  std::vector<uint64_t> pending_odometry_;  // odometry samples known at each scan's arrival
   size_t pending_head_ = 0, pending_size_ = 0;
   bool have_previous_ = false;
   Pose2 previous_odometry_;

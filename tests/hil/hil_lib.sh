@@ -70,7 +70,8 @@ start_fakedev() {
 }
 
 start_logger() {
-  lcm-logger --quiet "$WORK/session.lcm" >"$WORK/logger.err" 2>&1 &
+  # A large receive buffer: at a few times real time the raw channels come in bursts.
+  LCM_DEFAULT_URL="${LCM_DEFAULT_URL}&recv_buf_size=16777216" lcm-logger --quiet "$WORK/session.lcm" >"$WORK/logger.err" 2>&1 &
   LOGGER_PID=$!
   PIDS+=("$LOGGER_PID")
   sleep 0.3
