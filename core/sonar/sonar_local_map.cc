@@ -43,6 +43,13 @@ bool SonarLocalMap::Duplicate(const ObservedLine& z) const {
   const Pose2 robot = ekf_.RobotPose().mean;
   const Eigen::VectorXd& x = ekf_.State();
   const Eigen::MatrixXd& p = ekf_.Covariance();
+  const ObservedLine in_map = ObservedLineToParent(robot, z);
+  for (const MapLine& l : ekf_.Lines()) {
+    if (std::abs(WrapAngle(l.alpha - in_map.alpha)) < o_.update.duplicate_alpha &&
+        std::abs(l.rho - in_map.rho) < o_.update.duplicate_rho) {
+      return true;
+    }
+  }
   for (int k = 0; k < ekf_.Complexity(); ++k) {
     const int ik = 3 + 2 * k;
     LinePrediction pred = PredictLine(robot, x(ik), x(ik + 1));
@@ -101,7 +108,14 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
     for (int k = 0; k < nf; ++k) {
       const int ik = 3 + 2 * k;
       const SonarRangePrediction pr = PredictSonarRange(robot, mount, x(ik), x(ik + 1));
-      if (!pr.in_cone) continue;
+      const double excess = std::abs(pr.incidence) - 0.5 * mount.beam_width;
+      if (!pr.in_cone) {
+        if (excess <= o_.update.explain_margin && range >= pr.range - 3.0 * std::sqrt(var) &&
+            range <= pr.range / std::cos(excess) + 3.0 * std::sqrt(var)) {
+          near = true;
+        }
+        continue;
+      }
       const MapLine& l = lines[k];
       const double t = PositionAlongLine(l.alpha, pr.foot);
       const double ta = PositionAlongLine(l.alpha, l.endpoint_a);

@@ -22,6 +22,10 @@ std::string SonarUpdateOptions::Validate() const {
     return "update.gate: gate and loose_gate must be in (0, 1), loose_gate >= gate";
   if (!(max_extent_gap >= 0.0)) return "update.max_extent_gap: must be >= 0";
   if (!(ambiguity_margin >= 0.0)) return "update.ambiguity_margin: must be >= 0";
+  if (!(explain_margin >= 0.0 && explain_margin < 1.0))
+    return "update.explain_margin: must be in [0, 1)";
+  if (!(duplicate_alpha >= 0.0 && duplicate_rho >= 0.0))
+    return "update.duplicate_alpha: duplicate thresholds must be >= 0";
   return "";
 }
 

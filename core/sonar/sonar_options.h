@@ -38,6 +38,14 @@ struct SonarUpdateOptions {
   // Two features within the gate: the return is ambiguous unless the best one's squared
   // distance is smaller than the other's minus this margin.
   double ambiguity_margin = 4.0;
+  // Strong reflectors echo a little outside the nominal cone (the ray nearest the normal,
+  // range up to r / cos(excess)): a return that a feature explains that way, with the normal
+  // at most explain_margin (radians) outside the cone, is neither used nor buffered.
+  double explain_margin = 0.3;
+  // A line from the initialiser closer than this to a feature (|d alpha| radians and
+  // |d rho| metres, map frame) is a duplicate of it and is not added.
+  double duplicate_alpha = 0.25;
+  double duplicate_rho = 0.3;
 
   std::string Validate() const;
 };
