@@ -37,7 +37,7 @@ med=$(awk -v m="$m" 'NR == int((m + 1) / 2) { print; exit }' "$WORK/diffs.txt")
 max=$(tail -n 1 "$WORK/diffs.txt")
 echo "replay_steps=$n compared=$m (before the first scan the log lost, t=$cutoff) median_m=${med:-99} max_m=${max:-99}" >"$WORK/compare.txt"
 cat "$WORK/compare.txt"
-[ "$n" -ge 250 ] || fail "replay stepped only $n scans"
+[ "$n" -ge 150 ] || fail "replay stepped only $n scans"
 awk -v n="$n" -v m="$m" -v med="$med" -v max="$max" \
   'BEGIN { exit !(m >= 80 && med <= 0.001 && max <= 0.01) }' ||
   fail "live and replay differ: $(cat "$WORK/compare.txt")"
