@@ -216,6 +216,7 @@ GroupingDecision SonarLineInitializer::Decide() {
       lo = std::min(lo, t);
       hi = std::max(hi, t);
     }
+    if (hi - lo < o_.min_extent_ratio * baseline) return out;  // point-like reflector
     init.line.endpoint_a = PointOnLine(best.line(0), best.line(1), lo);
     init.line.endpoint_b = PointOnLine(best.line(0), best.line(1), hi);
     init.line.num_points = best.support;

@@ -17,6 +17,8 @@
 // (weighted least squares over (rho, alpha) in the robot frame) and accepted only when the
 // decision is clear:
 //   - support >= min_support returns from >= min_vantage vantage points spanning >= min_baseline;
+//   - the tangent points span >= min_extent_ratio of that baseline (arcs through one corner or
+//     edge are tangent to many lines: a point reflector, not a wall);
 //   - no rival: no other hypothesis with a clearly different line claims rival_overlap of the
 //     same returns with rival_ratio of the support (else kAmbiguous: wait for more returns).
 // An accepted line leaves the buffer with its inliers and is returned in the ROBOT frame with

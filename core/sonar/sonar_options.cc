@@ -41,6 +41,7 @@ std::string SonarInitOptions::Validate() const {
   if (!(rival_alpha > 0.0 && rival_rho > 0.0)) return "init.rival_alpha: must be > 0";
   if (!(rival_overlap > 0.0 && rival_overlap <= 1.0) || !(rival_ratio > 0.0 && rival_ratio <= 1.0))
     return "init.rival_overlap: overlap and ratio must be in (0, 1]";
+  if (!(min_extent_ratio >= 0.0)) return "init.min_extent_ratio: must be >= 0";
   if (max_new_per_decision < 1) return "init.max_new_per_decision: must be >= 1";
   if (!(min_rho_sigma >= 0.0 && min_alpha_sigma >= 0.0)) return "init.min_rho_sigma: must be >= 0";
   return "";

@@ -68,6 +68,10 @@ struct SonarInitOptions {
   double rival_rho = 0.2;
   double rival_overlap = 0.3;
   double rival_ratio = 0.7;
+  // Arcs through one point (a corner or edge: a point reflector) are tangent to many lines;
+  // their tangent points stay close together while the vantage points move. A line whose
+  // tangent points span less than this fraction of its vantage baseline is not accepted.
+  double min_extent_ratio = 0.4;
   int max_new_per_decision = 2;
   // Floors on the initialised line's standard deviations (rho metres, alpha radians).
   double min_rho_sigma = 0.01;

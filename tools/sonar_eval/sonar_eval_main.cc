@@ -159,6 +159,9 @@ SonarLocalMapOptions FilterOptions(RangeSensors sensors, int capacity,
   o.line_map.odometry.theta_var_per_rad = 0.0;
   o.model.range_sigma = sonar.range_sigma;
   o.model.range_sigma_per_m = sonar.range_sigma_per_m;
+  // Walls the tangent model does not quite explain (the simulator's discrete rays, echoes of
+  // corners and niche edges): 0.05 m gave a consistent robot NEES (0.02 m: mean 13, 0.1 m: 5).
+  o.model.model_sigma = 0.05;
   return o;
 }
 
