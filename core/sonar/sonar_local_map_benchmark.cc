@@ -5,6 +5,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <numbers>
 #include <random>
 
 #include "core/sonar/fake_sonar_ring.h"
@@ -14,15 +16,13 @@ namespace atlas {
 namespace {
 
 std::vector<FakeSonarWall> Rooms() {
-  // A corridor with side openings: enough walls for a full map.
+  // A ten-sided room (circumradius 3 m): every wall can be mapped from a small circle inside.
   std::vector<FakeSonarWall> w;
-  for (int i = 0; i < 6; ++i) {
-    const double x0 = 3.0 * i;
-    w.push_back({Vec2(x0, 1.2), Vec2(x0 + 2.2, 1.2)});
-    w.push_back({Vec2(x0 + 2.2, 1.2), Vec2(x0 + 2.2, 3.0)});
-    w.push_back({Vec2(x0 + 0.3, -1.2), Vec2(x0 + 2.8, -1.2)});
+  for (int i = 0; i < 10; ++i) {
+    const double a0 = 2.0 * std::numbers::pi * i / 10, a1 = 2.0 * std::numbers::pi * (i + 1) / 10;
+    w.push_back({Vec2(3.0 * std::cos(a0), 3.0 * std::sin(a0)),
+                 Vec2(3.0 * std::cos(a1), 3.0 * std::sin(a1))});
   }
-  w.push_back({Vec2(18.5, -3), Vec2(18.5, 3)});
   return w;
 }
 
@@ -32,11 +32,13 @@ SonarLocalMap MappedCorridor(int capacity) {
   SonarLocalMap map(o);
   const std::vector<SonarTransducer> ring = FakeSonarRing24();
   std::mt19937_64 rng(3);
-  Pose2 truth{};
-  for (int i = 0; i < 240; ++i) {
+  Pose2 truth{0.0, -1.0, 0.0};
+  map.ResetRobotPose(UncertainPose{truth, Mat3::Zero()});
+  const Pose2 u{0.05, 0.0, 0.05};  // a circle of 1 m radius
+  for (int i = 0; i < 500; ++i) {
     map.UpdateSonar(FireFakeSonarRing(Rooms(), ring, truth, 0.01, rng), ring, true);
-    truth = Compose(truth, Pose2{0.05, 0.0, 0.0});
-    map.Predict(Pose2{0.05, 0.0, 0.0});
+    truth = Compose(truth, u);
+    map.Predict(u);
   }
   return map;
 }
