@@ -1,0 +1,153 @@
+// atlas-replay: runs a CARMEN log through the Atlas as fast as it can. See --help.
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "tools/replay/replay_run.h"
+
+namespace atlas::replay {
+namespace {
+
+constexpr const char* kHelp = R"(Usage: atlas-replay [options] LOG
+
+Runs a CARMEN log (plain or gzip; ODOM and laser lines) through the Atlas as fast as it can,
+with atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped).
+Writes into --out DIR (docs/formats.md, "atlas-replay output"):
+  trajectory.tsv   timestamp frame x y theta   (dominant hypothesis's pose in its own frame)
+  graph.tsv        from to x y theta c00 c01 c02 c11 c12 c22 kind   (one row per edge)
+  timing.tsv       step timestamp frames hypotheses dominant step_ns
+  global.tsv       timestamp x y theta   (Dijkstra projection from frame 0, end of run)
+  summary.json     the summary printed on stdout
+Score global.tsv with: atlas-eval --relations FILE.relations DIR/global.tsv
+
+Options:
+  --out DIR            output directory, created if missing (default: replay-out)
+  --max-scans N        step only the first N scans (default: all)
+  --max-range M        ranges beyond M metres are no-return for the maps (default 8)
+  --map-capacity N     features per map-frame (default 10)
+  --max-hypotheses N   live hypotheses (default 4)
+  --skip-bad-lines     count malformed log lines instead of stopping at the first
+  --quiet              no progress on stderr
+  -h, --help           this text
+
+Exit status: 0 done, 1 the log could not be read or the output not written, 2 bad command line.
+)";
+
+int Usage(const std::string& what) {
+  std::fprintf(stderr, "atlas-replay: %s\nTry 'atlas-replay --help'.\n", what.c_str());
+  return 2;
+}
+
+bool ParseInt(const char* s, long long min, long long& out) {
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(s, &end, 10);
+  if (errno != 0 || end == s || *end != '\0' || v < min) return false;
+  out = v;
+  return true;
+}
+
+bool ParseDouble(const char* s, double& out) {
+  char* end = nullptr;
+  const double v = std::strtod(s, &end);
+  if (end == s || *end != '\0' || !(v > 0.0) || v > 1e6) return false;
+  out = v;
+  return true;
+}
+
+int Main(int argc, char** argv) {
+  std::string log_path, out_dir = "replay-out";
+  ReplayOptions options;
+  carmen::CarmenLogOptions log_options;
+  bool quiet = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](const char* name) -> const char* {
+      if (i + 1 >= argc) return nullptr;
+      (void)name;
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "--out") {
+      const char* v = value("--out");
+      if (v == nullptr || *v == '\0') return Usage("--out needs a directory");
+      out_dir = v;
+    } else if (a == "--max-scans") {
+      const char* v = value("--max-scans");
+      long long n = 0;
+      if (v == nullptr || !ParseInt(v, 1, n)) return Usage("--max-scans needs an integer >= 1");
+      options.max_scans = n;
+    } else if (a == "--max-range") {
+      const char* v = value("--max-range");
+      if (v == nullptr || !ParseDouble(v, options.loop.max_range_m))
+        return Usage("--max-range needs a positive number of metres");
+    } else if (a == "--map-capacity") {
+      const char* v = value("--map-capacity");
+      long long n = 0;
+      if (v == nullptr || !ParseInt(v, 1, n) || n > 10000)
+        return Usage("--map-capacity needs an integer in 1..10000");
+      options.mapper.map_capacity = static_cast<int>(n);
+    } else if (a == "--max-hypotheses") {
+      const char* v = value("--max-hypotheses");
+      long long n = 0;
+      if (v == nullptr || !ParseInt(v, 1, n) || n > 1000)
+        return Usage("--max-hypotheses needs an integer in 1..1000");
+      options.mapper.max_hypotheses = static_cast<int>(n);
+    } else if (a == "--skip-bad-lines") {
+      log_options.skip_bad_lines = true;
+    } else if (a == "--quiet") {
+      quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("unknown option " + a);
+    } else if (log_path.empty()) {
+      log_path = a;
+    } else {
+      return Usage("one LOG only (got " + log_path + " and " + a + ")");
+    }
+  }
+  if (log_path.empty()) return Usage("no LOG given");
+  if (std::string e = options.Validate(); !e.empty()) return Usage(e);
+
+  if (!quiet) std::fprintf(stderr, "atlas-replay: reading %s\n", log_path.c_str());
+  carmen::CarmenReadResult read = carmen::ReadCarmenLog(log_path, log_options);
+  if (!read.ok()) {
+    std::fprintf(stderr, "atlas-replay: %s\n", read.error.c_str());
+    return 1;
+  }
+  if (read.log.laser_events == 0) {
+    std::fprintf(stderr, "atlas-replay: %s has no laser scans; nothing to replay\n",
+                 log_path.c_str());
+    return 1;
+  }
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const auto start = std::chrono::steady_clock::now();
+  auto progress = [&](int64_t done, int64_t total) {
+    if (quiet) return;
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "%satlas-replay: %lld/%lld scans, %.1f s%s", tty ? "\r" : "",
+                 static_cast<long long>(done), static_cast<long long>(total), s, tty ? "" : "\n");
+  };
+  ReplayResult r = RunReplay(read.log.events, options, out_dir, progress, 1000);
+  if (!quiet && tty) std::fputc('\n', stderr);
+  if (!r.error.empty()) {
+    std::fprintf(stderr, "atlas-replay: %s\n", r.error.c_str());
+    return 1;
+  }
+  std::printf("atlas-replay %s -> %s\n%s", log_path.c_str(), out_dir.c_str(),
+              SummaryText(r.summary).c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace atlas::replay
+
+int main(int argc, char** argv) { return atlas::replay::Main(argc, argv); }
