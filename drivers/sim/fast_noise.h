@@ -40,8 +40,4 @@ class FastNoise {
   int left_ = 0;
 };
 
-// The standard normal's quantile function (inverse CDF), |error| < 1.2e-9 (P. J. Acklam's
-// rational approximation with one Newton refinement step). p in (0, 1).
-double NormalQuantile(double p);
-
 }  // namespace atlas::sim

@@ -13,9 +13,6 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(FastNoise, QuantileAndMoments) {
-  EXPECT_NEAR(NormalQuantile(0.975), 1.959963985, 1e-8);
-  EXPECT_NEAR(NormalQuantile(0.5), 0.0, 1e-12);
-  EXPECT_NEAR(NormalQuantile(0.001), -3.090232306, 1e-8);
   FastNoise n(1);
   double s = 0, s2 = 0, u = 0;
   const int k = 200000;
