@@ -1,10 +1,10 @@
 #include "core/localmap/jcbb.h"
 
-#include "core/common/normal_quantile.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+
+#include "core/common/normal_quantile.h"
 
 namespace atlas {
 namespace {

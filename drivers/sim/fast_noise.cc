@@ -1,9 +1,9 @@
 #include "drivers/sim/fast_noise.h"
 
-#include "core/common/normal_quantile.h"
-
 #include <cmath>
 #include <numbers>
+
+#include "core/common/normal_quantile.h"
 
 namespace atlas::sim {
 
