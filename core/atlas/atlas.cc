@@ -32,6 +32,8 @@ std::string AtlasOptions::Validate() const {
   if (!(capacity_explanation >= 0 && capacity_explanation <= 1))
     return "capacity_explanation must lie in [0, 1]";
   if (genesis_min_interval_steps < 0) return "genesis_min_interval_steps must be non-negative";
+  if (resume_candidates_per_step < 0) return "resume_candidates_per_step must be non-negative";
+  if (resume_scan_per_step < 1) return "resume_scan_per_step must be at least 1";
   return "";
 }
 
@@ -76,7 +78,46 @@ DominantOutput Atlas::Dominant() const {
   return out;
 }
 
+FrameId Atlas::AddFrame(std::unique_ptr<LocalMap> map) {
+  const FrameId id = graph_.AddFrame(std::move(map), step_);
+  components_.AddFrame();
+  return id;
+}
+
+AddEdgeResult Atlas::AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, EdgeKind kind) {
+  const AddEdgeResult r = graph_.AddEdge(a, b, b_in_a, kind, step_);
+  if (r == AddEdgeResult::kAdded) components_.Join(a, b);
+  return r;
+}
+
 const StepStats& Atlas::Step(const Pose2& odometry_delta, const LaserScan& scan) {
+  return StepWith(odometry_delta, &scan, nullptr);
+}
+
+const StepStats& Atlas::Step(const Pose2& odometry_delta, const SonarReading& reading) {
+  return StepWith(odometry_delta, nullptr, &reading);
+}
+
+FrameId Atlas::ResumeInNewFrame() {
+  hypotheses_.clear();
+  std::unique_ptr<LocalMap> map = factory_();
+  map->ResetRobotPose(UncertainPose{});
+  Hypothesis h;
+  h.id = next_hypothesis_id_++;
+  h.frame = AddFrame(std::move(map));
+  h.state = HypothesisState::kMature;
+  h.born_step = step_;
+  h.window = QualityWindow(options_.quality.window);
+  hypotheses_.push_back(std::move(h));
+  FindDominant();
+  last_genesis_step_ = step_;
+  projection_step_ = -1;
+  projection_source_ = kNoFrame;
+  return hypotheses_.back().frame;
+}
+
+const StepStats& Atlas::StepWith(const Pose2& odometry_delta, const LaserScan* scan,
+                                 const SonarReading* sonar) {
   stats_ = StepStats{};
   stats_.step = ++step_;
   const bool first = graph_.FrameCount() == 0;
@@ -85,21 +126,24 @@ const StepStats& Atlas::Step(const Pose2& odometry_delta, const LaserScan& scan)
     map->ResetRobotPose(UncertainPose{});
     Hypothesis h;
     h.id = next_hypothesis_id_++;
-    h.frame = graph_.AddFrame(std::move(map), step_);
+    h.frame = AddFrame(std::move(map));
     h.state = HypothesisState::kMature;
     h.born_step = step_;
     h.window = QualityWindow(options_.quality.window);
     hypotheses_.push_back(std::move(h));
     last_genesis_step_ = step_;
   }
-  UpdateHypotheses(odometry_delta, scan, first);
+  UpdateHypotheses(odometry_delta, scan, sonar, first);
   JudgeJuveniles();
   HandleFailures();
   int d = FindDominant();
   if (d >= 0) Traverse(d);
   GenesisAtCapacity();
   d = FindDominant();
-  if (d >= 0 && step_ % options_.match_interval_steps == 0) MatchMaps(d);
+  if (d >= 0 && step_ % options_.match_interval_steps == 0) {
+    MatchMaps(d);
+    MatchUnconnected(d);
+  }
   RefineEdges();
   FindDominant();
   stats_.frames = graph_.FrameCount();
@@ -107,18 +151,26 @@ const StepStats& Atlas::Step(const Pose2& odometry_delta, const LaserScan& scan)
   return stats_;
 }
 
-void Atlas::UpdateHypotheses(const Pose2& delta, const LaserScan& scan, bool first) {
+void Atlas::UpdateHypotheses(const Pose2& delta, const LaserScan* scan, const SonarReading* sonar,
+                             bool first) {
   bootstrap_failed_.assign(hypotheses_.size(), 0);
   for (size_t i = 0; i < hypotheses_.size(); ++i) {
     Hypothesis& h = hypotheses_[i];
     LocalMap& map = MapOf(h);
     if (!first) map.Predict(delta);
     const bool mature = h.state == HypothesisState::kMature;
-    h.last_update = map.Update(scan, mature);
-    h.window.Add(h.last_update);
+    if (scan) {
+      h.last_update = map.Update(*scan, mature);
+      h.window.Add(h.last_update);
+    } else {
+      h.last_update = map.UpdateWithSonar(*sonar, mature);
+      if (h.last_update.observations > 0) h.window.Add(h.last_update);
+    }
     ++h.steps;
-    if (!mature && !h.bootstrapped) {
-      h.z.push_back(JuvenileScan{delta, scan, h.last_update});
+    if (!mature && !h.bootstrapped && !scan) {
+      if (!bootstrapper_ && h.steps >= options_.lifecycle.bootstrap_scans) h.bootstrapped = true;
+    } else if (!mature && !h.bootstrapped) {
+      h.z.push_back(JuvenileScan{delta, *scan, h.last_update});
       if (static_cast<int>(h.z.size()) >= options_.lifecycle.bootstrap_scans) {
         if (bootstrapper_) {
           ++stats_.bootstraps;
@@ -255,8 +307,8 @@ bool Atlas::Genesis(int from_index) {
   if (!MakeRoomForHypothesis(from_index)) return false;
   std::unique_ptr<LocalMap> map = factory_();
   map->ResetRobotPose(UncertainPose{});
-  const FrameId id = graph_.AddFrame(std::move(map), step_);
-  const AddEdgeResult added = graph_.AddEdge(from, id, robot, EdgeKind::kGenesis, step_);
+  const FrameId id = AddFrame(std::move(map));
+  const AddEdgeResult added = AddEdge(from, id, robot, EdgeKind::kGenesis);
   assert(added == AddEdgeResult::kAdded);
   (void)added;
   (void)from_id;
@@ -370,30 +422,62 @@ void Atlas::MatchMaps(int d) {
     tried_[tried_next_] = TriedPair{dom_frame, e.frame, ca, cb};
     tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
     ++stats_.candidates_matched;
-    const SelfMatch& self_a = SelfMatchOf(dom_frame);
-    const SelfMatch self_a_copy = self_a;  // the cache may evict it while matching b
-    const SelfMatch& self_b = SelfMatchOf(e.frame);
-    const MapMatch m =
-        atlas::MatchMaps(dom_map.Lines(), self_a_copy, graph_.Frame(e.frame).map->Lines(), self_b,
-                         &e.pose, options_.match);
-    stats_.match_hypotheses += m.hypotheses;
-    switch (m.result) {
-      case MapMatchResult::kAccepted:
-        if (graph_.AddEdge(dom_frame, e.frame, m.b_in_a, EdgeKind::kMapMatch, step_) ==
-            AddEdgeResult::kAdded)
-          ++stats_.match_accepted;
-        else
-          ++stats_.match_rejected;
-        break;
-      case MapMatchResult::kRejected:
-        ++stats_.match_rejected;
-        break;
-      case MapMatchResult::kAmbiguous:
-        ++stats_.match_ambiguous;
-        break;
-    }
+    MatchPair(dom_frame, e.frame, &e.pose);
   }
   match_cursor_ += budget;
+}
+
+void Atlas::MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior) {
+  const SelfMatch& self_a = SelfMatchOf(dom_frame);
+  const SelfMatch self_a_copy = self_a;  // the cache may evict it while matching b
+  const SelfMatch& self_b = SelfMatchOf(other);
+  const MapMatch m =
+      atlas::MatchMaps(graph_.Frame(dom_frame).map->Lines(), self_a_copy,
+                       graph_.Frame(other).map->Lines(), self_b, prior, options_.match);
+  stats_.match_hypotheses += m.hypotheses;
+  switch (m.result) {
+    case MapMatchResult::kAccepted:
+      if (AddEdge(dom_frame, other, m.b_in_a, EdgeKind::kMapMatch) == AddEdgeResult::kAdded)
+        ++stats_.match_accepted;
+      else
+        ++stats_.match_rejected;
+      break;
+    case MapMatchResult::kRejected:
+      ++stats_.match_rejected;
+      break;
+    case MapMatchResult::kAmbiguous:
+      ++stats_.match_ambiguous;
+      break;
+  }
+}
+
+void Atlas::MatchUnconnected(int d) {
+  const int n = graph_.FrameCount();
+  if (d < 0 || options_.resume_candidates_per_step == 0) return;
+  const FrameId dom_frame = hypotheses_[d].frame;
+  if (components_.Size(dom_frame) == n) return;  // connected: the projection reaches every frame
+  const LocalMap& dom_map = *graph_.Frame(dom_frame).map;
+  if (dom_map.Complexity() < options_.min_match_lines) return;
+  int matched = 0;
+  for (int looked = 0;
+       looked < options_.resume_scan_per_step && matched < options_.resume_candidates_per_step;
+       ++looked) {
+    const FrameId f = static_cast<FrameId>(resume_cursor_++ % static_cast<uint64_t>(n));
+    if (components_.Connected(f, dom_frame)) continue;
+    const int ca = dom_map.Complexity();
+    const int cb = graph_.Frame(f).map->Complexity();
+    if (cb < options_.min_match_lines) continue;
+    bool unchanged = false;
+    for (const TriedPair& t : tried_)
+      unchanged |= t.a == dom_frame && t.b == f && t.complexity_a == ca && t.complexity_b == cb;
+    if (unchanged) continue;
+    tried_[tried_next_] = TriedPair{dom_frame, f, ca, cb};
+    tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
+    ++matched;
+    ++stats_.match_unconnected;
+    MatchPair(dom_frame, f, nullptr);
+    if (components_.Connected(f, dom_frame)) break;
+  }
 }
 
 void Atlas::RefineEdges() {
@@ -602,6 +686,7 @@ bool Atlas::Deserialize(const std::string& bytes) {
   }
   if (!r.AtEnd()) return false;
   graph_ = std::move(graph);
+  components_.Rebuild(graph_);
   hypotheses_ = std::move(hypotheses);
   step_ = step;
   next_hypothesis_id_ = next_id;

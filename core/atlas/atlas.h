@@ -31,6 +31,8 @@
 //     `match_candidates_per_step` are matched per step, round-robin over the candidates, so the
 //     search is spread over steps; a pair is not re-matched until one of its maps changed. The
 //     projection (prior) only gates (Condition 2); t comes from the maps (map_match.h).
+//     After ResumeInNewFrame() the graph has unconnected parts; their frames are matched
+//     without a prior (at most `resume_candidates_per_step`, see ResumeInNewFrame).
 //  7. Edge refinement (III-F): for mature hypotheses in adjacent frames, covariance
 //     intersection (edge_refinement.h), at most `max_refinements_per_step`, each edge at most
 //     once per `refine_interval_steps`.
@@ -58,6 +60,7 @@
 
 #include "core/atlas/atlas_graph.h"
 #include "core/atlas/dijkstra_projection.h"
+#include "core/atlas/frame_components.h"
 #include "core/atlas/hypothesis.h"
 #include "core/atlas/map_match.h"
 
@@ -86,6 +89,9 @@ struct AtlasOptions {
   int refine_interval_steps = 10;
   double capacity_explanation = 0.8;
   int genesis_min_interval_steps = 5;
+  // Matching into unconnected parts of the graph (after ResumeInNewFrame), no prior.
+  int resume_candidates_per_step = 1;
+  int resume_scan_per_step = 8;
   std::string Validate() const;  // empty when valid
 };
 
@@ -101,6 +107,7 @@ struct StepStats {
   int genesis = 0;
   int genesis_refused = 0;  // the dominant frame's degree was full
   int match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
+  int match_unconnected = 0;  // candidates from unconnected parts (no prior) matched this step
   int refined = 0;
   FrameId dominant_frame = kNoFrame;
 };
@@ -121,9 +128,23 @@ class Atlas {
   Atlas(const AtlasOptions& options, MapFactory factory,
         std::shared_ptr<const PoseBootstrapper> bootstrapper);
 
-  // One step: `odometry_delta` is the motion since the previous scan (robot frame at the
-  // previous scan; ignored on the very first step), `scan` the new scan.
+  // One step: `odometry_delta` is the motion since the previous measurement (robot frame at the
+  // previous measurement; ignored on the very first step), `scan` the new scan.
   const StepStats& Step(const Pose2& odometry_delta, const LaserScan& scan);
+  // The same step with a sonar ring reading (LocalMap::UpdateWithSonar) instead of a scan, for
+  // sonar-only and laser-and-sonar robots. w (eq. 12) bootstraps juveniles from laser scans
+  // only: sonar steps do not feed it. Without a bootstrapper (sonar-only atlases), a juvenile
+  // counts as bootstrapped after `lifecycle.bootstrap_scans` steps of either kind and is
+  // judged on q alone.
+  const StepStats& Step(const Pose2& odometry_delta, const SonarReading& reading);
+
+  // After Deserialize() of a saved atlas: the robot is somewhere unknown, so every hypothesis
+  // is dropped and the robot starts in a new frame, unconnected, at pose exactly zero (as after
+  // Genesis). Map-matching then also tries frames of the unconnected old parts, without a prior
+  // (`resume_candidates_per_step` per step, a cursor over the frame ids, at most
+  // `resume_scan_per_step` ids looked at per step), and the first accepted match joins them.
+  // Returns the new frame's id.
+  FrameId ResumeInNewFrame();
 
   DominantOutput Dominant() const;
   const AtlasGraph& Graph() const { return graph_; }
@@ -143,7 +164,11 @@ class Atlas {
 
  private:
   LocalMap& MapOf(Hypothesis& h);
-  void UpdateHypotheses(const Pose2& odometry_delta, const LaserScan& scan, bool first);
+  // Exactly one of `scan`, `sonar` is non-null.
+  const StepStats& StepWith(const Pose2& odometry_delta, const LaserScan* scan,
+                            const SonarReading* sonar);
+  void UpdateHypotheses(const Pose2& odometry_delta, const LaserScan* scan,
+                        const SonarReading* sonar, bool first);
   void JudgeJuveniles();
   void HandleFailures();
   void GenesisAtCapacity();
@@ -154,6 +179,12 @@ class Atlas {
   const Projection& ProjectionFromDominant(FrameId dominant);
   void Traverse(int dominant);
   void MatchMaps(int dominant);
+  void MatchUnconnected(int dominant);
+  // Matches the dominant map with frame `other` (prior: its projected pose, or none) and adds
+  // the edge when accepted.
+  void MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior);
+  FrameId AddFrame(std::unique_ptr<LocalMap> map);
+  AddEdgeResult AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, EdgeKind kind);
   void RefineEdges();
   const SelfMatch& SelfMatchOf(FrameId f);
 
@@ -161,6 +192,8 @@ class Atlas {
   MapFactory factory_;
   std::shared_ptr<const PoseBootstrapper> bootstrapper_;
   AtlasGraph graph_;
+  FrameComponents components_;
+  uint64_t resume_cursor_ = 0;
   std::vector<Hypothesis> hypotheses_;
   int64_t step_ = 0;
   int64_t next_hypothesis_id_ = 0;

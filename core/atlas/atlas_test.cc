@@ -223,20 +223,17 @@ TEST(Atlas, SerializeRoundTripsAndRejectsGarbage) {
 namespace atlas {
 namespace {
 
-// Loop closure through the step: the robot drives a 10 m square and comes back to the start.
-// Each fake map reports the world's walls within 6 m of its own origin, in its own frame (the
-// fake's dead reckoning is exact, so frame origins are known). Near the start, the current
-// frame and frame 0 share their walls but are not adjacent: map-matching must add an edge,
-// and every map-match edge must agree with the truth.
-TEST(Atlas, MapMatchingClosesTheLoop) {
-  TestWorld w;
-  w.radius = 2.0;
+// A 16 m square room with a few unique walls. Each fake map reports the walls within 6 m of its
+// own origin, in its own frame (the fake's dead reckoning is exact, so frame origins are known:
+// `frame_in_world`, indexed by frame id, filled by PlaceNewFrames).
+std::shared_ptr<std::vector<Pose2>> InstallSquareRoom(TestWorld* w) {
+  w->radius = 2.0;
+  auto frame_in_world = std::make_shared<std::vector<Pose2>>();
   const std::vector<std::pair<Vec2, Vec2>> walls{
       {{-3, -3}, {13, -3}}, {{13, -3}, {13, 13}}, {{13, 13}, {-3, 13}}, {{-3, 13}, {-3, -3}},
       {{3, 3}, {7, 3}},     {{7, 3}, {7, 7}},     {{1, 5}, {2, 9}},     {{-1, 0}, {0, 2}},
       {{10, 1}, {11, 0}},   {{9, 9}, {11, 10}},   {{0, 11}, {2, 12}},   {{5, -1}, {6, -2}}};
-  auto frame_in_world = std::make_shared<std::vector<Pose2>>();
-  w.script->lines = [walls, frame_in_world](int tag) {
+  w->script->lines = [walls, frame_in_world](int tag) {
     std::vector<MapLine> out;
     if (tag >= static_cast<int>(frame_in_world->size())) return out;
     const Pose2 f = (*frame_in_world)[tag];
@@ -261,41 +258,152 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
     }
     return out;
   };
-  AtlasOptions o = TestWorld::Options();
-  Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
-  Pose2 truth{};
-  int accepted = 0;
-  for (int i = 0; i < 200; ++i) {
-    Pose2 delta{0.25, 0.0, 0.0};
-    if (i > 0 && i % 40 == 0) delta.theta = std::numbers::pi / 2;
-    if (i > 0) truth = Compose(truth, delta);
-    // Frames made by this step are placed before their lines are asked for (next step).
-    const StepStats& s = atlas.Step(delta, TestScan());
-    CheckInvariants(atlas);
-    accepted += s.match_accepted;
-    // Place new frames: frame 0 is the world origin; a Genesis edge, just made, is exact.
-    const AtlasGraph& g = atlas.Graph();
-    for (FrameId f = static_cast<FrameId>(frame_in_world->size()); f < g.FrameCount(); ++f) {
-      Pose2 pose{};
-      for (const AtlasEdge& e : g.Edges())
-        if (e.origin == EdgeKind::kGenesis && e.b == f)
-          pose = Compose((*frame_in_world)[e.a], e.b_in_a.mean);
-      frame_in_world->push_back(pose);
-    }
+  return frame_in_world;
+}
+
+// Places frames made by the last step: a Genesis edge, just made, is exact; a frame without
+// one (frame 0, or a resumed frame) starts at the robot's true pose.
+void PlaceNewFrames(const AtlasGraph& g, const Pose2& truth, std::vector<Pose2>* frame_in_world) {
+  for (FrameId f = static_cast<FrameId>(frame_in_world->size()); f < g.FrameCount(); ++f) {
+    Pose2 pose = truth;
+    for (const AtlasEdge& e : g.Edges())
+      if (e.origin == EdgeKind::kGenesis && e.b == f)
+        pose = Compose((*frame_in_world)[e.a], e.b_in_a.mean);
+    frame_in_world->push_back(pose);
   }
-  EXPECT_GE(accepted, 1);
+}
+
+// Every map-match edge agrees with the truth; returns how many join frames more than 5 apart.
+int CheckMapMatchEdges(const AtlasGraph& g, const std::vector<Pose2>& frame_in_world) {
   int loop_edges = 0;
-  for (const AtlasEdge& e : atlas.Graph().Edges()) {
+  for (const AtlasEdge& e : g.Edges()) {
     if (e.origin != EdgeKind::kMapMatch) continue;
-    const Pose2 truth_b_in_a = Between((*frame_in_world)[e.a], (*frame_in_world)[e.b]);
+    const Pose2 truth_b_in_a = Between(frame_in_world[e.a], frame_in_world[e.b]);
     EXPECT_NEAR(e.b_in_a.mean.x, truth_b_in_a.x, 0.05) << e.a << "-" << e.b;
     EXPECT_NEAR(e.b_in_a.mean.y, truth_b_in_a.y, 0.05) << e.a << "-" << e.b;
     EXPECT_NEAR(WrapAngle(e.b_in_a.mean.theta - truth_b_in_a.theta), 0.0, 0.01);
     loop_edges += std::abs(e.a - e.b) > 5;
   }
+  return loop_edges;
+}
+
+Pose2 SquareRouteDelta(int i) {
+  Pose2 delta{0.25, 0.0, 0.0};
+  if (i > 0 && i % 40 == 0) delta.theta = std::numbers::pi / 2;
+  return delta;
+}
+
+// Loop closure through the step: the robot drives a 10 m square and comes back to the start.
+// Near the start, the current frame and frame 0 share their walls but are not adjacent:
+// map-matching must add an edge, and every map-match edge must agree with the truth.
+TEST(Atlas, MapMatchingClosesTheLoop) {
+  TestWorld w;
+  const auto frame_in_world = InstallSquareRoom(&w);
+  AtlasOptions o = TestWorld::Options();
+  Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+  Pose2 truth{};
+  int accepted = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Pose2 delta = SquareRouteDelta(i);
+    if (i > 0) truth = Compose(truth, delta);
+    // Frames made by this step are placed before their lines are asked for (next step).
+    const StepStats& s = atlas.Step(delta, TestScan());
+    CheckInvariants(atlas);
+    accepted += s.match_accepted;
+    PlaceNewFrames(atlas.Graph(), truth, frame_in_world.get());
+  }
+  EXPECT_GE(accepted, 1);
+  const int loop_edges = CheckMapMatchEdges(atlas.Graph(), *frame_in_world);
   EXPECT_GE(loop_edges, 1) << "no edge closes the loop";
   std::printf("frames %d, map-match edges accepted %d, loop edges %d\n", atlas.Graph().FrameCount(),
               accepted, loop_edges);
+}
+
+}  // namespace
+}  // namespace atlas
+
+namespace atlas {
+namespace {
+
+// A restart: the atlas of a whole lap is kept, the robot resumes in a new, unconnected frame
+// somewhere on the square, and map-matching without a prior must join the new part to the old
+// one, with a transform that agrees with the truth.
+TEST(Atlas, ResumedFrameIsReconnectedByMapMatching) {
+  TestWorld w;
+  const auto frame_in_world = InstallSquareRoom(&w);
+  Atlas atlas(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  Pose2 truth{};
+  int i = 0;
+  for (; i < 170; ++i) {
+    const Pose2 delta = SquareRouteDelta(i);
+    if (i > 0) truth = Compose(truth, delta);
+    atlas.Step(delta, TestScan());
+    PlaceNewFrames(atlas.Graph(), truth, frame_in_world.get());
+  }
+  const int old_frames = atlas.Graph().FrameCount();
+  const int old_edges = atlas.Graph().EdgeCount();
+  const FrameId resumed = atlas.ResumeInNewFrame();
+  PlaceNewFrames(atlas.Graph(), truth, frame_in_world.get());
+  EXPECT_EQ(resumed, old_frames);
+  EXPECT_EQ(atlas.Graph().EdgeCount(), old_edges);
+  ASSERT_EQ(atlas.Hypotheses().size(), 1u);
+  EXPECT_EQ(atlas.Dominant().frame, resumed);
+  EXPECT_EQ(atlas.Dominant().pose.mean.x, 0.0);
+  EXPECT_EQ(atlas.Dominant().pose.cov, Mat3::Zero());
+  int unconnected = 0, joining = 0;
+  for (; i < 240; ++i) {
+    const Pose2 delta = SquareRouteDelta(i % 160);
+    truth = Compose(truth, delta);
+    const StepStats& s = atlas.Step(delta, TestScan());
+    CheckInvariants(atlas);
+    EXPECT_LE(s.match_unconnected, atlas.Options().resume_candidates_per_step);
+    unconnected += s.match_unconnected;
+    PlaceNewFrames(atlas.Graph(), truth, frame_in_world.get());
+  }
+  for (const AtlasEdge& e : atlas.Graph().Edges())
+    joining += e.origin == EdgeKind::kMapMatch && (e.a < old_frames) != (e.b < old_frames);
+  EXPECT_GT(unconnected, 0);
+  EXPECT_GE(joining, 1) << "the resumed part was never joined to the saved atlas";
+  CheckMapMatchEdges(atlas.Graph(), *frame_in_world);
+}
+
+// Serialize, Deserialize into a fresh atlas, resume: the saved frames and edges are kept and
+// the robot is alone in a new frame.
+TEST(Atlas, ResumeAfterDeserializeKeepsTheSavedAtlas) {
+  TestWorld w;
+  Atlas a(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  for (int i = 0; i < 75; ++i) a.Step(Pose2{0.25, 0.0, 0.0}, TestScan());
+  Atlas b(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  ASSERT_TRUE(b.Deserialize(a.Serialize()));
+  const FrameId f = b.ResumeInNewFrame();
+  EXPECT_EQ(b.Graph().FrameCount(), a.Graph().FrameCount() + 1);
+  EXPECT_EQ(b.Graph().EdgeCount(), a.Graph().EdgeCount());
+  EXPECT_TRUE(b.Graph().Frame(f).edges.empty());
+  ASSERT_EQ(b.Hypotheses().size(), 1u);
+  EXPECT_EQ(b.Hypotheses()[0].frame, f);
+  for (int i = 0; i < 20; ++i) {
+    b.Step(Pose2{0.25, 0.0, 0.0}, TestScan());
+    CheckInvariants(b);
+  }
+}
+
+// Sonar steps: a map without a sonar path gets no evidence from them, so q does not move, and
+// the robot still moves with the odometry.
+TEST(Atlas, SonarStepOnAMapWithoutSonarOnlyPredicts) {
+  TestWorld w;
+  Atlas a(TestWorld::Options(), w.Factory(), nullptr);
+  a.Step(Pose2{}, TestScan());
+  for (int i = 0; i < 5; ++i) a.Step(Pose2{0.1, 0.0, 0.0}, TestScan());
+  const double q = a.Dominant().q;
+  SonarReading r;
+  r.returns.resize(16);
+  for (int i = 0; i < 10; ++i) {
+    const StepStats& s = a.Step(Pose2{0.1, 0.0, 0.0}, r);
+    CheckInvariants(a);
+    EXPECT_EQ(s.step, 7 + i);
+  }
+  EXPECT_NEAR(a.Dominant().pose.mean.x, 1.5, 1e-9);
+  EXPECT_NEAR(a.Dominant().q, q, 0.05);
 }
 
 }  // namespace

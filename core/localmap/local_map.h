@@ -7,7 +7,8 @@
 //
 // Contract:
 // - Every quantity is in the coordinates of the map-frame that owns the map.
-// - Predict() then Update() per scan; the caller integrates odometry up to the scan's stamp.
+// - Predict() then Update() per scan (or UpdateWithSonar() per sonar reading); the caller
+//   integrates odometry up to the measurement's stamp.
 // - A juvenile hypothesis calls Update() with allow_new_features = false (Section III-E).
 // - New features are added only while Complexity() < Capacity() (Section I-A, map capacity).
 // - No I/O, no exceptions; data-dependent outcomes are typed results.
@@ -53,6 +54,16 @@ class LocalMap {
 
   // Updates the map and pose with a laser scan taken at the current (predicted) pose.
   virtual ScanUpdate Update(const LaserScan& scan, bool allow_new_features) = 0;
+
+  // Updates with one sonar ring reading taken at the current (predicted) pose. For q (eq. 5)
+  // the result's `observations` are the usable returns and `matched` those applied to a
+  // feature. Maps without a sonar path ignore the reading (an empty ScanUpdate: no evidence
+  // either way), which is the default.
+  virtual ScanUpdate UpdateWithSonar(const SonarReading& reading, bool allow_new_features) {
+    (void)reading;
+    (void)allow_new_features;
+    return ScanUpdate{};
+  }
 
   // The robot pose and its 3x3 marginal covariance in this map-frame.
   virtual UncertainPose RobotPose() const = 0;
