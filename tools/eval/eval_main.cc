@@ -1,6 +1,7 @@
 // atlas-eval: scores a trajectory against ground-truth relations (Freiburg SLAM benchmark) or
 // against a reference trajectory. See --help and docs/formats.md.
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -16,6 +17,7 @@ constexpr const char* kHelp = R"(Usage:
   atlas-eval --relations RELATIONS TRAJECTORY         score against ground-truth relations
   atlas-eval --reference REFERENCE TRAJECTORY         score against a reference trajectory
   atlas-eval --relations RELATIONS --dead-reckon LOG  score a CARMEN log's dead reckoning
+  atlas-eval --relations RELATIONS --atlas DIR        score atlas-replay output, per frame
 
 TRAJECTORY and REFERENCE are trajectory files: one pose per line, "timestamp x y theta"
 (seconds, metres, radians), '#' comments; plain or gzip (docs/formats.md). RELATIONS is a
@@ -24,6 +26,11 @@ Freiburg SLAM-benchmark relations file "t1 t2 x y z roll pitch yaw".
 Relations metric (Kuemmerle et al. 2009): for each relation, delta = P(t1) (-) P(t2),
 error = relation (-) delta; translational |error.xy| in m, rotational |error.yaw| in deg;
 mean +- standard deviation and the squared versions over the matched relations.
+With --atlas DIR (atlas-replay's output directory), P(t1) and P(t2) are read from
+DIR/trajectory.tsv, each in its own map-frame; when the frames differ, P(t2) is carried into
+P(t1)'s frame along the Dijkstra path (minimum det of the composed covariance, paper eq. 2-3)
+between the two frames in DIR/graph.tsv, as the paper does; no global arrangement is used.
+Relations whose frames are not connected are counted and left out.
 Reference scoring: relative pose error over pose pairs a fixed distance (--segment) or a fixed
 number of poses (--step) apart, and absolute error after the best rigid alignment.
 
@@ -31,6 +38,7 @@ Options:
   --relations FILE     relations file to score against
   --reference FILE     reference trajectory file to score against
   --dead-reckon LOG    use the odometry of a CARMEN log (at each scan) as the trajectory
+  --atlas DIR          score atlas-replay output (DIR/trajectory.tsv, DIR/graph.tsv)
   --tolerance S        stamp matching tolerance in seconds (default 0.001)
   --segment M          reference scoring: RPE pairs M metres of travel apart (default 1.0)
   --step N             reference scoring: RPE pairs N poses apart (instead of --segment)
@@ -50,8 +58,64 @@ int Fail(const std::string& error) {
   return 1;
 }
 
+// --atlas DIR: relations scored per frame, composed along Dijkstra paths of DIR/graph.tsv.
+int ScoreAtlas(const std::string& dir, const std::string& relations_path, Duration tolerance,
+               bool json) {
+  const std::string trajectory_path = dir + "/trajectory.tsv", graph_path = dir + "/graph.tsv";
+  TextFile tf = ReadTextFile(trajectory_path);
+  if (!tf.error.empty())
+    return Fail(tf.error + " (is " + dir + " an atlas-replay --out directory?)");
+  FramePosesParse trajectory = ParseFrameTrajectory(tf.text, trajectory_path);
+  if (!trajectory.error.empty()) return Fail(trajectory.error);
+  TextFile gf = ReadTextFile(graph_path);
+  if (!gf.error.empty()) return Fail(gf.error);
+  const EdgeRowsParse edges = ParseGraphEdges(gf.text, graph_path);
+  if (!edges.error.empty()) return Fail(edges.error);
+  int frames = edges.frame_count;
+  for (const FramePose& r : trajectory.rows) frames = std::max(frames, r.frame + 1);
+  AtlasGraph graph;
+  if (std::string e = BuildGraphFromEdges(frames, edges.rows, &graph); !e.empty())
+    return Fail(graph_path + ": " + e);
+  TextFile rf = ReadTextFile(relations_path);
+  if (!rf.error.empty()) return Fail(rf.error);
+  const RelationsParse relations = ParseRelations(rf.text, relations_path);
+  if (!relations.error.empty()) return Fail(relations.error);
+
+  const size_t poses = trajectory.rows.size();
+  DijkstraComposedPoses lookup(std::move(trajectory.rows), graph, tolerance);
+  const RelationsScore s =
+      ScoreRelations(relations.relations, [&lookup](Time t1, Time t2) { return lookup(t1, t2); });
+  const CompositionCounts& c = lookup.Counts();
+  if (json) {
+    std::printf(
+        "{\"estimate\": %s, \"relations\": %s, \"poses\": %zu, \"frames\": %d, \"edges\": %zu, "
+        "\"matched\": %lld, \"same_frame\": %lld, \"cross_frame\": %lld, \"unconnected\": %lld, "
+        "\"unmatched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s}\n",
+        JsonString(dir).c_str(), JsonString(relations_path).c_str(), poses, frames,
+        edges.rows.size(), static_cast<long long>(s.matched), static_cast<long long>(c.same_frame),
+        static_cast<long long>(c.cross_frame), static_cast<long long>(c.unconnected),
+        static_cast<long long>(c.unmatched), StatsJson(s.translation_m).c_str(),
+        StatsJson(s.rotation_deg).c_str());
+  } else {
+    std::printf("estimate:   %s (%zu poses in %d frames, %zu edges)\nrelations:  %s\n", dir.c_str(),
+                poses, frames, edges.rows.size(), relations_path.c_str());
+    std::printf(
+        "matched %lld of %lld relations: %lld same-frame, %lld cross-frame (Dijkstra-composed); "
+        "left out: %lld unconnected frames, %lld stamps without a pose\n",
+        static_cast<long long>(s.matched), static_cast<long long>(s.matched + s.unmatched),
+        static_cast<long long>(c.same_frame), static_cast<long long>(c.cross_frame),
+        static_cast<long long>(c.unconnected), static_cast<long long>(c.unmatched));
+    std::fputs(FormatStats("translational", "m", s.translation_m).c_str(), stdout);
+    std::fputs(FormatStats("rotational", "deg", s.rotation_deg).c_str(), stdout);
+  }
+  return s.matched > 0 ? 0
+                       : Fail(
+                             "no relation matched: are the trajectory and relations stamps on "
+                             "the same clock (the log's ipc timestamps)?");
+}
+
 int Main(int argc, char** argv) {
-  std::string relations_path, reference_path, log_path, trajectory_path;
+  std::string relations_path, reference_path, log_path, trajectory_path, atlas_dir;
   double tolerance_s = 0.001;
   ReferenceScoreOptions ref_options;
   bool json = false;
@@ -67,7 +131,7 @@ int Main(int argc, char** argv) {
       return 0;
     } else if (a == "--json") {
       json = true;
-    } else if (a == "--relations" || a == "--reference" || a == "--dead-reckon" ||
+    } else if (a == "--relations" || a == "--reference" || a == "--dead-reckon" || a == "--atlas" ||
                a == "--tolerance" || a == "--segment" || a == "--step") {
       const char* v = value(a.c_str());
       if (v == nullptr) return Usage(a + " needs a value");
@@ -78,6 +142,8 @@ int Main(int argc, char** argv) {
         reference_path = v;
       } else if (a == "--dead-reckon") {
         log_path = v;
+      } else if (a == "--atlas") {
+        atlas_dir = v;
       } else if (!ParseArgumentNumber(v, d)) {
         return Usage(a + " needs a number, got '" + v + "'");
       } else if (a == "--tolerance") {
@@ -101,12 +167,18 @@ int Main(int argc, char** argv) {
   if (relations_path.empty() == reference_path.empty()) {
     return Usage("give exactly one of --relations and --reference");
   }
-  if (trajectory_path.empty() == log_path.empty()) {
-    return Usage("give either a trajectory file or --dead-reckon LOG");
+  if (!trajectory_path.empty() + !log_path.empty() + !atlas_dir.empty() != 1) {
+    return Usage("give exactly one of a trajectory file, --dead-reckon LOG and --atlas DIR");
   }
+  if (!atlas_dir.empty() && relations_path.empty()) return Usage("--atlas needs --relations");
   if (!(tolerance_s >= 0.0)) return Usage("--tolerance must be >= 0");
   ref_options.match_tolerance = Duration(static_cast<int64_t>(tolerance_s * 1e9));
   if (std::string bad = ref_options.Validate(); !bad.empty()) return Usage(bad);
+
+  if (!atlas_dir.empty()) {
+    return ScoreAtlas(atlas_dir, relations_path, Duration(static_cast<int64_t>(tolerance_s * 1e9)),
+                      json);
+  }
 
   // The estimate.
   TimedTrajectory estimate;

@@ -38,9 +38,10 @@ bool ParseNumbers(std::string_view line, std::vector<double>& out, std::string& 
 
 // Calls `row(line_number, numbers)` for every non-comment, non-blank line; stops at the first
 // error and returns "<source>:<line>: <what>".
+// With `trailing_word`, each row ends in one non-numeric word, passed to `row` as well.
 template <typename Row>
 std::string ForEachRow(std::string_view text, const std::string& source, size_t fields,
-                       const char* format, Row row) {
+                       const char* format, Row row, bool trailing_word = false) {
   std::vector<double> numbers;
   std::string error;
   size_t line_number = 0;
@@ -54,12 +55,20 @@ std::string ForEachRow(std::string_view text, const std::string& source, size_t 
     const size_t first = line.find_first_not_of(" \t\r");
     if (first == std::string_view::npos || line[first] == '#') continue;
     const std::string where = source + ":" + std::to_string(line_number) + ": ";
-    if (!ParseNumbers(line, numbers, error)) return where + error;
+    std::string_view body = line.substr(0, line.find_last_not_of(" \t\r") + 1);
+    std::string_view word;
+    if (trailing_word) {
+      const size_t cut = body.find_last_of(" \t");
+      if (cut == std::string_view::npos) return where + "expected " + format;
+      word = body.substr(cut + 1);
+      body = body.substr(0, cut);
+    }
+    if (!ParseNumbers(body, numbers, error)) return where + error;
     if (numbers.size() != fields) {
       return where + "expected " + std::to_string(fields) + " numbers (" + format + "), found " +
              std::to_string(numbers.size());
     }
-    row(numbers);
+    if (std::string bad = row(numbers, word); !bad.empty()) return where + bad;
   }
   return {};
 }
@@ -88,8 +97,9 @@ TextFile ReadTextFile(const std::string& path) {
 TrajectoryParse ParseTrajectory(std::string_view text, const std::string& source) {
   TrajectoryParse out;
   std::vector<TimedPose> poses;
-  out.error = ForEachRow(text, source, 4, "timestamp x y theta", [&](const auto& v) {
+  out.error = ForEachRow(text, source, 4, "timestamp x y theta", [&](const auto& v, auto) {
     poses.push_back(TimedPose{FromSeconds(v[0]), Pose2{v[1], v[2], WrapAngle(v[3])}});
+    return std::string();
   });
   if (out.error.empty() && poses.empty()) out.error = source + ": no poses";
   out.trajectory = TimedTrajectory(std::move(poses));
@@ -98,11 +108,60 @@ TrajectoryParse ParseTrajectory(std::string_view text, const std::string& source
 
 RelationsParse ParseRelations(std::string_view text, const std::string& source) {
   RelationsParse out;
-  out.error = ForEachRow(text, source, 8, "t1 t2 x y z roll pitch yaw", [&](const auto& v) {
+  out.error = ForEachRow(text, source, 8, "t1 t2 x y z roll pitch yaw", [&](const auto& v, auto) {
     out.relations.push_back(
         Relation{FromSeconds(v[0]), FromSeconds(v[1]), Pose2{v[2], v[3], WrapAngle(v[7])}});
+    return std::string();
   });
   if (out.error.empty() && out.relations.empty()) out.error = source + ": no relations";
+  return out;
+}
+
+namespace {
+
+bool IsFrameId(double v) { return v == std::floor(v) && v >= 0 && v < (1 << 30); }
+
+}  // namespace
+
+FramePosesParse ParseFrameTrajectory(std::string_view text, const std::string& source) {
+  FramePosesParse out;
+  out.error = ForEachRow(text, source, 5, "timestamp frame x y theta", [&](const auto& v, auto) {
+    if (!IsFrameId(v[1])) return std::string("the frame is not a frame id (integer >= 0)");
+    out.rows.push_back(FramePose{FromSeconds(v[0]), static_cast<FrameId>(v[1]),
+                                 Pose2{v[2], v[3], WrapAngle(v[4])}});
+    return std::string();
+  });
+  if (out.error.empty() && out.rows.empty()) out.error = source + ": no poses";
+  return out;
+}
+
+EdgeRowsParse ParseGraphEdges(std::string_view text, const std::string& source) {
+  EdgeRowsParse out;
+  out.error = ForEachRow(
+      text, source, 11, "from to x y theta c00 c01 c02 c11 c12 c22 kind",
+      [&](const auto& v, std::string_view word) {
+        if (!IsFrameId(v[0]) || !IsFrameId(v[1]))
+          return std::string("from and to must be frame ids (integers >= 0)");
+        EdgeRow e;
+        e.from = static_cast<FrameId>(v[0]);
+        e.to = static_cast<FrameId>(v[1]);
+        e.to_in_from.mean = Pose2{v[2], v[3], WrapAngle(v[4])};
+        e.to_in_from.cov << v[5], v[6], v[7], v[6], v[8], v[9], v[7], v[9], v[10];
+        bool known = false;
+        for (EdgeKind k : {EdgeKind::kGenesis, EdgeKind::kMapMatch, EdgeKind::kRefined}) {
+          if (word == EdgeKindName(k)) {
+            e.kind = k;
+            known = true;
+          }
+        }
+        if (!known) {
+          return "kind is " + carmen::QuoteForMessage(word) + ", not genesis, map-match or refined";
+        }
+        out.frame_count = std::max(out.frame_count, std::max(e.from, e.to) + 1);
+        out.rows.push_back(e);
+        return std::string();
+      },
+      /*trailing_word=*/true);
   return out;
 }
 

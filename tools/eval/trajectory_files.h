@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/eval/atlas_relations.h"
 #include "core/eval/reference_score.h"
 #include "core/eval/relations_metric.h"
 #include "core/eval/timed_trajectory.h"
@@ -37,6 +38,20 @@ struct RelationsParse {
   std::string error;
 };
 RelationsParse ParseRelations(std::string_view text, const std::string& source);
+
+// atlas-replay output (docs/formats.md): trajectory.tsv "timestamp frame x y theta" and
+// graph.tsv "from to x y theta c00 c01 c02 c11 c12 c22 kind".
+struct FramePosesParse {
+  std::vector<FramePose> rows;
+  std::string error;
+};
+FramePosesParse ParseFrameTrajectory(std::string_view text, const std::string& source);
+struct EdgeRowsParse {
+  std::vector<EdgeRow> rows;
+  int frame_count = 0;  // 1 + the largest frame id named
+  std::string error;
+};
+EdgeRowsParse ParseGraphEdges(std::string_view text, const std::string& source);
 
 // "timestamp x y theta" lines with a header comment; timestamps to the microsecond.
 std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::string& comment);
