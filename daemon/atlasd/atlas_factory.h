@@ -3,9 +3,9 @@
 // framework (core/atlas), with w (eq. 12) bound by LineMapBootstrapper.
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
-// daemon_setup.cc. It exists because daemon/config/daemon_options.h and
-// core/localmap/localmap_options.h both define atlas::OdometryNoiseOptions, so no translation
-// unit may include both; this header includes neither.
+// daemon_setup.cc, so that the replay tools build the same mapper without the configuration
+// file's types (the daemon's odometry error model is OdometryErrorConfig, distinct from
+// core/localmap's OdometryNoiseOptions).
 
 #include <memory>
 #include <string>

@@ -16,11 +16,13 @@
 #include <mutex>
 #include <thread>
 
+#include "daemon/atlasd/atlas_checkpoint.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/health_report.h"
 #include "daemon/config/config_loader.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 #include "daemon/notify/service_notifier.h"
+#include "daemon/store/atlas_store_writer.h"
 
 namespace atlas {
 namespace {
@@ -105,6 +107,8 @@ class LiveDaemon {
   void PublishHealth(Time now);
   std::vector<DriverEntry> Drivers() const;
   void ApplyReload(const DaemonOptions& loaded);
+  bool OpenStore();
+  void SubmitCheckpoint();
 
   DaemonOptions options_;
   LiveFlags flags_;
@@ -117,6 +121,11 @@ class LiveDaemon {
   std::unique_ptr<LaserReader> laser_;
   std::unique_ptr<OdometryReader> odometry_;
   std::unique_ptr<SonarReader> sonar_;
+  AtlasStore store_;
+  std::unique_ptr<AtlasStoreWriter> writer_;  // null when the store could not be opened
+  CheckpointBuilder checkpoints_;
+  Time last_checkpoint_{};
+  int64_t checkpoint_step_ = -1;  // atlas step count of the last checkpoint
   Time start_{};
   Time last_health_{}, last_line_{};
   bool republish_raw_ = false;
@@ -161,6 +170,12 @@ void LiveDaemon::PublishHealth(Time now) {
   in.period = loop_->TakePeriod();
   in.step_budget_ms = options_.loop.step_budget_ms;
   in.drivers = Drivers();
+  if (writer_) {
+    const StoreWriterStats st = writer_->Stats();
+    in.store_saved = static_cast<int64_t>(st.saved);
+    in.store_dropped = static_cast<int64_t>(st.coalesced);
+    in.store_errors = static_cast<int64_t>(st.errors);
+  }
   const atlas::health_t h = MakeHealthMessage(in);
   publisher_->Health(h);
   {
@@ -200,6 +215,34 @@ void LiveDaemon::ApplyReload(const DaemonOptions& loaded) {
                restart.empty() ? "" : ("; take effect at the next start:" + restart).c_str());
 }
 
+// Opens the store in state.directory and resumes the saved atlas. False only when the store is
+// unusable (the daemon then maps without saving, and says so).
+bool LiveDaemon::OpenStore() {
+  const StoreOpenResult opened = store_.Open(options_.state.directory);
+  std::fprintf(stderr, "atlasd: %s\n", opened.message.c_str());
+  if (!opened.ok()) {
+    std::fprintf(stderr,
+                 "atlasd: warning: the atlas will NOT be saved (check state.directory and its "
+                 "permissions)\n");
+    return false;
+  }
+  const ResumeResult resumed = ResumeFromStore(&store_, atlas_.get());
+  std::fprintf(stderr, "atlasd: %s\n", resumed.message.c_str());
+  if (resumed.outcome == ResumeOutcome::kFailed) return false;
+  if (resumed.outcome == ResumeOutcome::kResumed) checkpoint_step_ = atlas_->StepCount();
+  writer_ = std::make_unique<AtlasStoreWriter>(&store_, options_.state.writer_queue_capacity);
+  writer_->Start();
+  return true;
+}
+
+// On the loop thread: the atlas image and changed rows go to the writer thread, which alone
+// touches SQLite.
+void LiveDaemon::SubmitCheckpoint() {
+  if (!writer_ || atlas_->StepCount() == checkpoint_step_) return;
+  checkpoint_step_ = atlas_->StepCount();
+  writer_->Submit(checkpoints_.Make(*atlas_));
+}
+
 void LiveDaemon::LoopThread() {
   ApplyScheduling(options_.scheduling);
   shared_.loop_running.store(true);
@@ -221,12 +264,17 @@ void LiveDaemon::LoopThread() {
     }
     Drain();
     const bool stepped = loop_->StepOne(sink_.get());
+    if (stepped && now - last_checkpoint_ >= SecondsToDuration(options_.state.save_period_s)) {
+      last_checkpoint_ = now;
+      SubmitCheckpoint();
+    }
     if (now - last_health_ >= SecondsToDuration(options_.lcm.health_period_s)) {
       last_health_ = now;
       PublishHealth(now);
     }
     if (!stepped) std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
+  SubmitCheckpoint();  // the last steps, saved by Run() before it returns
   shared_.loop_running.store(false);
 }
 
@@ -260,6 +308,8 @@ int LiveDaemon::Run() {
   sink_ = std::make_unique<LcmSink>(publisher_.get(), options_.lcm);
   republish_raw_ = options_.lcm.republish_raw;
   atlas_ = MakeAtlas(ToMapperSettings(options_));
+  OpenStore();
+  last_checkpoint_ = Now();
   loop_ = std::make_unique<StepLoop>(ToStepLoopOptions(options_), ToMapperSettings(options_),
                                      atlas_.get());
 
@@ -348,6 +398,15 @@ int LiveDaemon::Run() {
   if (laser_) laser_->Stop();
   if (odometry_) odometry_->Stop();
   if (sonar_) sonar_->Stop();
+  if (writer_) {
+    writer_->Stop();  // writes what is queued, the last checkpoint included
+    const StoreWriterStats st = writer_->Stats();
+    std::fprintf(stderr, "atlasd: saved %llu checkpoints to %s (%llu merged, %llu errors%s%s)\n",
+                 static_cast<unsigned long long>(st.saved), store_.path().c_str(),
+                 static_cast<unsigned long long>(st.coalesced),
+                 static_cast<unsigned long long>(st.errors), st.last_error.empty() ? "" : ": ",
+                 st.last_error.c_str());
+  }
   std::fprintf(stderr, "atlasd: stopped after %lld steps\n",
                static_cast<long long>(loop_->steps()));
   return exit_code;

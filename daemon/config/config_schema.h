@@ -83,7 +83,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
   });
   v.Section("noise", [&] {
     v.Section("odometry", [&] {
-      OdometryNoiseOptions& n = o.noise.odometry;
+      OdometryErrorConfig& n = o.noise.odometry;
       v.Double("translation_sigma_per_m", n.translation_sigma_per_m, 0.0, 1.0);
       v.Double("rotation_sigma_per_rad", n.rotation_sigma_per_rad, 0.0, 1.0);
       v.Double("rotation_sigma_per_m", n.rotation_sigma_per_m, 0.0, 1.0);

@@ -61,7 +61,7 @@ struct SonarOptions {
 };
 
 // Odometry error model: standard deviations that grow with the motion.
-struct OdometryNoiseOptions {
+struct OdometryErrorConfig {
   double translation_sigma_per_m = 0.05;  // metres of error per metre driven
   double rotation_sigma_per_rad = 0.05;   // radians of error per radian turned
   double rotation_sigma_per_m = 0.01;     // radians of heading error per metre driven
@@ -73,7 +73,7 @@ struct LaserNoiseOptions {
 };
 
 struct NoiseOptions {
-  OdometryNoiseOptions odometry;
+  OdometryErrorConfig odometry;
   LaserNoiseOptions laser;
 };
 

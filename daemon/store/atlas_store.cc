@@ -318,6 +318,29 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
   return result;
 }
 
+StoreOpenResult AtlasStore::RefuseAndStartEmpty(bool newer, const std::string& why) {
+  StoreOpenResult result;
+  if (db_ == nullptr) {
+    result.message = "the atlas store is not open";
+    return result;
+  }
+  const std::string directory = fs::path(path_).parent_path().string();
+  Close();  // checkpoints the WAL into the file, so the file moved aside is whole
+  std::string error, moved_to;
+  if (!MoveAside(path_, newer ? "newer" : "corrupt", &moved_to, &error)) {
+    result.message = "refused the atlas store " + path_ + " because " + why +
+                     ", and could not move it aside: " + error;
+    return result;
+  }
+  result = Open(directory);
+  if (!result.ok()) return result;
+  result.status = newer ? StoreOpenStatus::kMovedAsideNewer : StoreOpenStatus::kMovedAsideCorrupt;
+  result.moved_to = moved_to;
+  result.message = "refused the atlas store " + path_ + " because " + why + "; moved it aside to " +
+                   moved_to + " (kept for inspection) and started an empty atlas";
+  return result;
+}
+
 bool AtlasStore::Save(const AtlasSnapshot& batch, std::string* error) {
   error->clear();
   if (db_ == nullptr) {
@@ -357,7 +380,8 @@ bool AtlasStore::Save(const AtlasSnapshot& batch, std::string* error) {
   for (const auto& [key, value] : batch.metadata) {
     if (!good) break;
     sqlite3_bind_text(upsert_metadata_, 1, key.data(), static_cast<int>(key.size()), SQLITE_STATIC);
-    sqlite3_bind_text(upsert_metadata_, 2, value.data(), static_cast<int>(value.size()),
+    // Values are byte strings (the atlas image is binary): stored as BLOBs, read by length.
+    sqlite3_bind_blob(upsert_metadata_, 2, value.data(), static_cast<int>(value.size()),
                       SQLITE_STATIC);
     good = run(upsert_metadata_);
   }
@@ -429,8 +453,11 @@ bool AtlasStore::Load(StoredAtlas* out, std::string* error) {
   }
   while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
     const char* k = reinterpret_cast<const char*>(sqlite3_column_text(st, 0));
-    const char* v = reinterpret_cast<const char*>(sqlite3_column_text(st, 1));
-    out->metadata[k ? k : ""] = v ? v : "";
+    const int key_bytes = sqlite3_column_bytes(st, 0);
+    const void* v = sqlite3_column_blob(st, 1);  // also for TEXT values (batch_sequence)
+    const int value_bytes = sqlite3_column_bytes(st, 1);
+    out->metadata[std::string(k ? k : "", k ? key_bytes : 0)] =
+        std::string(static_cast<const char*>(v), v ? value_bytes : 0);
   }
   if (rc != SQLITE_DONE) return fail("");
   sqlite3_finalize(st);

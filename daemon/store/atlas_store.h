@@ -18,6 +18,8 @@
 //   batches, never part of one. Rows are upserted by key (frame id; edge (from, to); metadata
 //   key), so a batch carries only what changed. Each Save() increments the metadata value
 //   "batch_sequence".
+// - Metadata values are byte strings (stored as BLOBs; binary values such as the atlas image
+//   round-trip exactly, embedded NULs included).
 // - SQLite is touched only by the thread that owns the store (the writer thread,
 //   AtlasStoreWriter); never by the step loop. Not thread-safe.
 
@@ -96,6 +98,12 @@ class AtlasStore {
   void Close();
   bool is_open() const { return db_ != nullptr; }
   const std::string& path() const { return path_; }
+
+  // For a store whose file is sound but whose content its user cannot take (e.g. an atlas image
+  // that does not decode, or one written by a newer atlasd): closes it, moves the file aside
+  // like Open() does with a corrupt or newer file (never overwritten), and opens a new empty
+  // store in its place. `why` completes "refused the atlas store PATH because ...".
+  StoreOpenResult RefuseAndStartEmpty(bool newer, const std::string& why);
 
   // Writes the batch in one transaction. On failure nothing of the batch is kept and *error
   // says why.

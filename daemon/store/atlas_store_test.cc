@@ -111,6 +111,52 @@ TEST_F(StoreDir, SaveLoadRoundTrip) {
   EXPECT_EQ(atlas.metadata["batch_sequence"], "2");
 }
 
+TEST_F(StoreDir, BinaryMetadataRoundTripsExactly) {
+  std::string image("\x00\x01atlas\x00\xff\xfe", 10);
+  {
+    AtlasStore store;
+    ASSERT_TRUE(store.Open(dir_.string()).ok());
+    AtlasSnapshot b;
+    b.metadata["atlas_image"] = image;
+    std::string error;
+    ASSERT_TRUE(store.Save(b, &error)) << error;
+  }
+  AtlasStore store;
+  ASSERT_EQ(store.Open(dir_.string()).status, StoreOpenStatus::kOpened);
+  StoredAtlas a;
+  std::string error;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  EXPECT_EQ(a.metadata["atlas_image"], image);
+  EXPECT_EQ(a.metadata["batch_sequence"], "1");
+}
+
+TEST_F(StoreDir, RefusedContentIsMovedAsideAndAnEmptyStoreOpened) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir_.string()).ok());
+  AtlasSnapshot b;
+  b.metadata["atlas_image"] = "not an image";
+  std::string error;
+  ASSERT_TRUE(store.Save(b, &error)) << error;
+  const StoreOpenResult r = store.RefuseAndStartEmpty(false, "its atlas image does not decode");
+  ASSERT_EQ(r.status, StoreOpenStatus::kMovedAsideCorrupt) << r.message;
+  EXPECT_NE(r.message.find("does not decode"), std::string::npos) << r.message;
+  ASSERT_TRUE(fs::exists(r.moved_to));
+  StoredAtlas a;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  EXPECT_TRUE(a.metadata.empty());
+  // The moved file still holds what was saved.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(r.moved_to.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT count(*) FROM metadata WHERE key = 'atlas_image'", -1,
+                               &st, nullptr),
+            SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(st, 0), 1);
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+}
+
 TEST_F(StoreDir, NotADatabaseIsRefusedAndMovedAsideNeverOverwritten) {
   fs::create_directories(dir_);
   std::string garbage(5000, 'x');

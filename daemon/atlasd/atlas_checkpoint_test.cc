@@ -1,0 +1,119 @@
+#include "daemon/atlasd/atlas_checkpoint.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/atlas/atlas_test_world.h"
+#include "core/atlas/fake_local_map.h"
+
+namespace atlas {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CheckpointTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("checkpoint_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::unique_ptr<Atlas> NewAtlas() {
+    return std::make_unique<Atlas>(TestWorld::Options(), world_.Factory(),
+                                   std::make_shared<FakeBootstrapper>());
+  }
+  // Drives far enough for Genesis to make several frames.
+  static void Drive(Atlas* a, int steps) {
+    for (int i = 0; i < steps; ++i) a->Step(Pose2{0.25, 0.0, 0.0}, TestScan());
+  }
+  TestWorld world_;
+  fs::path dir_;
+};
+
+TEST_F(CheckpointTest, SavedAtlasIsResumedWhole) {
+  auto a = NewAtlas();
+  Drive(a.get(), 60);
+  ASSERT_GE(a->Graph().FrameCount(), 2);
+  {
+    AtlasStore store;
+    ASSERT_TRUE(store.Open(dir_.string()).ok());
+    CheckpointBuilder builder;
+    AtlasSnapshot first = builder.Make(*a);
+    EXPECT_EQ(static_cast<int>(first.frames.size()), a->Graph().FrameCount());
+    EXPECT_EQ(static_cast<int>(first.edges.size()), a->Graph().EdgeCount());
+    std::string error;
+    ASSERT_TRUE(store.Save(first, &error)) << error;
+    // Nothing moved: the next batch carries the image and the frames with hypotheses only.
+    AtlasSnapshot again = builder.Make(*a);
+    EXPECT_TRUE(again.edges.empty());
+    EXPECT_LE(again.frames.size(), a->Hypotheses().size());
+    ASSERT_TRUE(store.Save(again, &error)) << error;
+  }
+  AtlasStore store;
+  ASSERT_EQ(store.Open(dir_.string()).status, StoreOpenStatus::kOpened);
+  auto b = NewAtlas();
+  const ResumeResult r = ResumeFromStore(&store, b.get());
+  ASSERT_EQ(r.outcome, ResumeOutcome::kResumed) << r.message;
+  EXPECT_EQ(r.frames, a->Graph().FrameCount());
+  EXPECT_EQ(r.steps, 60);
+  EXPECT_TRUE(b->Serialize() == a->Serialize());
+  StoredAtlas saved;
+  std::string error;
+  ASSERT_TRUE(store.Load(&saved, &error));
+  EXPECT_EQ(static_cast<int>(saved.frames.size()), a->Graph().FrameCount());
+}
+
+TEST_F(CheckpointTest, EmptyStoreLeavesTheAtlasEmpty) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir_.string()).ok());
+  auto a = NewAtlas();
+  const ResumeResult r = ResumeFromStore(&store, a.get());
+  EXPECT_EQ(r.outcome, ResumeOutcome::kEmpty) << r.message;
+  EXPECT_EQ(a->Graph().FrameCount(), 0);
+}
+
+TEST_F(CheckpointTest, UndecodableImageIsMovedAsideNotOverwritten) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir_.string()).ok());
+  auto a = NewAtlas();
+  Drive(a.get(), 10);
+  AtlasSnapshot b = CheckpointBuilder().Make(*a);
+  b.metadata["atlas_image"].resize(b.metadata["atlas_image"].size() / 2);
+  std::string error;
+  ASSERT_TRUE(store.Save(b, &error)) << error;
+  auto fresh = NewAtlas();
+  const ResumeResult r = ResumeFromStore(&store, fresh.get());
+  EXPECT_EQ(r.outcome, ResumeOutcome::kRefusedCorrupt);
+  EXPECT_NE(r.message.find("does not decode"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("moved it aside"), std::string::npos) << r.message;
+  EXPECT_EQ(fresh->Graph().FrameCount(), 0);
+  int moved = 0;
+  for (const auto& e : fs::directory_iterator(dir_))
+    moved += e.path().filename().string().find("atlas.sqlite.corrupt-") == 0;
+  EXPECT_EQ(moved, 1);
+  StoredAtlas now;
+  ASSERT_TRUE(store.Load(&now, &error));
+  EXPECT_EQ(now.metadata.count("atlas_image"), 0u);  // the new store is empty
+}
+
+TEST_F(CheckpointTest, NewerImageVersionIsRefused) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir_.string()).ok());
+  auto a = NewAtlas();
+  Drive(a.get(), 10);
+  AtlasSnapshot b = CheckpointBuilder().Make(*a);
+  b.metadata["atlas_image_version"] = std::to_string(Atlas::kImageVersion + 1);
+  std::string error;
+  ASSERT_TRUE(store.Save(b, &error)) << error;
+  auto fresh = NewAtlas();
+  const ResumeResult r = ResumeFromStore(&store, fresh.get());
+  EXPECT_EQ(r.outcome, ResumeOutcome::kRefusedNewer);
+  EXPECT_NE(r.message.find("newer atlasd"), std::string::npos) << r.message;
+  EXPECT_EQ(fresh->Graph().FrameCount(), 0);
+}
+
+}  // namespace
+}  // namespace atlas
