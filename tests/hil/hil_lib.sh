@@ -49,6 +49,7 @@ republish_raw = true
 health_period_s = 0.5
 [state]
 directory = "$WORK/state"
+save_period_s = ${SAVE_PERIOD_S:-2.0}
 TOML
   local line
   for line in "$@"; do echo "$line" >>"$file"; done
