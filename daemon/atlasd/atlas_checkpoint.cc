@@ -108,9 +108,12 @@ ResumeResult ResumeFromStore(AtlasStore* store, Atlas* atlas) {
   r.outcome = ResumeOutcome::kResumed;
   r.frames = atlas->Graph().FrameCount();
   r.steps = atlas->StepCount();
+  const int edges = atlas->Graph().EdgeCount();
+  r.new_frame = atlas->ResumeInNewFrame();
   r.message = "resumed the saved atlas from " + store->path() + ": " + std::to_string(r.frames) +
-              " frames, " + std::to_string(atlas->Graph().EdgeCount()) + " edges, " +
-              std::to_string(r.steps) + " steps";
+              " frames, " + std::to_string(edges) + " edges, " + std::to_string(r.steps) +
+              " steps; the robot starts in the new frame " + std::to_string(r.new_frame) +
+              ", to be joined to the old ones by map-matching";
   return r;
 }
 

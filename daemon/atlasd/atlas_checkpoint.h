@@ -13,7 +13,9 @@
 //   and copies bytes (O(atlas size)); it never touches SQLite. The loop calls it at most once
 //   per state.save_period_s and hands the batch to AtlasStoreWriter::Submit().
 // - ResumeFromStore() runs before the loop starts. A store without an image leaves the atlas
-//   empty (kEmpty). An image that decodes replaces the atlas (kResumed). An image written by a
+//   empty (kEmpty). An image that decodes replaces the atlas, and the robot starts in a new
+//   frame (Atlas::ResumeInNewFrame(): every saved hypothesis is dropped; map-matching joins
+//   the new frame to the old ones when it recognises them) (kResumed). An image written by a
 //   newer atlasd (a larger atlas_image_version), or one that does not decode, is refused: the
 //   store file is moved aside, never overwritten (AtlasStore::RefuseAndStartEmpty), and the
 //   atlas starts empty (kRefusedNewer, kRefusedCorrupt). Every outcome has a one-line message.
@@ -42,8 +44,9 @@ enum class ResumeOutcome { kEmpty, kResumed, kRefusedCorrupt, kRefusedNewer, kFa
 struct ResumeResult {
   ResumeOutcome outcome = ResumeOutcome::kFailed;
   std::string message;  // one line, for the log
-  int frames = 0;       // frames of the resumed atlas
+  int frames = 0;       // frames of the saved atlas
   int64_t steps = 0;    // steps the saved atlas had made
+  FrameId new_frame = kNoFrame;  // kResumed: the robot's new, unconnected frame
 };
 
 // `store` is open; `atlas` is empty and built with the configured options.
