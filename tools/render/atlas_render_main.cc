@@ -1,9 +1,13 @@
-// atlas-render: draws a simulated run (atlas-sim output directory) to PNG and/or SVG.
+// atlas-render: draws a simulated run (atlas-sim output directory) or an atlas (atlas-replay
+// output directory) to PNG and/or SVG.
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "tools/refine/global_refinement.h"
+#include "tools/render/atlas_drawing.h"
 #include "tools/render/canvas.h"
 #include "tools/render/run_data.h"
 #include "tools/render/run_drawing.h"
@@ -11,6 +15,24 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: atlas-render --run DIR [--png FILE] [--svg FILE] [options]
+       atlas-render --atlas DIR [--projection F | --whole | --timeline | --timeline-frames]
+                    [--png FILE] [--svg FILE] [options]
+
+--atlas DIR draws an atlas-replay output directory (graph.tsv, maps.tsv, trajectory.tsv,
+global.tsv, timing.tsv; docs/formats.md):
+  --projection F     the Dijkstra projection from frame F (default 0): every reached frame's
+                     lines at its projected pose, its origin and 3-sigma position ellipse, the
+                     projection tree (paper, Fig. 2 and 10). Default file DIR/projection-F.png
+  --whole            the whole run: every frame from frame 0 and the robot's global trajectory
+                     (Fig. 8). Default file DIR/whole.png
+  --refined          with --whole or --projection: frames placed by global least squares
+                     (the same refinement as atlas-replay --refine) instead of the projection
+  --timeline         step time and the dominant frame id over time (Fig. 7); DIR/timeline.png
+  --timeline-frames  step time against the number of frames; DIR/timeline-frames.png
+  --budget MS        step budget drawn on the timelines (default 10)
+  --cpu              timelines: plot each step's CPU time (step_cpu.tsv) instead of its wall
+                     time (on a shared machine wall time includes other processes' turns)
+  --no-ellipses      no uncertainty ellipses;  --no-labels: no frame ids
 
 Draws an atlas-sim output directory (world.txt, truth.tsv, run.clf): the walls, the true
 trajectory, the odometry trajectory (started at the true start pose), laser returns of a
@@ -36,6 +58,110 @@ int Fail(const std::string& message) {
   return 2;
 }
 
+enum class AtlasPicture { kProjection, kWhole, kTimeline, kTimelineFrames };
+
+struct AtlasRequest {
+  std::string dir, png, svg, title;
+  AtlasPicture picture = AtlasPicture::kProjection;
+  atlas::draw::AtlasDrawOptions draw;
+  double budget_ms = 10.0;
+  bool cpu = false;
+};
+
+// Writes `draw_fn` onto a PNG and/or SVG canvas of the given size and view.
+template <typename F>
+int WriteCanvases(const AtlasRequest& req, int width, int height,
+                  const atlas::draw::ViewTransform& view, F&& draw_fn) {
+  using namespace atlas::draw;
+  for (const auto& [path, format] :
+       {std::pair{req.png, ImageFormat::kPng}, std::pair{req.svg, ImageFormat::kSvg}}) {
+    if (path.empty()) continue;
+    std::string error;
+    auto canvas = Canvas::Create(format, path, width, height, view, &error);
+    if (!canvas) return Fail(error);
+    draw_fn(*canvas);
+    if (error = canvas->Finish(); !error.empty()) return Fail(error);
+    std::fprintf(stderr, "atlas-render: wrote %s (%d x %d px)\n", path.c_str(), width, height);
+  }
+  return 0;
+}
+
+int RenderAtlas(AtlasRequest req) {
+  using namespace atlas;
+  using namespace atlas::draw;
+  const bool timeline =
+      req.picture == AtlasPicture::kTimeline || req.picture == AtlasPicture::kTimelineFrames;
+  replay::ReplayFilesWanted wanted;
+  wanted.timing = timeline;
+  wanted.trajectory = !timeline;
+  wanted.graph = !timeline;
+  wanted.maps = !timeline;
+  wanted.step_cpu = timeline && req.cpu;
+  replay::ReplayOutput run;
+  if (const std::string e = replay::ReadReplayOutput(req.dir, wanted, &run); !e.empty())
+    return Fail(e);
+  struct ReleaseAtExit {
+    ~ReleaseAtExit() { ReleaseDrawingCaches(); }
+  } release_at_exit;
+  if (req.png.empty() && req.svg.empty()) {
+    const char* names[] = {"projection", "whole", "timeline", "timeline-frames"};
+    std::string name = names[static_cast<int>(req.picture)];
+    if (req.picture == AtlasPicture::kProjection) name += "-" + std::to_string(req.draw.source);
+    if (req.draw.refined) name += "-refined";
+    req.png = req.dir + "/" + name + ".png";
+  }
+  if (timeline) {
+    if (req.cpu) {
+      for (replay::TimingRecord& r : run.timing)
+        if (r.step >= 1 && r.step <= static_cast<int64_t>(run.step_cpu_ns.size()))
+          r.step_ns = run.step_cpu_ns[static_cast<size_t>(r.step - 1)];
+    }
+    TimelineOptions t;
+    t.width_px = req.draw.width_px;
+    t.height_px = req.picture == AtlasPicture::kTimeline ? req.draw.width_px * 9 / 16
+                                                         : req.draw.width_px * 5 / 12;
+    t.axis = req.picture == AtlasPicture::kTimeline ? TimelineAxis::kTime : TimelineAxis::kFrames;
+    t.budget_ms = req.budget_ms;
+    t.step_label = req.cpu ? "step CPU time (ms)" : "step time (ms)";
+    t.title =
+        req.title.empty()
+            ? (t.axis == TimelineAxis::kTime
+                   ? "atlas-replay " + req.dir + ": step time and dominant map-frame over time"
+                   : "atlas-replay " + req.dir + ": step time against the number of map-frames")
+            : req.title;
+    const ViewTransform view = ViewTransform::Fit(Vec2(0, 0), Vec2(t.width_px, t.height_px), 0, 0,
+                                                  t.width_px, t.height_px);
+    return WriteCanvases(req, t.width_px, t.height_px, view,
+                         [&](Canvas& c) { DrawTimeline(c, run.timing, t); });
+  }
+  replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
+  if (!g.error.empty()) return Fail(req.dir + "/graph.tsv: " + g.error);
+  std::vector<std::optional<Pose2>> refined;
+  if (req.draw.refined) {
+    const refine::RefineResult r = refine::RefineGlobal(g.graph, refine::RefineOptions{});
+    if (r.status == refine::RefineStatus::kFailed || r.status == refine::RefineStatus::kNoFrames)
+      return Fail("global refinement: " + std::string(refine::ToString(r.status)) + " " +
+                  r.message);
+    refined = r.refined;
+    if (req.draw.trajectory && run.refined.empty()) {
+      // Place the trajectory with the refined frames (as global_refined.tsv would).
+      for (const replay::StampedFramePose& t : run.trajectory)
+        if (t.frame >= 0 && t.frame < static_cast<int>(refined.size()) && refined[t.frame])
+          run.refined.push_back({t.stamp_s, Compose(*refined[t.frame], t.pose)});
+    }
+  }
+  req.draw.title = req.title;
+  AtlasLayout layout;
+  int height = 0;
+  ViewTransform view;
+  if (const std::string e = LayoutAtlas(
+          run, g.graph, req.draw, req.draw.refined ? &refined : nullptr, &layout, &height, &view);
+      !e.empty())
+    return Fail(e);
+  return WriteCanvases(req, req.draw.width_px, height, view,
+                       [&](Canvas& c) { DrawAtlasProjection(c, run, g.graph, layout, req.draw); });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -44,11 +170,60 @@ int main(int argc, char** argv) {
   RunDrawOptions draw;
   RunReadOptions read;
   read.max_scans = 400;
+  AtlasRequest atlas_req;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       return 0;
+    }
+    if (a == "--whole") {
+      atlas_req.picture = AtlasPicture::kWhole;
+      atlas_req.draw.trajectory = true;
+      atlas_req.draw.ellipses = false;
+      atlas_req.draw.source = 0;
+      continue;
+    }
+    if (a == "--timeline" || a == "--timeline-frames") {
+      atlas_req.picture =
+          a == "--timeline" ? AtlasPicture::kTimeline : AtlasPicture::kTimelineFrames;
+      continue;
+    }
+    if (a == "--cpu") {
+      atlas_req.cpu = true;
+      continue;
+    }
+    if (a == "--refined") {
+      atlas_req.draw.refined = true;
+      continue;
+    }
+    if (a == "--no-ellipses") {
+      atlas_req.draw.ellipses = false;
+      continue;
+    }
+    if (a == "--no-labels") {
+      atlas_req.draw.frame_labels = false;
+      continue;
+    }
+    if (a == "--atlas" || a == "--projection" || a == "--budget") {
+      if (i + 1 >= argc) return Fail("option " + a + " needs a value");
+      const std::string v = argv[++i];
+      if (a == "--atlas") {
+        atlas_req.dir = v;
+        continue;
+      }
+      char* end = nullptr;
+      const double d = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(d >= 0.0 && d < 1e9))
+        return Fail(a + ": '" + v + "' is not a non-negative number");
+      if (a == "--budget") {
+        atlas_req.budget_ms = d;
+      } else {
+        if (d != std::floor(d)) return Fail("--projection needs a frame id (an integer)");
+        atlas_req.picture = AtlasPicture::kProjection;
+        atlas_req.draw.source = static_cast<atlas::FrameId>(d);
+      }
+      continue;
     }
     if (a == "--no-odometry") {
       draw.draw_odometry = false;
@@ -97,7 +272,18 @@ int main(int argc, char** argv) {
       draw.title = v;
     }
   }
-  if (dir.empty()) return Fail("--run DIR is required (an atlas-sim output directory)");
+  if (!atlas_req.dir.empty()) {
+    if (!dir.empty()) return Fail("give --run DIR or --atlas DIR, not both");
+    atlas_req.png = png;
+    atlas_req.svg = svg;
+    atlas_req.title = draw.title;
+    atlas_req.draw.width_px = draw.width_px;
+    return RenderAtlas(atlas_req);
+  }
+  if (dir.empty())
+    return Fail(
+        "--run DIR (an atlas-sim output directory) or --atlas DIR (an atlas-replay "
+        "output directory) is required");
   if (png.empty() && svg.empty()) png = dir + "/run.png";
   draw.draw_scans = read.max_scans > 0;
 

@@ -1,33 +1,55 @@
 // atlas-replay: runs a CARMEN log through the Atlas as fast as it can. See --help.
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
+#include "drivers/carmen/reference_odometry.h"
 #include "tools/replay/replay_run.h"
 
 namespace atlas::replay {
 namespace {
 
 constexpr const char* kHelp = R"(Usage: atlas-replay [options] LOG
+       atlas-replay [options] SIMDIR
 
 Runs a CARMEN log (plain or gzip; ODOM and laser lines) through the Atlas as fast as it can,
 with atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped).
+SIMDIR, an atlas-sim output directory, stands for SIMDIR/run.clf (its truth is not used).
 Writes into --out DIR (docs/formats.md, "atlas-replay output"):
   trajectory.tsv   timestamp frame x y theta   (dominant hypothesis's pose in its own frame)
   graph.tsv        from to x y theta c00 c01 c02 c11 c12 c22 kind   (one row per edge)
   timing.tsv       step timestamp frames hypotheses dominant step_ns
   global.tsv       timestamp x y theta   (Dijkstra projection from frame 0, end of run)
+  frames.tsv       frame step timestamp parent   (each frame's Genesis)
+  maps.tsv         frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa   (every frame's lines)
   summary.json     the summary printed on stdout
+  reference.tsv, closures.tsv   with --corrected: the reference pose at each scan, and every
+                   map-match edge against the reference (false loop closures)
+  global_refined.tsv   with --refine: as global.tsv, frames placed by least squares (Ceres)
 Score global.tsv with: atlas-eval --relations FILE.relations DIR/global.tsv
+                  or:  atlas-eval --reference DIR/reference.tsv DIR/global.tsv
 
 Options:
   --out DIR            output directory, created if missing (default: replay-out)
+  --refine             also arrange all frames by global least squares after the run (offline;
+                       never in the step loop) and write global_refined.tsv
+  --corrected          a Radish "corrected" log: line order is the clock, its poses are the
+                       reference; wheel odometry is synthesised from them with seeded noise:
+    --seed N             random seed (default 1)
+    --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
+    --left-scale E       left wheel radius error, relative (default 0.0002)
+    --right-scale E      right wheel radius error, relative (default -0.0002)
+    --track-width-error E  relative track width error (default 0.002)
+    --line-period S      seconds per line for the line-order clock (default 0.05)
+  --log-max-range M    ranges >= M metres in the log are no-return (aces-corrected: 50)
   --max-scans N        step only the first N scans (default: all)
   --max-range M        ranges beyond M metres are no-return for the maps (default 8)
   --map-capacity N     features per map-frame (default 10)
@@ -65,7 +87,9 @@ int Main(int argc, char** argv) {
   std::string log_path, out_dir = "replay-out";
   ReplayOptions options;
   carmen::CarmenLogOptions log_options;
-  bool quiet = false;
+  WheelOdometryNoiseOptions noise;
+  uint64_t seed = 1;
+  bool quiet = false, corrected = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](const char* name) -> const char* {
@@ -101,6 +125,28 @@ int Main(int argc, char** argv) {
       if (v == nullptr || !ParseInt(v, 1, n) || n > 1000)
         return Usage("--max-hypotheses needs an integer in 1..1000");
       options.mapper.max_hypotheses = static_cast<int>(n);
+    } else if (a == "--refine") {
+      options.refine = true;
+    } else if (a == "--corrected") {
+      corrected = true;
+    } else if (a == "--seed") {
+      const char* v = value("--seed");
+      long long n = 0;
+      if (v == nullptr || !ParseInt(v, 0, n)) return Usage("--seed needs an integer >= 0");
+      seed = static_cast<uint64_t>(n);
+    } else if (a == "--wheel-noise" || a == "--left-scale" || a == "--right-scale" ||
+               a == "--track-width-error" || a == "--line-period" || a == "--log-max-range") {
+      const char* v = value(a.c_str());
+      char* end = nullptr;
+      const double d = v == nullptr ? 0.0 : std::strtod(v, &end);
+      if (v == nullptr || end == v || *end != '\0' || !std::isfinite(d))
+        return Usage(a + " needs a number");
+      if (a == "--wheel-noise") noise.wheel_noise_per_m = d;
+      if (a == "--left-scale") noise.left_scale_error = d;
+      if (a == "--right-scale") noise.right_scale_error = d;
+      if (a == "--track-width-error") noise.track_width_error = d;
+      if (a == "--line-period") log_options.line_period_s = d;
+      if (a == "--log-max-range") log_options.max_range_m = d;
     } else if (a == "--skip-bad-lines") {
       log_options.skip_bad_lines = true;
     } else if (a == "--quiet") {
@@ -115,6 +161,14 @@ int Main(int argc, char** argv) {
   }
   if (log_path.empty()) return Usage("no LOG given");
   if (std::string e = options.Validate(); !e.empty()) return Usage(e);
+  if (corrected) {
+    log_options.clock = carmen::Clock::kLineOrder;
+    log_options.reference_trajectory = true;
+  }
+  if (std::string e = log_options.Validate(); !e.empty()) return Usage(e);
+  if (std::string e = noise.Validate(); !e.empty()) return Usage(e);
+  struct stat st {};
+  if (stat(log_path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) log_path += "/run.clf";
 
   if (!quiet) std::fprintf(stderr, "atlas-replay: reading %s\n", log_path.c_str());
   carmen::CarmenReadResult read = carmen::ReadCarmenLog(log_path, log_options);
@@ -136,7 +190,19 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "%satlas-replay: %lld/%lld scans, %.1f s%s", tty ? "\r" : "",
                  static_cast<long long>(done), static_cast<long long>(total), s, tty ? "" : "\n");
   };
-  ReplayResult r = RunReplay(read.log.events, options, out_dir, progress, 1000);
+  std::vector<TruthSample> reference;
+  std::vector<carmen::CarmenEvent> synthesized;
+  if (corrected) {
+    if (read.log.reference.empty()) {
+      std::fprintf(stderr, "atlas-replay: %s has no poses to use as the reference (--corrected)\n",
+                   log_path.c_str());
+      return 1;
+    }
+    reference = ReferenceAtScans(read.log);
+    synthesized = carmen::EventsWithSynthesizedOdometry(read.log, noise, seed);
+  }
+  ReplayResult r = RunReplay(corrected ? synthesized : read.log.events, options, out_dir, progress,
+                             1000, reference);
   if (!quiet && tty) std::fputc('\n', stderr);
   if (!r.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", r.error.c_str());

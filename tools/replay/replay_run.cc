@@ -1,6 +1,8 @@
 #include "tools/replay/replay_run.h"
 
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -10,15 +12,10 @@
 #include <memory>
 
 #include "core/atlas/dijkstra_projection.h"
+#include "tools/replay/replay_files.h"
 
 namespace atlas::replay {
 namespace {
-
-struct TrajectoryRow {
-  Time stamp{};
-  FrameId frame = kNoFrame;
-  Pose2 pose;
-};
 
 struct TimingRow {
   int64_t step = 0;
@@ -33,7 +30,7 @@ class RecordingSink final : public StepSink {
  public:
   void OnPose(Time stamp, const DominantOutput& d, PoseSource source) override {
     if (source != PoseSource::kScan || !d.valid) return;
-    trajectory.push_back({stamp, d.frame, d.pose.mean});
+    trajectory.push_back({ToSeconds(stamp), d.frame, d.pose.mean});
   }
   void OnStep(Time stamp, const Atlas& atlas) override {
     const StepStats& s = atlas.LastStats();
@@ -48,7 +45,7 @@ class RecordingSink final : public StepSink {
     match_rejected += s.match_rejected;
     match_ambiguous += s.match_ambiguous;
   }
-  std::vector<TrajectoryRow> trajectory;
+  std::vector<StampedFramePose> trajectory;
   std::vector<TimingRow> timing;
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
 };
@@ -80,11 +77,59 @@ void Append(std::string& s, const char* fmt, auto... args) {
   s.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
 }
 
+// Resident set size now (kB), from /proc/self/statm; 0 where unavailable.
+int64_t CurrentRssKb() {
+  FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f == nullptr) return 0;
+  long long size = 0, resident = 0;
+  const int n = std::fscanf(f, "%lld %lld", &size, &resident);
+  std::fclose(f);
+  return n == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) : 0;
+}
+
+// CPU time of this thread (ns): a step's cost without the time other processes took the core.
+int64_t ThreadCpuNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+double Median(std::vector<int64_t> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return static_cast<double>(v[v.size() / 2]);
+}
+
+int64_t MaxRssKb() {
+  rusage u{};
+  return getrusage(RUSAGE_SELF, &u) == 0 ? static_cast<int64_t>(u.ru_maxrss) : 0;
+}
+
+// The reference pose within 1 ms of `stamp`, if any; `reference` sorted by stamp.
+const Pose2* ReferenceAt(const std::vector<TruthSample>& reference, Time stamp) {
+  const auto it =
+      std::lower_bound(reference.begin(), reference.end(), stamp - std::chrono::milliseconds(1),
+                       [](const TruthSample& s, Time t) { return s.stamp < t; });
+  if (it == reference.end() || it->stamp > stamp + std::chrono::milliseconds(1)) return nullptr;
+  return &it->pose;
+}
+
 }  // namespace
+
+std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log) {
+  std::vector<TruthSample> out;
+  for (const carmen::ReferencePose& r : log.reference)
+    if (r.at_laser) out.push_back(r.truth);
+  std::stable_sort(out.begin(), out.end(),
+                   [](const TruthSample& a, const TruthSample& b) { return a.stamp < b.stamp; });
+  return out;
+}
 
 std::string ReplayOptions::Validate() const {
   if (std::string e = ValidateMapperSettings(mapper); !e.empty()) return "mapper: " + e;
   if (std::string e = loop.Validate(); !e.empty()) return "step loop: " + e;
+  if (std::string e = refine_options.Validate(); !e.empty()) return "refinement: " + e;
+  if (std::string e = closures.Validate(); !e.empty()) return "closure check: " + e;
   if (max_scans < 0) return "max_scans must be >= 0";
   return "";
 }
@@ -92,7 +137,7 @@ std::string ReplayOptions::Validate() const {
 ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& options,
                        const std::string& out_dir,
                        const std::function<void(int64_t, int64_t)>& progress,
-                       int64_t progress_every) {
+                       int64_t progress_every, const std::vector<TruthSample>& reference) {
   ReplayResult result;
   if (std::string e = options.Validate(); !e.empty()) {
     result.error = "options: " + e;
@@ -114,9 +159,11 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   ReplaySummary& sum = result.summary;
   sink.trajectory.reserve(static_cast<size_t>(total_scans));
   sink.timing.reserve(static_cast<size_t>(total_scans));
-  std::vector<int64_t> step_ns;
+  std::vector<int64_t> step_ns, step_cpu_ns;
   step_ns.reserve(static_cast<size_t>(total_scans));
+  step_cpu_ns.reserve(static_cast<size_t>(total_scans));
   Time first_scan{}, last_scan{};
+  sum.rss_kb_before_steps = CurrentRssKb();
   for (const carmen::CarmenEvent& e : events) {
     if (sum.scans >= total_scans) break;
     if (const auto* o = std::get_if<OdometrySample>(&e.event)) {
@@ -130,9 +177,11 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     last_scan = scan->stamp;
     loop.AddScan(LaserScan(*scan));
     const size_t rows_before = sink.timing.size();
+    const int64_t c0 = ThreadCpuNs();
     const auto t0 = std::chrono::steady_clock::now();
     loop.StepOne(&sink);
     const auto t1 = std::chrono::steady_clock::now();
+    step_cpu_ns.push_back(ThreadCpuNs() - c0);
     const int64_t ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
     if (sink.timing.size() > rows_before) sink.timing.back().step_ns = ns;
     step_ns.push_back(ns);
@@ -140,13 +189,18 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     if (progress && progress_every > 0 && sum.scans % progress_every == 0)
       progress(sum.scans, total_scans);
   }
+  sum.rss_kb_after_steps = CurrentRssKb();
+  sum.step_budget_ms = std::chrono::duration<double, std::milli>(options.loop.step_budget).count();
+  for (int64_t ns : step_ns) {
+    if (static_cast<double>(ns) > sum.step_budget_ms * 1e6) ++sum.overruns;
+  }
   for (int64_t ns : step_ns) sum.wall_seconds += static_cast<double>(ns) * 1e-9;
   if (!step_ns.empty()) {
-    std::vector<int64_t> sorted = step_ns;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2),
-                     sorted.end());
-    sum.step_ns_median = static_cast<double>(sorted[sorted.size() / 2]);
+    sum.step_ns_median = Median(step_ns);
     sum.step_ns_max = static_cast<double>(*std::max_element(step_ns.begin(), step_ns.end()));
+    sum.step_cpu_ns_median = Median(step_cpu_ns);
+    sum.step_cpu_ns_max =
+        static_cast<double>(*std::max_element(step_cpu_ns.begin(), step_cpu_ns.end()));
   }
   sum.data_seconds = sum.scans > 0 ? ToSeconds(last_scan - first_scan) : 0.0;
   sum.scans_without_odometry = loop.scans_without_odometry();
@@ -159,8 +213,8 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   sum.edges = graph.EdgeCount();
 
   std::string text = "# atlas-replay trajectory: timestamp frame x y theta\n";
-  for (const TrajectoryRow& r : sink.trajectory)
-    Append(text, "%.6f\t%d\t%.6f\t%.6f\t%.6f\n", ToSeconds(r.stamp), r.frame, r.pose.x, r.pose.y,
+  for (const StampedFramePose& r : sink.trajectory)
+    Append(text, "%.6f\t%d\t%.6f\t%.6f\t%.6f\n", r.stamp_s, r.frame, r.pose.x, r.pose.y,
            r.pose.theta);
   if (std::string e = WriteFile(out_dir, "trajectory.tsv", text); !e.empty()) {
     result.error = e;
@@ -201,24 +255,115 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     result.error = e;
     return result;
   }
-
-  text = "# atlas-replay global: timestamp x y theta (Dijkstra projection from frame 0)\n";
-  if (sum.frames > 0) {
-    const Projection projection = DijkstraProjection(graph, 0);
-    std::vector<const ProjectedFrame*> placed(static_cast<size_t>(sum.frames), nullptr);
-    for (const ProjectedFrame& f : projection.entries) placed[static_cast<size_t>(f.frame)] = &f;
-    for (const TrajectoryRow& r : sink.trajectory) {
-      if (r.frame < 0 || r.frame >= sum.frames || placed[static_cast<size_t>(r.frame)] == nullptr)
-        continue;
-      const Pose2 g = Compose(placed[static_cast<size_t>(r.frame)]->pose.mean, r.pose);
-      Append(text, "%.6f\t%.6f\t%.6f\t%.6f\n", ToSeconds(r.stamp), g.x, g.y, g.theta);
-      ++sum.global_rows;
-    }
+  text = "# atlas-replay step_cpu: step cpu_ns (the stepping thread's CPU time per step)\n";
+  for (size_t k = 0; k < sink.timing.size() && k < step_cpu_ns.size(); ++k)
+    Append(text, "%lld\t%lld\n", static_cast<long long>(sink.timing[k].step),
+           static_cast<long long>(step_cpu_ns[k]));
+  if (std::string e = WriteFile(out_dir, "step_cpu.tsv", text); !e.empty()) {
+    result.error = e;
+    return result;
   }
+
+  std::vector<std::optional<Pose2>> projected(static_cast<size_t>(sum.frames));
+  if (sum.frames > 0) {
+    for (const ProjectedFrame& f : DijkstraProjection(graph, 0).entries)
+      projected[static_cast<size_t>(f.frame)] = f.pose.mean;
+  }
+  text = FormatGlobalTrajectory(sink.trajectory, projected,
+                                "atlas-replay global: timestamp x y theta (Dijkstra projection "
+                                "from frame 0)",
+                                &sum.global_rows);
   if (std::string e = WriteFile(out_dir, "global.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
+
+  // frames.tsv: Genesis step (frame 0: step 1), its scan's stamp, the parent frame.
+  std::vector<Time> stamp_of_step;  // by step - 1
+  stamp_of_step.reserve(sink.timing.size());
+  for (const TimingRow& r : sink.timing) {
+    if (r.step != static_cast<int64_t>(stamp_of_step.size()) + 1) break;
+    stamp_of_step.push_back(r.stamp);
+  }
+  std::vector<FrameId> parent(static_cast<size_t>(sum.frames), kNoFrame);
+  for (const AtlasEdge& edge : graph.Edges())
+    if (edge.origin == EdgeKind::kGenesis) parent[static_cast<size_t>(edge.b)] = edge.a;
+  std::vector<std::optional<Pose2>> origin_reference(static_cast<size_t>(sum.frames));
+  text = "# atlas-replay frames: frame step timestamp parent\n";
+  for (FrameId f = 0; f < sum.frames; ++f) {
+    const int64_t step = graph.Frame(f).created_step;
+    const bool known = step >= 1 && step <= static_cast<int64_t>(stamp_of_step.size());
+    const Time stamp = known ? stamp_of_step[static_cast<size_t>(step - 1)] : Time{};
+    Append(text, "%d\t%lld\t%.6f\t%d\n", f, static_cast<long long>(step),
+           known ? ToSeconds(stamp) : -1.0, parent[static_cast<size_t>(f)]);
+    if (known && !reference.empty()) {
+      const Pose2* ref = ReferenceAt(reference, stamp);
+      if (ref != nullptr) origin_reference[static_cast<size_t>(f)] = *ref;
+    }
+  }
+  if (std::string e = WriteFile(out_dir, "frames.tsv", text); !e.empty()) {
+    result.error = e;
+    return result;
+  }
+
+  text = "# atlas-replay maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
+  for (FrameId f = 0; f < sum.frames; ++f) {
+    const LocalMap* map = graph.Frame(f).map.get();
+    if (map == nullptr) continue;
+    for (const MapLine& l : map->Lines())
+      Append(text, "%d\t%d\t%.6f\t%.6f\t%.4f\t%.4f\t%.4f\t%.4f\t%.9g\t%.9g\t%.9g\n", f, l.id, l.rho,
+             l.alpha, l.endpoint_a.x(), l.endpoint_a.y(), l.endpoint_b.x(), l.endpoint_b.y(),
+             l.cov(0, 0), l.cov(0, 1), l.cov(1, 1));
+  }
+  if (std::string e = WriteFile(out_dir, "maps.tsv", text); !e.empty()) {
+    result.error = e;
+    return result;
+  }
+
+  if (!reference.empty()) {
+    text = "# atlas-replay reference: timestamp x y theta (reference pose at each stepped scan)\n";
+    for (const TimingRow& r : sink.timing) {
+      const Pose2* ref = ReferenceAt(reference, r.stamp);
+      if (ref == nullptr) continue;
+      Append(text, "%.6f\t%.6f\t%.6f\t%.6f\n", ToSeconds(r.stamp), ref->x, ref->y, ref->theta);
+      ++sum.reference_rows;
+    }
+    if (std::string e = WriteFile(out_dir, "reference.tsv", text); !e.empty()) {
+      result.error = e;
+      return result;
+    }
+    const ClosureReport closures = CheckClosures(graph, origin_reference, options.closures);
+    sum.closures_checked = static_cast<int>(closures.edges.size());
+    sum.false_closures_chi2 = closures.false_chi2;
+    sum.false_closures_axis = closures.false_axis;
+    sum.gross_closures = closures.gross;
+    if (std::string e = WriteFile(out_dir, "closures.tsv", FormatClosures(closures)); !e.empty()) {
+      result.error = e;
+      return result;
+    }
+  }
+
+  if (options.refine) {
+    const auto r0 = std::chrono::steady_clock::now();
+    const refine::RefineResult refined = refine::RefineGlobal(graph, options.refine_options);
+    sum.refine_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
+    sum.refine_status = refine::ToString(refined.status);
+    sum.refined_frames = refined.frames;
+    sum.refine_constraints = refined.edges;
+    sum.refine_initial_cost = refined.initial_cost;
+    sum.refine_final_cost = refined.final_cost;
+    text = FormatGlobalTrajectory(sink.trajectory, refined.refined,
+                                  "atlas-replay global_refined: timestamp x y theta (global "
+                                  "least-squares arrangement of the frames, frame 0 fixed)",
+                                  &sum.refined_rows);
+    if (std::string e = WriteFile(out_dir, "global_refined.tsv", text); !e.empty()) {
+      result.error = e;
+      return result;
+    }
+  }
+  sum.atlas_image_bytes = static_cast<int64_t>(atlas->Serialize().size());
+  sum.max_rss_kb = MaxRssKb();
   if (std::string e = WriteFile(out_dir, "summary.json", SummaryJson(sum)); !e.empty()) {
     result.error = e;
     return result;
@@ -240,9 +385,33 @@ std::string SummaryJson(const ReplaySummary& s) {
          static_cast<long long>(s.match_ambiguous));
   Append(t, "\"global_rows\": %d, \"data_seconds\": %.6f, \"wall_seconds\": %.6f, ", s.global_rows,
          s.data_seconds, s.wall_seconds);
-  Append(t, "\"speedup\": %.3f, \"step_ns_median\": %.0f, \"step_ns_max\": %.0f}\n",
+  Append(t, "\"speedup\": %.3f, \"step_ns_median\": %.0f, \"step_ns_max\": %.0f, ",
          s.wall_seconds > 0 ? s.data_seconds / s.wall_seconds : 0.0, s.step_ns_median,
          s.step_ns_max);
+  Append(t, "\"step_budget_ms\": %.3f, \"overruns\": %lld, ", s.step_budget_ms,
+         static_cast<long long>(s.overruns));
+  Append(t, "\"step_cpu_ns_median\": %.0f, \"step_cpu_ns_max\": %.0f, ", s.step_cpu_ns_median,
+         s.step_cpu_ns_max);
+  Append(t, "\"atlas_image_bytes\": %lld, ", static_cast<long long>(s.atlas_image_bytes));
+  Append(t, "\"max_rss_kb\": %lld, \"rss_kb_before_steps\": %lld, \"rss_kb_after_steps\": %lld",
+         static_cast<long long>(s.max_rss_kb), static_cast<long long>(s.rss_kb_before_steps),
+         static_cast<long long>(s.rss_kb_after_steps));
+  if (s.closures_checked >= 0) {
+    Append(t,
+           ", \"reference_rows\": %d, \"closures_checked\": %d, \"false_closures_chi2\": %d, "
+           "\"false_closures_axis\": %d, \"gross_closures\": %d",
+           s.reference_rows, s.closures_checked, s.false_closures_chi2, s.false_closures_axis,
+           s.gross_closures);
+  }
+  if (!s.refine_status.empty()) {
+    Append(t,
+           ", \"refine_status\": \"%s\", \"refined_frames\": %d, \"refine_constraints\": %d, "
+           "\"refined_rows\": %d, \"refine_initial_cost\": %.6g, \"refine_final_cost\": %.6g, "
+           "\"refine_seconds\": %.3f",
+           s.refine_status.c_str(), s.refined_frames, s.refine_constraints, s.refined_rows,
+           s.refine_initial_cost, s.refine_final_cost, s.refine_seconds);
+  }
+  t += "}\n";
   return t;
 }
 
@@ -263,8 +432,32 @@ std::string SummaryText(const ReplaySummary& s) {
   Append(t, "data time            %.3f s\n", s.data_seconds);
   Append(t, "stepping wall time   %.3f s (%.1fx real time)\n", s.wall_seconds,
          s.wall_seconds > 0 ? s.data_seconds / s.wall_seconds : 0.0);
-  Append(t, "step time            median %.1f us, max %.1f us\n", s.step_ns_median * 1e-3,
-         s.step_ns_max * 1e-3);
+  Append(t, "step time            median %.1f us, max %.1f us (budget %.1f ms, %lld over)\n",
+         s.step_ns_median * 1e-3, s.step_ns_max * 1e-3, s.step_budget_ms,
+         static_cast<long long>(s.overruns));
+  Append(t, "step CPU time        median %.1f us, max %.1f us (the stepping thread's own time)\n",
+         s.step_cpu_ns_median * 1e-3, s.step_cpu_ns_max * 1e-3);
+  Append(t,
+         "memory               max RSS %lld kB; RSS %lld kB before the first step, %lld kB after "
+         "the last\n",
+         static_cast<long long>(s.max_rss_kb), static_cast<long long>(s.rss_kb_before_steps),
+         static_cast<long long>(s.rss_kb_after_steps));
+  Append(t, "atlas state          %lld bytes serialised (%.1f kB per frame)\n",
+         static_cast<long long>(s.atlas_image_bytes),
+         s.frames > 0 ? static_cast<double>(s.atlas_image_bytes) / 1024.0 / s.frames : 0.0);
+  if (s.closures_checked >= 0) {
+    Append(t,
+           "closures             %d map-match edges checked against the reference: %d false "
+           "(chi2 3 dof > 14.16), %d beyond 3 sigma on an axis, %d gross (> 0.5 m or 5 deg)\n",
+           s.closures_checked, s.false_closures_chi2, s.false_closures_axis, s.gross_closures);
+  }
+  if (!s.refine_status.empty()) {
+    Append(t,
+           "refinement           %s: %d frames, %d constraints, cost %.6g -> %.6g, %.3f s, %d "
+           "rows\n",
+           s.refine_status.c_str(), s.refined_frames, s.refine_constraints, s.refine_initial_cost,
+           s.refine_final_cost, s.refine_seconds, s.refined_rows);
+  }
   return t;
 }
 

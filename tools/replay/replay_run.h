@@ -8,7 +8,16 @@
 //   global.tsv      timestamp x y theta   (each trajectory pose composed with its frame's pose
 //                   in the Dijkstra projection (paper, Section II-B) rooted at frame 0, taken at
 //                   the END of the run; rows whose frame is unreachable are left out)
+//   frames.tsv      frame step timestamp parent   (each frame's Genesis: the step whose scan
+//                   its origin is the robot pose at, and the frame it was started from)
+//   maps.tsv        frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa   (every frame's lines, end)
+//   step_cpu.tsv    step cpu_ns   (the stepping thread's CPU time of each step)
 //   summary.json    the figures of ReplaySummary
+// With a reference trajectory (corrected logs: their corrected poses; simulated runs: truth):
+//   reference.tsv   timestamp x y theta   (the reference pose at each stepped scan)
+//   closures.tsv    each map-match edge against the reference (closure_check.h)
+// With refinement asked for (offline, after the run; tools/refine/global_refinement.h):
+//   global_refined.tsv  timestamp x y theta   (as global.tsv, frames placed by least squares)
 // Deterministic: the same events and settings give byte-identical files, except step_ns in
 // timing.tsv and the wall-clock figures of the summary.
 
@@ -20,13 +29,18 @@
 #include "daemon/atlasd/atlas_factory.h"
 #include "daemon/atlasd/step_loop.h"
 #include "drivers/carmen/carmen_log.h"
+#include "tools/refine/global_refinement.h"
+#include "tools/replay/closure_check.h"
 
 namespace atlas::replay {
 
 struct ReplayOptions {
   MapperSettings mapper;
   StepLoopOptions loop;
-  int64_t max_scans = 0;         // 0: all
+  int64_t max_scans = 0;  // 0: all
+  bool refine = false;    // write global_refined.tsv
+  refine::RefineOptions refine_options;
+  ClosureCheckOptions closures;
   std::string Validate() const;  // empty when valid
 };
 
@@ -43,6 +57,24 @@ struct ReplaySummary {
   double data_seconds = 0.0;  // last scan stamp - first scan stamp
   double wall_seconds = 0.0;  // stepping only (not reading the log or writing files)
   double step_ns_median = 0.0, step_ns_max = 0.0;
+  // The stepping thread's CPU time per step (CLOCK_THREAD_CPUTIME_ID): on a shared machine the
+  // wall time above includes time the core was given to other processes.
+  double step_cpu_ns_median = 0.0, step_cpu_ns_max = 0.0;
+  int64_t overruns = 0;  // steps longer than the step loop's budget (wall time)
+  double step_budget_ms = 0.0;
+  // Memory (Linux): peak resident set of the process (getrusage), and the resident set just
+  // before the first step and after the last (the difference is mostly the atlas).
+  int64_t max_rss_kb = 0, rss_kb_before_steps = 0, rss_kb_after_steps = 0;
+  // The size of the atlas's byte image (Atlas::Serialize: graph, maps, hypotheses) at the end.
+  int64_t atlas_image_bytes = 0;
+  // With a reference: closures (closure_check.h); -1 when there is no reference.
+  int reference_rows = 0;
+  int closures_checked = -1, false_closures_chi2 = -1, false_closures_axis = -1;
+  int gross_closures = -1;
+  // With refinement: frames placed, constraints, costs, status ("" when not asked for).
+  std::string refine_status;
+  int refined_frames = 0, refine_constraints = 0, refined_rows = 0;
+  double refine_initial_cost = 0.0, refine_final_cost = 0.0, refine_seconds = 0.0;
 };
 
 struct ReplayResult {
@@ -52,11 +84,17 @@ struct ReplayResult {
 
 // Steps every scan of `events` (time-ordered) and writes the files into `out_dir` (created if
 // missing). `progress`, when set, is called about every `progress_every` scans with the number
-// stepped so far.
+// stepped so far. `reference` (optional, sorted by stamp) holds reference poses; those within
+// 1 ms of a scan's stamp are that scan's reference.
 ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& options,
                        const std::string& out_dir,
                        const std::function<void(int64_t done, int64_t total)>& progress = {},
-                       int64_t progress_every = 1000);
+                       int64_t progress_every = 1000,
+                       const std::vector<TruthSample>& reference = {});
+
+// The reference poses of a log read with reference_trajectory set (corrected logs): the poses
+// of its laser lines, at their stamps.
+std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log);
 
 std::string SummaryJson(const ReplaySummary& s);
 std::string SummaryText(const ReplaySummary& s);

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Issue 4, constant time on the simulator: a >= 10 km run through a generated building with many
+# loops, replayed through the Atlas. Prints the frames made, the median step time over the first
+# and the last tenth of the steps (target: within 15 %), the maximum step time against the step
+# budget, overruns (wall time, and the stepping thread's CPU time: the machine may be shared),
+# and resident memory after the run and per frame; draws step time against
+# time and against the frame count.
+#
+# Usage: scripts/constant-time.sh [OUT]       (default OUT: /tmp/atlas-constant-time)
+# Environment: ATLAS_BIN (directory of atlas-sim, atlas-replay, atlas-render; default
+# <repo>/build/release/bin, built if missing), ROOMS (default 600), KM (default 10), SEED (1),
+# PNG_PREFIX (default OUT/constant-time: writes PREFIX-time.png and PREFIX-frames.png),
+# KEEP_SIM=1 to reuse OUT/sim if it is there.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+OUT=${1:-/tmp/atlas-constant-time}
+ROOMS=${ROOMS:-600}
+KM=${KM:-10}
+SEED=${SEED:-1}
+BIN=${ATLAS_BIN:-$ROOT/build/release/bin}
+PNG_PREFIX=${PNG_PREFIX:-$OUT/constant-time}
+if [[ ! -x $BIN/atlas-sim || ! -x $BIN/atlas-replay || ! -x $BIN/atlas-render ]]; then
+  cmake -S "$ROOT" -B "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build "$ROOT/build/release" -j2 --target atlas-sim atlas-replay atlas-render >/dev/null
+  BIN=$ROOT/build/release/bin
+fi
+mkdir -p "$OUT"
+if [[ ${KEEP_SIM:-0} == 1 && -r $OUT/sim/run.clf ]]; then
+  echo "== reusing $OUT/sim" >&2
+else
+  echo "== simulating $KM km through a building of >= $ROOMS rooms (seed $SEED)" >&2
+  "$BIN/atlas-sim" --rooms "$ROOMS" --length-km "$KM" --seed "$SEED" --sonar none \
+    --out "$OUT/sim" >&2
+fi
+echo "== replaying" >&2
+/usr/bin/time -v -o "$OUT/time-v.txt" "$BIN/atlas-replay" --out "$OUT/replay" "$OUT/sim" \
+  | tee "$OUT/replay.txt"
+
+python3 - "$OUT" <<'PY'
+import json, math, os, sys
+out = sys.argv[1]
+s = json.load(open(os.path.join(out, "replay", "summary.json")))
+rows = [l.split() for l in open(os.path.join(out, "replay", "timing.tsv")) if not l.startswith("#")]
+wall = [int(r[5]) for r in rows]
+cpu_path = os.path.join(out, "replay", "step_cpu.tsv")
+cpu = [int(l.split()[1]) for l in open(cpu_path) if not l.startswith("#")] \
+    if os.path.exists(cpu_path) else []
+n = len(wall)
+tenth = max(1, n // 10)
+def median(v):
+    v = sorted(v)
+    return v[len(v) // 2]
+frames = int(rows[-1][2]) if rows else 0
+time_v = open(os.path.join(out, "time-v.txt")).read()
+max_rss_time = next((int(l.split(":")[1]) for l in time_v.splitlines()
+                     if "Maximum resident set size" in l), 0)
+length, prev = 0.0, None
+for l in open(os.path.join(out, "sim", "truth.tsv")):
+    if l.startswith("#"):
+        continue
+    f = l.split()
+    x, y = float(f[1]), float(f[2])
+    if prev is not None:
+        length += math.hypot(x - prev[0], y - prev[1])
+    prev = (x, y)
+print("constant time on the simulator (%s)" % out)
+print("  run length              %.2f km (truth), %.0f s of data" % (length / 1000, s["data_seconds"]))
+print("  steps                   %d; frames %d (target >= 500: %s)" % (
+    n, frames, "met" if frames >= 500 else "MISSED"))
+for label, v in (("wall", wall), ("CPU", cpu)):
+    if not v:
+        continue
+    first, last = median(v[:tenth]), median(v[-tenth:])
+    print("  %-4s median step, first tenth %.1f us, last tenth %.1f us: last/first = %.3f "
+          "(target within 15 %%: %s)" % (label, first / 1e3, last / 1e3, last / first,
+                                          "met" if abs(last / first - 1) <= 0.15 else "MISSED"))
+    print("  %-4s max step %.2f ms (budget %.1f ms: %s); %d steps over budget" % (
+        label, max(v) / 1e6, s["step_budget_ms"],
+        "under" if max(v) / 1e6 < s["step_budget_ms"] else "OVER",
+        sum(1 for x in v if x > s["step_budget_ms"] * 1e6)))
+print("  speed                   %.0fx real time (wall)" % (s["data_seconds"] / s["wall_seconds"]))
+atlas_kb = s["rss_kb_after_steps"] - s["rss_kb_before_steps"]
+print("  memory                  max RSS %d kB (getrusage; /usr/bin/time -v %d kB; the whole log "
+      "is held in memory)" % (s["max_rss_kb"], max_rss_time))
+print("                          RSS %d kB before the first step, %d kB after the last: %d kB "
+      "for the run = %.1f kB per frame" % (s["rss_kb_before_steps"], s["rss_kb_after_steps"],
+                                         atlas_kb, atlas_kb / max(frames, 1)))
+print("                          (that growth includes the rows recorded for the output files)")
+if "atlas_image_bytes" in s:
+    print("  atlas state             %d bytes serialised = %.1f kB per frame" % (
+        s["atlas_image_bytes"], s["atlas_image_bytes"] / 1024.0 / max(frames, 1)))
+PY
+
+"$BIN/atlas-render" --atlas "$OUT/replay" --timeline --cpu --png "$PNG_PREFIX-time.png" \
+  --title "simulated ${KM} km, >= $ROOMS rooms: step time and dominant map-frame over time"
+"$BIN/atlas-render" --atlas "$OUT/replay" --timeline-frames --cpu --png "$PNG_PREFIX-frames.png" \
+  --title "simulated ${KM} km, >= $ROOMS rooms: step time against the number of map-frames"

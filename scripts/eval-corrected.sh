@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Issue 4, corrected logs: for each of the six Radish "corrected" logs, synthesise wheel
+# odometry from the corrected poses (seeded, a calibrated base's noise: drivers/sim
+# WheelOdometryNoiseOptions defaults), run atlas-replay, score the Dijkstra-projected global
+# trajectory against the reference (atlas-eval --reference; dead reckoning of the same
+# synthesised odometry beside it), and check every map-match edge against the reference
+# (closures.tsv: chi-square 3 dof > 14.16 = false loop closure; per-axis 3 sigma and gross
+# errors also counted). Also draws Fig. 7 (step time, dominant frame id) for one log.
+#
+# Usage: scripts/eval-corrected.sh [OUT]      (default OUT: /tmp/atlas-eval-corrected)
+# Environment: ATLAS_BIN (directory of atlas-replay, atlas-eval, atlas-carmen, atlas-render;
+# default <repo>/build/release/bin, built if missing), SEED (default 1), FIG7_LOG (default
+# intel), FIG7_PNG (default OUT/fig7-<log>.png), REFINE=1 to also score global_refined.tsv.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+OUT=${1:-/tmp/atlas-eval-corrected}
+SEED=${SEED:-1}
+DATA=${ATLAS_DATA:-$ROOT/../shared/datasets/corrected}
+BIN=${ATLAS_BIN:-$ROOT/build/release/bin}
+if [[ ! -x $BIN/atlas-replay || ! -x $BIN/atlas-eval || ! -x $BIN/atlas-render ]]; then
+  cmake -S "$ROOT" -B "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build "$ROOT/build/release" -j2 \
+    --target atlas-replay atlas-eval atlas-carmen atlas-render >/dev/null
+  BIN=$ROOT/build/release/bin
+fi
+FIG7_LOG=${FIG7_LOG:-intel}
+FIG7_PNG=${FIG7_PNG:-$OUT/fig7-$FIG7_LOG.png}
+mkdir -p "$OUT"
+REFINE_FLAG=()
+[[ ${REFINE:-0} == 1 ]] && REFINE_FLAG=(--refine)
+
+for name in intel aces freiburg-079 freiburg-101 csail seattle; do
+  log=$DATA/$name-corrected.log.gz
+  if [[ ! -r $log ]]; then
+    echo "eval-corrected: $log is missing; skipped" >&2
+    continue
+  fi
+  range=()
+  [[ $name == aces ]] && range=(--log-max-range 50)  # aces clamps its ranges at 50 m
+  dir=$OUT/$name
+  mkdir -p "$dir"
+  echo "== $name: replaying" >&2
+  "$BIN/atlas-replay" --quiet --corrected --seed "$SEED" "${range[@]}" "${REFINE_FLAG[@]}" \
+    --out "$dir" "$log" >"$dir/replay.txt"
+  "$BIN/atlas-eval" --json --reference "$dir/reference.tsv" "$dir/global.tsv" >"$dir/eval.json"
+  if [[ ${REFINE:-0} == 1 ]]; then
+    "$BIN/atlas-eval" --json --reference "$dir/reference.tsv" "$dir/global_refined.tsv" \
+      >"$dir/eval_refined.json"
+  fi
+  # Dead reckoning of the same synthesised odometry (same seed and noise), for scale.
+  "$BIN/atlas-carmen" --corrected --dump-odometry --seed "$SEED" "${range[@]/--log-max-range/--max-range}" \
+    -o "$dir/odometry.tsv" "$log"
+  "$BIN/atlas-eval" --json --reference "$dir/reference.tsv" "$dir/odometry.tsv" \
+    >"$dir/eval_odometry.json"
+done
+
+python3 - "$OUT" <<'PY'
+import json, os, sys
+out = sys.argv[1]
+print("corrected logs, synthesised odometry (seed %s); errors of the Dijkstra projection from "
+      "frame 0 against the reference" % os.environ.get("SEED", "1"))
+print("RPE: pose pairs 1 m of travel apart; ATE: after the best rigid alignment. False closure: "
+      "map-match edge vs reference, chi2 3 dof > 14.16")
+hdr = ("log", "scans", "frames", "mm-edges", "RPE m", "RPE deg", "ATE m", "ATE deg",
+       "odo ATE m", "false(chi2)", "false(axis)", "gross")
+print("%-13s %6s %6s %8s %7s %7s %7s %7s %9s %11s %11s %5s" % hdr)
+total = {"checked": 0, "chi2": 0, "axis": 0, "gross": 0}
+for name in ["intel", "aces", "freiburg-079", "freiburg-101", "csail", "seattle"]:
+    d = os.path.join(out, name)
+    try:
+        s = json.load(open(os.path.join(d, "summary.json")))
+        e = json.load(open(os.path.join(d, "eval.json")))
+        o = json.load(open(os.path.join(d, "eval_odometry.json")))
+    except (OSError, ValueError) as err:
+        print("%-13s missing: %s" % (name, err))
+        continue
+    print("%-13s %6d %6d %8d %7.3f %7.2f %7.3f %7.2f %9.3f %11d %11d %5d" % (
+        name, s["scans"], s["frames"], s["closures_checked"],
+        e["rpe_translation_m"]["mean"], e["rpe_rotation_deg"]["mean"],
+        e["ate_translation_m"]["rmse"], e["ate_rotation_deg"]["rmse"],
+        o["ate_translation_m"]["rmse"], s["false_closures_chi2"], s["false_closures_axis"],
+        s["gross_closures"]))
+    r = os.path.join(d, "eval_refined.json")
+    if os.path.exists(r):
+        er = json.load(open(r))
+        print("%-13s %6s %6s %8s %7.3f %7.2f %7.3f %7.2f   (refined)" % (
+            "", "", "", "", er["rpe_translation_m"]["mean"], er["rpe_rotation_deg"]["mean"],
+            er["ate_translation_m"]["rmse"], er["ate_rotation_deg"]["rmse"]))
+    total["checked"] += s["closures_checked"]
+    total["chi2"] += s["false_closures_chi2"]
+    total["axis"] += s["false_closures_axis"]
+    total["gross"] += s["gross_closures"]
+print("all logs: %(checked)d map-match edges checked, %(chi2)d false closures (chi2), "
+      "%(axis)d beyond 3 sigma on an axis, %(gross)d gross (> 0.5 m or 5 deg)" % total)
+PY
+
+if [[ -d $OUT/$FIG7_LOG ]]; then
+  "$BIN/atlas-render" --atlas "$OUT/$FIG7_LOG" --timeline --png "$FIG7_PNG" \
+    --title "$FIG7_LOG-corrected (synthesised odometry): step time and dominant map-frame id (Fig. 7)"
+  # When the robot returns to a mapped place the dominant id falls below the frame count.
+  python3 - "$OUT/$FIG7_LOG/timing.tsv" <<'PY'
+import sys
+rows = [l.split() for l in open(sys.argv[1]) if not l.startswith("#")]
+falls, prev = 0, None
+for r in rows:
+    dom, frames = int(r[4]), int(r[2])
+    if prev is not None and dom >= 0 and prev >= 0 and dom < prev - 1:
+        falls += 1
+    prev = dom
+back = sum(1 for r in rows if int(r[4]) >= 0 and int(r[4]) < int(r[2]) - 3)
+print("Fig. 7 (%s): dominant frame id fell back %d times; %d of %d steps in a frame more "
+      "than 3 frames older than the newest" % (sys.argv[1], falls, back, len(rows)))
+PY
+fi

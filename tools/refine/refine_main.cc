@@ -1,0 +1,110 @@
+// atlas-refine: offline global least-squares arrangement of a finished atlas (atlas-replay
+// output directory). See --help.
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "tools/refine/global_refinement.h"
+#include "tools/replay/replay_files.h"
+
+namespace atlas::refine {
+namespace {
+
+constexpr const char* kHelp = R"(Usage: atlas-refine [options] DIR
+
+Arranges all map-frames of an atlas globally by nonlinear least squares (Ceres) over the atlas
+graph's edges, each a relative SE(2) constraint weighted by its inverse covariance, starting
+from the Dijkstra projection from frame 0 with frame 0 held fixed. Offline only: the Atlas never
+does this in its step loop (paper, Section I-A).
+
+DIR is an atlas-replay output directory; reads DIR/graph.tsv and DIR/trajectory.tsv and writes
+the refined global trajectory, "timestamp x y theta" as global.tsv (docs/formats.md), to
+DIR/global_refined.tsv (or --out FILE). atlas-replay --refine does the same at the end of a run.
+
+Options:
+  --out FILE           output trajectory file (default DIR/global_refined.tsv)
+  --max-iterations N   solver iterations (default 100)
+  -h, --help           this text
+
+Exit status: 0 written, 1 bad input or the solver failed (message on stderr), 2 bad command line.
+)";
+
+int Usage(const std::string& what) {
+  std::fprintf(stderr, "atlas-refine: %s\nTry 'atlas-refine --help'.\n", what.c_str());
+  return 2;
+}
+
+int Main(int argc, char** argv) {
+  std::string dir, out;
+  RefineOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "--out" || a == "--max-iterations") {
+      if (i + 1 >= argc) return Usage(a + " needs a value");
+      const std::string v = argv[++i];
+      if (a == "--out") {
+        out = v;
+      } else {
+        char* end = nullptr;
+        const long n = std::strtol(v.c_str(), &end, 10);
+        if (end == v.c_str() || *end != '\0' || n < 1 || n > 100000)
+          return Usage("--max-iterations needs an integer in 1..100000");
+        options.max_iterations = static_cast<int>(n);
+      }
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("unknown option " + a);
+    } else if (dir.empty()) {
+      dir = a;
+    } else {
+      return Usage("one DIR only");
+    }
+  }
+  if (dir.empty()) return Usage("no DIR given (an atlas-replay output directory)");
+  if (out.empty()) out = dir + "/global_refined.tsv";
+
+  replay::ReplayOutput run;
+  if (std::string e = replay::ReadReplayOutput(dir, replay::ReplayFilesWanted{}, &run);
+      !e.empty()) {
+    std::fprintf(stderr, "atlas-refine: %s\n", e.c_str());
+    return 1;
+  }
+  replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
+  if (!g.error.empty()) {
+    std::fprintf(stderr, "atlas-refine: %s/graph.tsv: %s\n", dir.c_str(), g.error.c_str());
+    return 1;
+  }
+  const RefineResult r = RefineGlobal(g.graph, options);
+  std::printf(
+      "atlas-refine %s: %s; %d frames placed, %d constraints, cost %.6g -> %.6g, %d "
+      "iterations\n",
+      dir.c_str(), ToString(r.status), r.frames, r.edges, r.initial_cost, r.final_cost,
+      r.iterations);
+  if (r.status == RefineStatus::kFailed || r.status == RefineStatus::kNoFrames) {
+    std::fprintf(stderr, "atlas-refine: refinement %s: %s\n", ToString(r.status),
+                 r.message.c_str());
+    return 1;
+  }
+  int rows = 0;
+  const std::string text = replay::FormatGlobalTrajectory(
+      run.trajectory, r.refined,
+      "atlas-refine global_refined: timestamp x y theta (global least-squares arrangement of "
+      "the frames, frame 0 fixed)",
+      &rows);
+  std::FILE* f = std::fopen(out.c_str(), "w");
+  if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size() ||
+      std::fclose(f) != 0) {
+    std::perror(("atlas-refine: cannot write " + out).c_str());
+    return 1;
+  }
+  std::printf("wrote %s (%d rows)\n", out.c_str(), rows);
+  return 0;
+}
+
+}  // namespace
+}  // namespace atlas::refine
+
+int main(int argc, char** argv) { return atlas::refine::Main(argc, argv); }

@@ -1,0 +1,308 @@
+#include "tools/replay/replay_files.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+
+namespace atlas::replay {
+namespace {
+
+// Calls `row(fields, where)` for every data line; stops at the first error it returns.
+std::string ForEachRow(
+    std::string_view text, const std::string& source, size_t field_count,
+    const std::function<std::string(const std::vector<std::string_view>&)>& row) {
+  std::vector<std::string_view> fields;
+  size_t pos = 0;
+  int64_t line_no = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    fields.clear();
+    size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      if (i >= line.size()) break;
+      size_t j = i;
+      while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+      fields.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    if (fields.empty() || fields[0][0] == '#') continue;
+    const std::string where = source + ":" + std::to_string(line_no) + ": ";
+    if (fields.size() != field_count)
+      return where + "expected " + std::to_string(field_count) + " fields, found " +
+             std::to_string(fields.size());
+    if (std::string e = row(fields); !e.empty()) return where + e;
+  }
+  return "";
+}
+
+bool Number(std::string_view s, double* v) {
+  const char* end = s.data() + s.size();
+  const auto r = std::from_chars(s.data(), end, *v);
+  return r.ec == std::errc() && r.ptr == end && std::isfinite(*v);
+}
+
+bool Integer(std::string_view s, int64_t* v) {
+  const char* end = s.data() + s.size();
+  const auto r = std::from_chars(s.data(), end, *v);
+  return r.ec == std::errc() && r.ptr == end;
+}
+
+// Parses fields [first, first + n) as numbers into `v`; "" or what is wrong.
+std::string Numbers(const std::vector<std::string_view>& f, size_t first, size_t n, double* v) {
+  for (size_t k = 0; k < n; ++k)
+    if (!Number(f[first + k], &v[k]))
+      return "field " + std::to_string(first + k + 1) + " '" + std::string(f[first + k]) +
+             "' is not a finite number";
+  return "";
+}
+
+std::string FrameField(std::string_view s, size_t index, bool allow_none, FrameId* frame) {
+  int64_t v = 0;
+  if (!Integer(s, &v) || v < (allow_none ? -1 : 0) || v > 100000000)
+    return "field " + std::to_string(index + 1) + " '" + std::string(s) + "' is not a frame id";
+  *frame = static_cast<FrameId>(v);
+  return "";
+}
+
+struct FileText {
+  std::string text;
+  std::string error;
+  bool missing = false;
+};
+
+FileText ReadFile(const std::string& path) {
+  FileText out;
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (f == nullptr) {
+    out.missing = errno == ENOENT;
+    out.error = path + ": cannot open: " + std::strerror(errno);
+    return out;
+  }
+  char buf[1 << 16];
+  int n = 0;
+  while ((n = gzread(f, buf, sizeof buf)) > 0) out.text.append(buf, static_cast<size_t>(n));
+  if (n < 0) out.error = path + ": read error";
+  gzclose(f);
+  return out;
+}
+
+}  // namespace
+
+bool EdgeKindFromName(std::string_view name, EdgeKind* kind) {
+  for (EdgeKind k : {EdgeKind::kGenesis, EdgeKind::kMapMatch, EdgeKind::kRefined}) {
+    if (name == EdgeKindName(k)) {
+      *kind = k;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string ParseTrajectoryRows(std::string_view text, const std::string& source,
+                                std::vector<StampedFramePose>* out) {
+  return ForEachRow(text, source, 5, [&](const std::vector<std::string_view>& f) {
+    StampedFramePose r;
+    double v[3];
+    if (!Number(f[0], &r.stamp_s)) return std::string("field 1 is not a timestamp");
+    if (std::string e = FrameField(f[1], 1, false, &r.frame); !e.empty()) return e;
+    if (std::string e = Numbers(f, 2, 3, v); !e.empty()) return e;
+    r.pose = Pose2{v[0], v[1], v[2]};
+    out->push_back(r);
+    return std::string();
+  });
+}
+
+std::string ParseEdgeRows(std::string_view text, const std::string& source,
+                          std::vector<EdgeRecord>* out) {
+  return ForEachRow(text, source, 12, [&](const std::vector<std::string_view>& f) {
+    EdgeRecord r;
+    if (std::string e = FrameField(f[0], 0, false, &r.a); !e.empty()) return e;
+    if (std::string e = FrameField(f[1], 1, false, &r.b); !e.empty()) return e;
+    double v[9];
+    if (std::string e = Numbers(f, 2, 9, v); !e.empty()) return e;
+    r.b_in_a.mean = Pose2{v[0], v[1], v[2]};
+    Mat3& c = r.b_in_a.cov;
+    c << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
+    EdgeKind kind;
+    if (!EdgeKindFromName(f[11], &kind))
+      return "field 12 '" + std::string(f[11]) +
+             "' is not an edge kind (genesis, map-match, refined)";
+    r.kind = std::string(f[11]);
+    out->push_back(std::move(r));
+    return std::string();
+  });
+}
+
+std::string ParseTimingRows(std::string_view text, const std::string& source,
+                            std::vector<TimingRecord>* out) {
+  return ForEachRow(text, source, 6, [&](const std::vector<std::string_view>& f) {
+    TimingRecord r;
+    int64_t frames = 0, hyps = 0;
+    if (!Integer(f[0], &r.step) || !Number(f[1], &r.stamp_s) || !Integer(f[2], &frames) ||
+        !Integer(f[3], &hyps) || frames < 0 || hyps < 0 || !Integer(f[5], &r.step_ns))
+      return std::string("expected: step timestamp frames hypotheses dominant step_ns");
+    if (std::string e = FrameField(f[4], 4, true, &r.dominant); !e.empty()) return e;
+    r.frames = static_cast<int>(std::min<int64_t>(frames, 100000000));
+    r.hypotheses = static_cast<int>(std::min<int64_t>(hyps, 100000000));
+    out->push_back(r);
+    return std::string();
+  });
+}
+
+std::string ParseFrameRows(std::string_view text, const std::string& source,
+                           std::vector<FrameRecord>* out) {
+  return ForEachRow(text, source, 4, [&](const std::vector<std::string_view>& f) {
+    FrameRecord r;
+    if (std::string e = FrameField(f[0], 0, false, &r.frame); !e.empty()) return e;
+    if (!Integer(f[1], &r.step) || !Number(f[2], &r.stamp_s))
+      return std::string("expected: frame step timestamp parent");
+    if (std::string e = FrameField(f[3], 3, true, &r.parent); !e.empty()) return e;
+    out->push_back(r);
+    return std::string();
+  });
+}
+
+std::string ParseMapRows(std::string_view text, const std::string& source,
+                         std::vector<FrameLine>* out) {
+  return ForEachRow(text, source, 11, [&](const std::vector<std::string_view>& f) {
+    FrameLine r;
+    if (std::string e = FrameField(f[0], 0, false, &r.frame); !e.empty()) return e;
+    int64_t id = 0;
+    if (!Integer(f[1], &id)) return std::string("field 2 is not a line id");
+    double v[9];
+    if (std::string e = Numbers(f, 2, 9, v); !e.empty()) return e;
+    r.line.id = static_cast<int>(id);
+    r.line.rho = v[0];
+    r.line.alpha = v[1];
+    r.line.endpoint_a = Vec2(v[2], v[3]);
+    r.line.endpoint_b = Vec2(v[4], v[5]);
+    r.line.cov << v[6], v[7], v[7], v[8];
+    out->push_back(r);
+    return std::string();
+  });
+}
+
+std::string ParseStampedPoses(std::string_view text, const std::string& source,
+                              std::vector<StampedPose>* out) {
+  return ForEachRow(text, source, 4, [&](const std::vector<std::string_view>& f) {
+    double v[4];
+    if (std::string e = Numbers(f, 0, 4, v); !e.empty()) return e;
+    out->push_back({v[0], Pose2{v[1], v[2], v[3]}});
+    return std::string();
+  });
+}
+
+std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wanted,
+                             ReplayOutput* out) {
+  *out = ReplayOutput{};
+  struct Item {
+    const char* name;
+    bool required;
+    std::function<std::string(std::string_view, const std::string&)> parse;
+  };
+  const Item items[] = {
+      {"trajectory.tsv", wanted.trajectory,
+       [&](auto t, auto& s) { return ParseTrajectoryRows(t, s, &out->trajectory); }},
+      {"graph.tsv", wanted.graph,
+       [&](auto t, auto& s) { return ParseEdgeRows(t, s, &out->edges); }},
+      {"timing.tsv", wanted.timing,
+       [&](auto t, auto& s) { return ParseTimingRows(t, s, &out->timing); }},
+      {"frames.tsv", wanted.frames,
+       [&](auto t, auto& s) { return ParseFrameRows(t, s, &out->frames); }},
+      {"maps.tsv", wanted.maps, [&](auto t, auto& s) { return ParseMapRows(t, s, &out->lines); }},
+      {"step_cpu.tsv", wanted.step_cpu,
+       [&](auto t, auto& s) {
+         return ForEachRow(t, s, 2, [&](const std::vector<std::string_view>& f) {
+           int64_t step = 0, ns = 0;
+           if (!Integer(f[0], &step) || !Integer(f[1], &ns) ||
+               step != static_cast<int64_t>(out->step_cpu_ns.size()) + 1)
+             return std::string("expected: step cpu_ns, steps counting up from 1");
+           out->step_cpu_ns.push_back(ns);
+           return std::string();
+         });
+       }},
+      {"global.tsv", false, [&](auto t, auto& s) { return ParseStampedPoses(t, s, &out->global); }},
+      {"global_refined.tsv", false,
+       [&](auto t, auto& s) { return ParseStampedPoses(t, s, &out->refined); }},
+  };
+  for (const Item& item : items) {
+    const std::string path = dir + "/" + item.name;
+    FileText f = ReadFile(path);
+    if (!f.error.empty()) {
+      if (f.missing && !item.required) continue;
+      return f.error + (f.missing ? " (is " + dir + " an atlas-replay output directory?)" : "");
+    }
+    if (std::string e = item.parse(f.text, path); !e.empty()) return e;
+  }
+  int n = 0;
+  for (const auto& r : out->trajectory) n = std::max(n, r.frame + 1);
+  for (const auto& r : out->edges) n = std::max({n, r.a + 1, r.b + 1});
+  for (const auto& r : out->timing) n = std::max({n, r.frames, r.dominant + 1});
+  for (const auto& r : out->frames) n = std::max({n, r.frame + 1, r.parent + 1});
+  for (const auto& r : out->lines) n = std::max(n, r.frame + 1);
+  out->frame_count = n;
+  return "";
+}
+
+std::string FormatGlobalTrajectory(const std::vector<StampedFramePose>& trajectory,
+                                   const std::vector<std::optional<Pose2>>& frame_pose,
+                                   const std::string& comment, int* rows_written) {
+  std::string text = "# " + comment + "\n";
+  text.reserve(trajectory.size() * 48);
+  int rows = 0;
+  char buf[160];
+  for (const StampedFramePose& r : trajectory) {
+    if (r.frame < 0 || static_cast<size_t>(r.frame) >= frame_pose.size() ||
+        !frame_pose[static_cast<size_t>(r.frame)])
+      continue;
+    const Pose2 g = Compose(*frame_pose[static_cast<size_t>(r.frame)], r.pose);
+    const int n =
+        std::snprintf(buf, sizeof buf, "%.6f\t%.6f\t%.6f\t%.6f\n", r.stamp_s, g.x, g.y, g.theta);
+    text.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
+    ++rows;
+  }
+  if (rows_written != nullptr) *rows_written = rows;
+  return text;
+}
+
+GraphFromEdges BuildGraph(const std::vector<EdgeRecord>& edges, int frame_count) {
+  std::vector<int> degree(static_cast<size_t>(std::max(frame_count, 0)), 0);
+  for (const EdgeRecord& e : edges) {
+    if (e.a < 0 || e.b < 0 || e.a >= frame_count || e.b >= frame_count) {
+      return {AtlasGraph(), "edge " + std::to_string(e.a) + "-" + std::to_string(e.b) +
+                                " names a frame outside 0.." + std::to_string(frame_count - 1)};
+    }
+    ++degree[static_cast<size_t>(e.a)];
+    ++degree[static_cast<size_t>(e.b)];
+  }
+  const int max_degree =
+      std::max(1, degree.empty() ? 1 : *std::max_element(degree.begin(), degree.end()));
+  GraphFromEdges out{AtlasGraph(max_degree), ""};
+  for (int f = 0; f < frame_count; ++f) out.graph.AddFrame(nullptr);
+  for (const EdgeRecord& e : edges) {
+    EdgeKind kind = EdgeKind::kGenesis;
+    EdgeKindFromName(e.kind, &kind);
+    const AddEdgeResult r = out.graph.AddEdge(e.a, e.b, e.b_in_a, kind);
+    if (r != AddEdgeResult::kAdded) {
+      out.error = "edge " + std::to_string(e.a) + "-" + std::to_string(e.b) +
+                  (r == AddEdgeResult::kSameFrame ? " joins a frame to itself"
+                                                  : " repeats an adjacent pair");
+      return out;
+    }
+  }
+  return out;
+}
+
+}  // namespace atlas::replay

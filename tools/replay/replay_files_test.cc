@@ -1,0 +1,73 @@
+#include "tools/replay/replay_files.h"
+
+#include <gtest/gtest.h>
+
+namespace atlas::replay {
+namespace {
+
+TEST(ReplayFiles, ParsesWhatReplayWrites) {
+  std::vector<EdgeRecord> edges;
+  ASSERT_EQ(ParseEdgeRows("# header\n0\t1\t1.0\t2.0\t0.5\t1e-4\t0\t0\t2e-4\t0\t3e-6\tgenesis\n"
+                          "1 2 0 0 0 1 0 0 1 0 1 map-match\n",
+                          "graph.tsv", &edges),
+            "");
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_EQ(edges[0].b, 1);
+  EXPECT_DOUBLE_EQ(edges[0].b_in_a.mean.y, 2.0);
+  EXPECT_DOUBLE_EQ(edges[0].b_in_a.cov(1, 1), 2e-4);
+  EXPECT_DOUBLE_EQ(edges[0].b_in_a.cov(2, 2), 3e-6);
+  EXPECT_EQ(edges[1].kind, "map-match");
+
+  std::vector<FrameLine> lines;
+  ASSERT_EQ(ParseMapRows("3\t7\t2.5\t0.1\t1\t2\t3\t4\t1e-4\t1e-6\t1e-5\n", "maps.tsv", &lines), "");
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].frame, 3);
+  EXPECT_EQ(lines[0].line.id, 7);
+  EXPECT_DOUBLE_EQ(lines[0].line.endpoint_b.y(), 4.0);
+  EXPECT_DOUBLE_EQ(lines[0].line.cov(1, 0), 1e-6);
+
+  std::vector<FrameRecord> frames;
+  ASSERT_EQ(ParseFrameRows("0\t1\t10.5\t-1\n1\t40\t12.0\t0\n", "frames.tsv", &frames), "");
+  EXPECT_EQ(frames[0].parent, kNoFrame);
+  EXPECT_EQ(frames[1].step, 40);
+}
+
+TEST(ReplayFiles, BadLinesNameFileAndLine) {
+  std::vector<EdgeRecord> edges;
+  EXPECT_EQ(ParseEdgeRows("# h\n0 1 1 2\n", "g.tsv", &edges),
+            "g.tsv:2: expected 12 fields, found 4");
+  EXPECT_NE(ParseEdgeRows("0 1 1 2 0 nan 0 0 1 0 1 genesis\n", "g.tsv", &edges).find("g.tsv:1:"),
+            std::string::npos);
+  EXPECT_NE(ParseEdgeRows("0 1 1 2 0 1 0 0 1 0 1 teleport\n", "g.tsv", &edges).find("edge kind"),
+            std::string::npos);
+  std::vector<StampedFramePose> traj;
+  EXPECT_NE(ParseTrajectoryRows("1.0 -3 0 0 0\n", "t.tsv", &traj), "");
+}
+
+TEST(ReplayFiles, GraphAndGlobalTrajectory) {
+  std::vector<EdgeRecord> edges(1);
+  edges[0].a = 0;
+  edges[0].b = 1;
+  edges[0].b_in_a.mean = Pose2{1, 0, M_PI / 2};
+  edges[0].kind = "genesis";
+  GraphFromEdges g = BuildGraph(edges, 3);
+  ASSERT_EQ(g.error, "");
+  EXPECT_EQ(g.graph.FrameCount(), 3);
+  EXPECT_EQ(g.graph.EdgeCount(), 1);
+  edges.push_back(edges[0]);
+  EXPECT_NE(BuildGraph(edges, 3).error, "");  // a repeated pair
+  EXPECT_NE(BuildGraph(edges, 1).error, "");  // frame out of range
+
+  const std::vector<StampedFramePose> traj = {
+      {1.0, 0, Pose2{0.5, 0, 0}}, {2.0, 1, Pose2{1, 0, 0}}, {3.0, 2, Pose2{0, 0, 0}}};
+  const std::vector<std::optional<Pose2>> frames = {Pose2{}, Pose2{1, 0, M_PI / 2}, std::nullopt};
+  int rows = 0;
+  const std::string text = FormatGlobalTrajectory(traj, frames, "c", &rows);
+  EXPECT_EQ(rows, 2);  // frame 2 has no pose
+  EXPECT_EQ(text,
+            "# c\n1.000000\t0.500000\t0.000000\t0.000000\n"
+            "2.000000\t1.000000\t1.000000\t1.570796\n");
+}
+
+}  // namespace
+}  // namespace atlas::replay
