@@ -435,6 +435,7 @@ void Atlas::MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* pri
       atlas::MatchMaps(graph_.Frame(dom_frame).map->Lines(), self_a_copy,
                        graph_.Frame(other).map->Lines(), self_b, prior, options_.match);
   stats_.match_hypotheses += m.hypotheses;
+  ++stats_.match_reasons[static_cast<int>(m.reason)];
   switch (m.result) {
     case MapMatchResult::kAccepted:
       if (AddEdge(dom_frame, other, m.b_in_a, EdgeKind::kMapMatch) == AddEdgeResult::kAdded)

@@ -53,6 +53,7 @@
 // Errors: Step never throws; construction needs valid options (Validate()) and a map factory.
 // Without a bootstrapper (w), juveniles keep their seeded pose and are judged on q alone.
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -108,6 +109,9 @@ struct StepStats {
   int genesis_refused = 0;  // the dominant frame's degree was full
   int match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
   int match_unconnected = 0;  // candidates from unconnected parts (no prior) matched this step
+  // Map-matching outcomes this step by MapMatchReason (index static_cast<int>(reason)); an
+  // accepted match whose edge could not be added counts as kMatched and as match_rejected.
+  std::array<int, kMapMatchReasonCount> match_reasons{};
   int refined = 0;
   FrameId dominant_frame = kNoFrame;
 };

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -66,6 +67,7 @@ using Mat23 = Eigen::Matrix<double, 2, 3>;
 
 struct Line {
   double rho = 0, alpha = 0;
+  double cos_alpha = 1, sin_alpha = 0;
   Mat2 cov = Mat2::Zero();
   Vec2 p = Vec2::Zero(), q = Vec2::Zero();
 };
@@ -89,6 +91,8 @@ std::vector<Line> Prepare(const std::vector<MapLine>& lines, const MapMatchOptio
     Line p;
     p.rho = l.rho;
     p.alpha = l.alpha;
+    p.cos_alpha = std::cos(l.alpha);
+    p.sin_alpha = std::sin(l.alpha);
     p.cov = 0.5 * (l.cov + l.cov.transpose());
     p.cov(0, 0) += o.sigma_rho_floor * o.sigma_rho_floor;
     p.cov(1, 1) += o.sigma_alpha_floor * o.sigma_alpha_floor;
@@ -102,8 +106,33 @@ std::vector<Line> Prepare(const std::vector<MapLine>& lines, const MapMatchOptio
 // Difference of two line directions modulo pi, in [-pi/2, pi/2].
 double AngleModPi(double a) { return 0.5 * WrapAngle(2.0 * a); }
 
-// Residual of line a (in A) against line b (in B) transformed by t (pose of B in A), its
-// Jacobian with respect to t, and its covariance.
+// Line b of B transformed by t (pose of B in A): the part of the residual that does not depend
+// on the line of A it is compared with (one sin/cos per line and transform).
+struct MovedLine {
+  double alpha, c, s, rho, drho;
+};
+
+MovedLine Move(const Line& b, const Pose2& t) {
+  MovedLine m;
+  m.alpha = b.alpha + t.theta;
+  m.c = std::cos(m.alpha);
+  m.s = std::sin(m.alpha);
+  m.rho = b.rho + t.x * m.c + t.y * m.s;
+  m.drho = -t.x * m.s + t.y * m.c;
+  return m;
+}
+
+// a - b for angles within a few turns of each other, in (-pi, pi].
+double AngleDifference(double a, double b) {
+  constexpr double kPi = std::numbers::pi;
+  double d = a - b;
+  while (d > kPi) d -= 2.0 * kPi;
+  while (d <= -kPi) d += 2.0 * kPi;
+  return d;
+}
+
+// Residual of line a (in A) against line b (in B) moved by t (pose of B in A), its Jacobian
+// with respect to t, and its covariance.
 struct PairResidual {
   Vec2 r;
   Mat23 jt;
@@ -111,26 +140,43 @@ struct PairResidual {
   double chi2;
 };
 
-PairResidual Residual(const Line& a, const Line& b, const Pose2& t) {
-  const double alpha = b.alpha + t.theta;
-  const double c = std::cos(alpha), sn = std::sin(alpha);
-  const double rho = b.rho + t.x * c + t.y * sn;
-  const double drho = -t.x * sn + t.y * c;
-  const double sign = std::cos(alpha - a.alpha) >= 0.0 ? 1.0 : -1.0;
+// The signed residual's angle part and the sign (which of b's two representations is meant).
+double AngleResidual(const Line& a, const MovedLine& m, double* sign) {
+  *sign = m.c * a.cos_alpha + m.s * a.sin_alpha >= 0.0 ? 1.0 : -1.0;
+  return AngleDifference(a.alpha, m.alpha + (*sign < 0 ? std::numbers::pi : 0.0));
+}
+
+PairResidual Residual(const Line& a, const Line& b, const MovedLine& m) {
+  double sign;
+  const double r_alpha = AngleResidual(a, m, &sign);
   PairResidual out;
-  out.r = Vec2(a.rho - sign * rho, WrapAngle(a.alpha - alpha - (sign < 0 ? std::numbers::pi : 0)));
-  out.jt << -sign * c, -sign * sn, -sign * drho, 0, 0, -1;
+  out.r = Vec2(a.rho - sign * m.rho, r_alpha);
+  out.jt << -sign * m.c, -sign * m.s, -sign * m.drho, 0, 0, -1;
   Mat2 jb;
-  jb << sign, sign * drho, 0, 1;
+  jb << sign, sign * m.drho, 0, 1;
   out.s = a.cov + jb * b.cov * jb.transpose();
   out.chi2 = out.r.dot(out.s.inverse() * out.r);
   return out;
 }
 
-bool SegmentsOverlap(const Line& a, const Line& b, const Pose2& t, double slack) {
-  const Vec2 d(-std::sin(a.alpha), std::cos(a.alpha));
+PairResidual Residual(const Line& a, const Line& b, const Pose2& t) {
+  return Residual(a, b, Move(b, t));
+}
+
+// A transform with its rotation's cosine and sine computed once.
+struct Rigid {
+  Pose2 t;
+  double c, s;
+  explicit Rigid(const Pose2& pose) : t(pose), c(std::cos(pose.theta)), s(std::sin(pose.theta)) {}
+  Vec2 Apply(const Vec2& p) const {
+    return Vec2(t.x + c * p.x() - s * p.y(), t.y + s * p.x() + c * p.y());
+  }
+};
+
+bool SegmentsOverlap(const Line& a, const Line& b, const Rigid& t, double slack) {
+  const Vec2 d(-a.sin_alpha, a.cos_alpha);
   double a0 = d.dot(a.p), a1 = d.dot(a.q);
-  double b0 = d.dot(t.TransformPoint(b.p)), b1 = d.dot(t.TransformPoint(b.q));
+  double b0 = d.dot(t.Apply(b.p)), b1 = d.dot(t.Apply(b.q));
   if (a0 > a1) std::swap(a0, a1);
   if (b0 > b1) std::swap(b0, b1);
   return b0 <= a1 + slack && b1 >= a0 - slack;
@@ -144,16 +190,22 @@ struct Support {
 };
 
 Support Verify(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
-               uint64_t usable_b, const Pose2& t, const MapMatchOptions& o) {
+               uint64_t usable_b, const Rigid& rigid, const MapMatchOptions& o) {
+  const Pose2& t = rigid.t;
   Support s;
   for (int k = 0; k < static_cast<int>(b.size()); ++k) {
     if (!(usable_b >> k & 1)) continue;
+    const MovedLine m = Move(b[k], t);
     int best = -1;
     double best_chi2 = o.line_gate_chi2;
     for (int i = 0; i < static_cast<int>(a.size()); ++i) {
       if (!(usable_a >> i & 1) || (s.lines_a >> i & 1)) continue;
-      const double chi2 = Residual(a[i], b[k], t).chi2;
-      if (chi2 <= best_chi2 && SegmentsOverlap(a[i], b[k], t, o.overlap_slack)) {
+      // The angle alone bounds the joint chi2 from below (r' S^-1 r >= r_1^2 / S_11).
+      double sign;
+      const double r_alpha = AngleResidual(a[i], m, &sign);
+      if (r_alpha * r_alpha > best_chi2 * (a[i].cov(1, 1) + b[k].cov(1, 1))) continue;
+      const double chi2 = Residual(a[i], b[k], m).chi2;
+      if (chi2 <= best_chi2 && SegmentsOverlap(a[i], b[k], rigid, o.overlap_slack)) {
         best = i;
         best_chi2 = chi2;
       }
@@ -208,6 +260,10 @@ int Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector
                 std::vector<Cluster>* clusters) {
   int verified = 0;
   const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+  // Angle tables: the angle between every two lines of B, computed once (not per pair of A).
+  std::array<std::array<double, 64>, 64> angle_b;
+  for (int k = 0; k < nb; ++k)
+    for (int l = 0; l < nb; ++l) angle_b[k][l] = AngleModPi(b[l].alpha - b[k].alpha);
   for (int i = 0; i < na; ++i) {
     if (!(usable_a >> i & 1)) continue;
     for (int j = i + 1; j < na; ++j) {
@@ -222,8 +278,9 @@ int Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector
         for (int l = 0; l < nb; ++l) {
           if (l == k || !(usable_b >> l & 1)) continue;
           if (self && k == i && l == j) continue;
-          const double angle_b = AngleModPi(b[l].alpha - b[k].alpha);
-          if (std::abs(AngleModPi(angle_a - angle_b)) > o.pair_angle_tolerance) continue;
+          // Distance modulo pi of two angles that lie in [-pi/2, pi/2].
+          const double d = std::abs(angle_a - angle_b[k][l]);
+          if (std::min(d, std::numbers::pi - d) > o.pair_angle_tolerance) continue;
           for (int flip = 0; flip < 2; ++flip) {
             const double theta =
                 WrapAngle(a[i].alpha - b[k].alpha + (flip ? std::numbers::pi : 0.0));
@@ -231,11 +288,12 @@ int Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector
             const double sj = std::cos(b[l].alpha + theta - a[j].alpha) >= 0 ? 1.0 : -1.0;
             const Vec2 xy = m_inv * Vec2(a[i].rho - si * b[k].rho, a[j].rho - sj * b[l].rho);
             const Pose2 t{xy.x(), xy.y(), theta};
-            if (!SegmentsOverlap(a[i], b[k], t, o.overlap_slack) ||
-                !SegmentsOverlap(a[j], b[l], t, o.overlap_slack))
+            const Rigid rigid(t);
+            if (!SegmentsOverlap(a[i], b[k], rigid, o.overlap_slack) ||
+                !SegmentsOverlap(a[j], b[l], rigid, o.overlap_slack))
               continue;
             ++verified;
-            Support s = Verify(a, usable_a, b, usable_b, t, o);
+            Support s = Verify(a, usable_a, b, usable_b, rigid, o);
             if (s.count >= 2) AddToClusters(t, std::move(s), o, clusters);
           }
         }

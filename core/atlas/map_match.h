@@ -64,6 +64,7 @@ enum class MapMatchReason {
   kRepetitive,        // ambiguous: structure unique within the maps is too little
   kRivalTransform,    // ambiguous: a distinct transform is (nearly) as well supported
 };
+inline constexpr int kMapMatchReasonCount = 7;
 const char* MapMatchResultName(MapMatchResult r);
 const char* MapMatchReasonName(MapMatchReason r);
 
