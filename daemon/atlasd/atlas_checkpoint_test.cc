@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "core/atlas/atlas_test_world.h"
 #include "core/atlas/fake_local_map.h"
+#include "daemon/atlasd/atlas_export.h"
 
 namespace atlas {
 namespace {
@@ -72,6 +74,24 @@ TEST_F(CheckpointTest, SavedAtlasIsResumedWhole) {
   std::string error;
   ASSERT_TRUE(store.Load(&saved, &error));
   EXPECT_EQ(static_cast<int>(saved.frames.size()), a->Graph().FrameCount());
+}
+
+TEST_F(CheckpointTest, ExportWritesOneGraphRowPerEdgeAndOneMapRowPerLine) {
+  auto a = NewAtlas();
+  Drive(a.get(), 60);
+  ASSERT_EQ(WriteAtlasFiles(*a, dir_.string()), "");
+  auto rows = [&](const char* name) {
+    std::ifstream in(dir_ / name);
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) n += !line.empty() && line[0] != '#';
+    return n;
+  };
+  EXPECT_EQ(rows("graph.tsv"), a->Graph().EdgeCount());
+  size_t lines = 0;
+  for (FrameId f = 0; f < a->Graph().FrameCount(); ++f)
+    lines += a->Graph().Frame(f).map->Lines().size();
+  EXPECT_EQ(rows("maps.tsv"), static_cast<int>(lines));
 }
 
 TEST_F(CheckpointTest, EmptyStoreLeavesTheAtlasEmpty) {

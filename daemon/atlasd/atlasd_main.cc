@@ -7,6 +7,7 @@
 #include <iostream>
 #include <string>
 
+#include "daemon/atlasd/atlas_export.h"
 #include "daemon/atlasd/live_daemon.h"
 #include "daemon/atlasd/replay.h"
 #include "daemon/config/config_loader.h"
@@ -16,6 +17,7 @@ namespace {
 constexpr const char* kHelp = R"(usage: atlasd [--config FILE] [options]
        atlasd --check-config FILE
        atlasd --replay LOGFILE --out DIR [--config FILE]
+       atlasd --export-atlas DIR [--config FILE]
 
 The Atlas mapping daemon: reads the laser, odometry and sonar devices named in the
 configuration, steps the atlas once per scan under a fixed budget, and publishes the pose,
@@ -29,6 +31,8 @@ options:
   --replay LOGFILE       offline: run the same loop over the raw channels of an lcm-logger
                          file (recorded with lcm.republish_raw = true) instead of devices
   --out DIR              replay output: DIR/poses.txt (one pose per step) and DIR/summary.txt
+  --export-atlas DIR     write the atlas saved in state.directory as DIR/graph.tsv and
+                         DIR/maps.tsv (atlas-replay's formats, for atlas-render --atlas) and exit
   --health-every S       print the health line on stderr every S seconds (default: the
                          health period, lcm.health_period_s)
   --quiet                no health line
@@ -55,7 +59,7 @@ bool Exists(const char* path) {
 
 int main(int argc, char** argv) {
   atlas::LiveFlags flags;
-  std::string replay, out;
+  std::string replay, out, export_dir;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](std::string* dst) {
@@ -74,6 +78,8 @@ int main(int argc, char** argv) {
       if (!value(&flags.config_path)) return Usage("--config needs a FILE");
     } else if (a == "--replay") {
       if (!value(&replay)) return Usage("--replay needs a LOGFILE");
+    } else if (a == "--export-atlas") {
+      if (!value(&export_dir)) return Usage("--export-atlas needs a DIR");
     } else if (a == "--out") {
       if (!value(&out)) return Usage("--out needs a DIR");
     } else if (a == "--health-every") {
@@ -101,6 +107,7 @@ int main(int argc, char** argv) {
     return atlas::kExitConfigError;
   }
   std::fprintf(stderr, "atlasd: configuration %s\n", flags.config_path.c_str());
+  if (!export_dir.empty()) return atlas::ExportSavedAtlas(config.options, export_dir);
   if (!replay.empty()) {
     if (out.empty()) return Usage("--replay needs --out DIR");
     return atlas::RunReplay(config.options, replay, out);

@@ -40,6 +40,8 @@ LaserReaderOptions ToLaserReaderOptions(const DaemonOptions& o) {
   l.baud = o.laser.baud;
   l.angle_deg = static_cast<uint16_t>(o.laser.angular_range_deg);
   l.resolution_centideg = static_cast<uint16_t>(std::lround(o.laser.angular_resolution_deg * 100));
+  l.unit =
+      o.laser.unit == LaserUnit::kCentimetre ? sick::Unit::kCentimetre : sick::Unit::kMillimetre;
   l.sensor_pose = Pose2{o.laser.mount.x_m, o.laser.mount.y_m, o.laser.mount.theta_deg * kDegToRad};
   l.queue_capacity = static_cast<size_t>(o.laser.queue_capacity);
   return l;
@@ -50,6 +52,7 @@ OdometryReaderOptions ToOdometryReaderOptions(const DaemonOptions& o) {
   r.interface_name = o.odometry.interface;
   r.odometry.track_width_m = o.odometry.track_width_m;
   r.odometry.max_speed_mps = o.odometry.max_speed_mps;
+  r.odometry.slack_m = o.odometry.slack_m;
   r.queue_capacity = static_cast<size_t>(o.odometry.queue_capacity);
   return r;
 }

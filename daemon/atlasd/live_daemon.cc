@@ -107,6 +107,7 @@ class LiveDaemon {
   void PublishHealth(Time now);
   std::vector<DriverEntry> Drivers() const;
   void ApplyReload(const DaemonOptions& loaded);
+  std::string ReloadAtlas(const DaemonOptions& candidate);
   bool OpenStore();
   void SubmitCheckpoint();
 
@@ -191,28 +192,60 @@ void LiveDaemon::PublishHealth(Time now) {
   }
 }
 
+// Atlas and noise parameters: the running atlas is rebuilt from its own image by an atlas made
+// with the new settings (graph, maps and hypotheses kept; new options from the next step on).
+// Refused, with the old atlas kept, when the image does not fit the new settings (e.g. more
+// hypotheses alive than the new atlas.max_hypotheses).
+std::string LiveDaemon::ReloadAtlas(const DaemonOptions& candidate) {
+  const MapperSettings settings = ToMapperSettings(candidate);
+  if (std::string e = ValidateMapperSettings(settings); !e.empty()) return e;
+  std::unique_ptr<Atlas> rebuilt = MakeAtlas(settings);
+  if (!rebuilt->Deserialize(atlas_->Serialize()))
+    return "the running atlas does not fit the new parameters (hypotheses alive: " +
+           std::to_string(atlas_->Hypotheses().size()) + ")";
+  loop_->ReplaceAtlas(rebuilt.get(), settings);
+  atlas_ = std::move(rebuilt);
+  return "";
+}
+
 void LiveDaemon::ApplyReload(const DaemonOptions& loaded) {
   const ReloadDiff diff = DiffForReload(options_, loaded);
-  std::string applied, restart;
+  std::string applied, refused, restart;
+  bool atlas_changed = false;
   for (const auto& k : diff.reloadable) {
-    if (k == "loop.step_budget_ms" || k.rfind("lcm.", 0) == 0) {
-      applied += " " + k;
+    if (k.rfind("atlas.", 0) == 0 || k.rfind("noise.", 0) == 0) {
+      atlas_changed = true;
     } else {
-      restart += " " + k;  // atlas/noise parameters: the running atlas keeps its options
+      applied += " " + k;
     }
   }
   for (const auto& k : diff.needs_restart) restart += " " + k;
+  if (atlas_changed) {
+    DaemonOptions candidate = options_;
+    candidate.atlas = loaded.atlas;
+    candidate.noise = loaded.noise;
+    if (std::string why = ReloadAtlas(candidate); why.empty()) {
+      options_.atlas = loaded.atlas;
+      options_.noise = loaded.noise;
+      for (const auto& k : diff.reloadable)
+        if (k.rfind("atlas.", 0) == 0 || k.rfind("noise.", 0) == 0) applied += " " + k;
+    } else {
+      refused = " atlas/noise parameters refused (" + why + "), the running ones stay;";
+    }
+  }
   options_.loop.step_budget_ms = loaded.loop.step_budget_ms;
   options_.lcm.health_period_s = loaded.lcm.health_period_s;
   options_.lcm.graph_period_s = loaded.lcm.graph_period_s;
   options_.lcm.local_map_period_s = loaded.lcm.local_map_period_s;
   options_.lcm.republish_raw = loaded.lcm.republish_raw;
+  options_.state.save_period_s = loaded.state.save_period_s;
   republish_raw_ = loaded.lcm.republish_raw;
   loop_->SetStepBudget(ToStepLoopOptions(options_).step_budget);
   sink_->SetPeriods(options_.lcm);
-  std::fprintf(stderr, "atlasd: reload: applied:%s%s\n",
-               applied.empty() ? " (nothing)" : applied.c_str(),
-               restart.empty() ? "" : ("; take effect at the next start:" + restart).c_str());
+  std::fprintf(
+      stderr, "atlasd: reload: applied:%s;%s%s\n", applied.empty() ? " (nothing)" : applied.c_str(),
+      refused.c_str(),
+      restart.empty() ? "" : (" need a restart (unchanged until then):" + restart).c_str());
 }
 
 // Opens the store in state.directory and resumes the saved atlas. False only when the store is

@@ -76,6 +76,12 @@ class StepLoop {
 
   // Options that a reload may change (step budget, periods); capacities stay.
   void SetStepBudget(Duration budget) { options_.step_budget = budget; }
+  // A reload with new atlas parameters: the loop goes on with `atlas` (the old one rebuilt
+  // with the new settings, see live_daemon.cc); odometry and pending scans are kept.
+  void ReplaceAtlas(Atlas* atlas, const MapperSettings& settings) {
+    atlas_ = atlas;
+    settings_ = settings;
+  }
 
   int64_t steps() const { return steps_; }
   int64_t overruns() const { return overruns_; }

@@ -69,7 +69,8 @@ void VisitOptions(V& v, DaemonOptions& o) {
     OdometryOptions& d = o.odometry;
     v.String("interface", d.interface, CheckCanInterface);
     v.Double("track_width_m", d.track_width_m, 0.05, 5.0);
-    v.Double("max_speed_mps", d.max_speed_mps, 0.1, 20.0);
+    v.Double("max_speed_mps", d.max_speed_mps, 0.1, 100.0);
+    v.Double("slack_m", d.slack_m, 0.0, 10.0);
     v.Int("queue_capacity", d.queue_capacity, 1, 4096);
   });
   v.Section("sonar", [&] {

@@ -45,6 +45,8 @@ struct OdometryOptions {
   double track_width_m = 0.58;
   // A wheel-distance change faster than this is a counter discontinuity, not motion.
   double max_speed_mps = 3.0;
+  // Allowance on top of max_speed_mps * dt, for stamp jitter and counter quantisation.
+  double slack_m = 0.02;
   int queue_capacity = 64;  // odometry samples between the reader thread and the loop
 };
 

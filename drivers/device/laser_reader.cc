@@ -193,7 +193,11 @@ void LaserReader::HandleTelegram(const sick::TelegramView& t, Time stamp) {
     return;
   }
   health_.CountMessage(stamp);
-  if (info.status.level() != sick::StatusLevel::kOk || info.status.pollution()) {
+  if (info.unit != options_.unit) {
+    health_.SetDeviceStatus(info.unit == sick::Unit::kMillimetre
+                                ? "scans in mm, laser.unit says cm"
+                                : "scans in cm, laser.unit says mm");
+  } else if (info.status.level() != sick::StatusLevel::kOk || info.status.pollution()) {
     char b[64];
     std::snprintf(b, sizeof(b), "scanner status 0x%02X%s", info.status.raw,
                   info.status.pollution() ? " (window dirty)" : "");

@@ -34,6 +34,10 @@ struct LaserReaderOptions {
   uint16_t angle_deg = 180;           // variant: 180 or 100
   uint16_t resolution_centideg = 50;  // variant: 100, 50 or 25
   Pose2 sensor_pose;                  // the scanner on the robot
+  // The range unit the scanner is configured for (atlasd's laser.unit). Every telegram states
+  // its unit and is decoded with it; a scan in another unit is still used, and the device
+  // status reports the mismatch (a scanner configured differently than the file says).
+  sick::Unit unit = sick::Unit::kMillimetre;
   // Rates tried for the status check, in order; the first must be 9600 (power-up rate).
   std::vector<int> probe_rates = {9600, 500000, 38400, 19200};
   Duration reply_timeout = std::chrono::milliseconds(300);  // spec: replies within 60 ms

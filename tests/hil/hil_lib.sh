@@ -39,7 +39,8 @@ max_range_m = 50.0
 [odometry]
 interface = "unix:$WORK/dev/can"
 # at SPEED times real time the wheels seem to turn SPEED times faster
-max_speed_mps = $(awk -v s="$speed" 'BEGIN { v = 3 * s; if (v > 20) v = 20; print v }')
+max_speed_mps = $(awk -v s="$speed" 'BEGIN { print 3 * s }')
+slack_m = $(awk -v s="$speed" 'BEGIN { print 0.02 * s }')
 [sonar]
 enabled = true
 device = "$WORK/dev/sonar"

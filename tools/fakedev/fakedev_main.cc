@@ -262,7 +262,10 @@ int main(int argc, char** argv) {
     }
   }
   clock->Start();
-  std::printf("playing\n");
+  // The mapping from this machine's monotonic clock (the stamps drivers give the data) back to
+  // log time: log = log_start + (monotonic - monotonic_start) * speed.
+  std::printf("playing: log_start %.6f monotonic_start %.6f speed %.9g\n",
+              ToSeconds(clock->log_start()), ToSeconds(clock->WallAt(clock->log_start())), speed);
   std::fflush(stdout);
   const Time start = Now();
   Time next_progress = start + FromSeconds(progress_every).time_since_epoch();
