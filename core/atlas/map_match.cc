@@ -186,7 +186,9 @@ struct Support {
   int count = 0;
   double chi2 = 0.0;
   uint64_t lines_a = 0, lines_b = 0;
-  std::vector<std::pair<int, int>> pairs;
+  // Matched (line of A, line of B) pairs, at most one per line of B (max_lines <= 64): a fixed
+  // array, so verifying a hypothesis allocates nothing.
+  std::array<std::pair<uint8_t, uint8_t>, 64> pairs;
 };
 
 Support Verify(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
@@ -215,7 +217,7 @@ Support Verify(const std::vector<Line>& a, uint64_t usable_a, const std::vector<
     s.chi2 += best_chi2;
     s.lines_a |= uint64_t{1} << best;
     s.lines_b |= uint64_t{1} << k;
-    s.pairs.push_back({best, k});
+    s.pairs[s.count - 1] = {static_cast<uint8_t>(best), static_cast<uint8_t>(k)};
   }
   return s;
 }
@@ -319,6 +321,7 @@ SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions&
   SelfMatch out;
   out.usable_lines = static_cast<int>(p.size());
   std::vector<Cluster> clusters;
+  clusters.reserve(kMaxClusters);
   const uint64_t all = AllLines(out.usable_lines);
   Hypothesise(p, all, p, all, /*self=*/true, o, &clusters);
   for (const Cluster& c : clusters) {
@@ -354,6 +357,7 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
     }
   }
   std::vector<Cluster> clusters;
+  clusters.reserve(kMaxClusters);
   out.hypotheses = Hypothesise(a, usable_a, b, usable_b, /*self=*/false, o, &clusters);
 
   const Cluster* best = nullptr;
@@ -387,7 +391,8 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
   for (int it = 0; it <= o.gauss_newton_iterations; ++it) {
     h.setZero();
     Vec3 g = Vec3::Zero();
-    for (const auto& [i, k] : best->support.pairs) {
+    for (int p = 0; p < best->support.count; ++p) {
+      const auto [i, k] = best->support.pairs[p];
       const PairResidual r = Residual(a[i], b[k], t);
       const Mat2 s_inv = r.s.inverse();
       h += r.jt.transpose() * s_inv * r.jt;
