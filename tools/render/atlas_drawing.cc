@@ -168,17 +168,15 @@ void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const 
   if (title.empty()) {
     int match_edges = 0;
     for (const AtlasEdge& e : graph.Edges()) match_edges += e.origin == EdgeKind::kMapMatch;
-    title = options.refined
-                ? Fmt("atlas: %d frames, %d edges (%d from map-matching), %zu lines; frames "
-                      "placed by global least-squares refinement",
-                      n, graph.EdgeCount(), match_edges, run.lines.size())
-                : Fmt("atlas: Dijkstra projection from frame %d (%d of %d frames reached), %d "
-                      "edges, %zu lines%s",
-                      options.source, layout.reached, n, graph.EdgeCount(), run.lines.size(),
-                      options.ellipses ? Fmt("; %.0f-sigma ellipses of the projected frame origins",
-                                             options.n_sigma)
-                                             .c_str()
-                                       : "");
+    title =
+        options.refined
+            ? Fmt("atlas, global least-squares arrangement: %d frames, %d edges (%d by "
+                  "map-matching), %zu lines",
+                  n, graph.EdgeCount(), match_edges, run.lines.size())
+            : Fmt("atlas, Dijkstra projection from frame %d: %d/%d frames, %d edges, %zu "
+                  "lines%s",
+                  options.source, layout.reached, n, graph.EdgeCount(), run.lines.size(),
+                  options.ellipses ? Fmt(", %.0f-sigma ellipses", options.n_sigma).c_str() : "");
   }
   canvas.TextPx(Vec2(kMarginPx, 22), title, 16, Color{0, 0, 0}, true);
   std::vector<LegendEntry> legend{{"map lines", kLineColor},
@@ -254,9 +252,11 @@ void DrawTimeline(Canvas& canvas, const std::vector<replay::TimingRecord>& timin
   std::vector<double> sorted = ms;
   std::sort(sorted.begin(), sorted.end());
   const double p999 = sorted[std::min(sorted.size() - 1, sorted.size() * 999 / 1000)];
-  const double y_max = std::max(p999 * 1.3, sorted.back() <= options.budget_ms * 1.2
-                                                ? std::max(sorted.back(), options.budget_ms) * 1.05
-                                                : p999 * 1.3);
+  // Up to the budget (or a little beyond the largest step when all fit), so that the budget line
+  // shows; steps beyond the top are drawn at the top edge.
+  const double y_max = sorted.back() <= options.budget_ms * 1.2
+                           ? std::max(sorted.back(), options.budget_ms) * 1.05
+                           : std::max(p999 * 1.3, options.budget_ms * 1.15);
   const double x_min = *std::min_element(xs.begin(), xs.end());
   const double x_max = std::max(*std::max_element(xs.begin(), xs.end()), x_min + 1e-6);
   const double left = 80, right = 30;
