@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "core/common/normal_quantile.h"
 
@@ -59,6 +60,7 @@ class Search {
     const int dim = 2 * n;
     l_.assign(static_cast<size_t>(dim) * dim, 0.0);
     y_.assign(dim, 0.0);
+    ycum_.assign(dim, 0.0);
     x_.assign(2 * static_cast<size_t>(dim), 0.0);
     stack_.assign(n, -1);
     version_.assign(n, 0);
@@ -82,6 +84,19 @@ class Search {
  private:
   double& L(int r, int c) { return l_[static_cast<size_t>(r) * dim_ + c]; }
 
+  // v^T S^-1 v for the 2x2 S = (s00 s01; s01 s11); +inf if S is not positive definite.
+  static double Increment(double s00, double s01, double s11, double v0, double v1) {
+    const double det = s00 * s11 - s01 * s01;
+    if (!(s00 > 0.0) || !(det > 0.0)) return std::numeric_limits<double>::infinity();
+    return (s11 * v0 * v0 - 2.0 * s01 * v0 * v1 + s00 * v1 * v1) / det;
+  }
+
+  double BestTieD2() const {
+    double best = 1e300;
+    for (const TieHypothesis& t : ties) best = std::min(best, t.d2);
+    return best;
+  }
+
   void Record(double d2, int pairings) {
     if (pairings > best_pairings) {
       best_pairings = pairings;
@@ -102,6 +117,9 @@ class Search {
   void Visit(int level, int k, double d2) {
     const int n = static_cast<int>(order_.size());
     if (k + (n - level) < best_pairings) return;
+    // D^2 only grows down a branch: one that cannot beat the best number of pairings and is
+    // already beyond the ambiguity margin of the best hypothesis can neither win nor be a rival.
+    if (k + (n - level) == best_pairings && d2 > BestTieD2() + options_.ambiguity_margin) return;
     if (nodes >= options_.node_budget) {
       exhausted = true;
       return;
@@ -120,37 +138,46 @@ class Search {
       if (!options_.allow_shared_features && feature_use_[p.feature] > 0) continue;
       // Cross covariances C (2k x 2) with the pairings already in the hypothesis; X = L^-1 C.
       // Rows of X for level m depend only on the pairings at levels 0..m: cached per level.
+      // The Schur complement S_p - X^T X and v = nu_p - X^T y are accumulated level by level;
+      // after level m they give D^2 of the hypothesis cut to levels 0..m plus p, a lower bound
+      // of the final D^2 (a Mahalanobis distance never shrinks when components are added), so
+      // a pairing that fails the gate early costs no more levels.
       const int r0 = 2 * k;
-      for (int m = 0; m < k; ++m) {
+      const double gate = gate_[k + 1];
+      double s00 = p.S(0, 0), s01 = p.S(0, 1), s11 = p.S(1, 1);
+      double v0 = p.innovation(0), v1 = p.innovation(1);
+      bool rejected = false;
+      for (int m = 0; m < k && !rejected; ++m) {
         CacheEntry& e = cache_[static_cast<size_t>(m) * cands_.size() + c];
+        double* xm = &x_[4 * m];
         if (e.version != version_[m]) {
           const Mat2 cm = cov_.Cross(cands_[stack_[m]], p);
           for (int h = 0; h < 2; ++h) {
             const int r = 2 * m + h;
             double s0 = cm(h, 0), s1 = cm(h, 1);
+            const double* lr = &l_[static_cast<size_t>(r) * dim_];
             for (int q = 0; q < r; ++q) {
-              s0 -= L(r, q) * x_[2 * q];
-              s1 -= L(r, q) * x_[2 * q + 1];
+              s0 -= lr[q] * x_[2 * q];
+              s1 -= lr[q] * x_[2 * q + 1];
             }
-            x_[2 * r] = s0 / L(r, r);
-            x_[2 * r + 1] = s1 / L(r, r);
+            x_[2 * r] = s0 / lr[r];
+            x_[2 * r + 1] = s1 / lr[r];
           }
-          std::copy(x_.begin() + 4 * m, x_.begin() + 4 * m + 4, e.x);
+          for (int i = 0; i < 4; ++i) e.x[i] = xm[i];
           e.version = version_[m];
         } else {
-          std::copy(e.x, e.x + 4, x_.begin() + 4 * m);
+          for (int i = 0; i < 4; ++i) xm[i] = e.x[i];
         }
+        for (int r = 2 * m; r < 2 * m + 2; ++r) {
+          s00 -= x_[2 * r] * x_[2 * r];
+          s01 -= x_[2 * r] * x_[2 * r + 1];
+          s11 -= x_[2 * r + 1] * x_[2 * r + 1];
+          v0 -= x_[2 * r] * y_[r];
+          v1 -= x_[2 * r + 1] * y_[r];
+        }
+        if (m + 1 < k) rejected = !(ycum_[2 * m + 1] + Increment(s00, s01, s11, v0, v1) < gate);
       }
-      // Schur complement S_p - X^T X, its Cholesky factor, and the new part of y.
-      double s00 = p.S(0, 0), s01 = p.S(0, 1), s11 = p.S(1, 1);
-      double v0 = p.innovation(0), v1 = p.innovation(1);
-      for (int r = 0; r < r0; ++r) {
-        s00 -= x_[2 * r] * x_[2 * r];
-        s01 -= x_[2 * r] * x_[2 * r + 1];
-        s11 -= x_[2 * r + 1] * x_[2 * r + 1];
-        v0 -= x_[2 * r] * y_[r];
-        v1 -= x_[2 * r + 1] * y_[r];
-      }
+      if (rejected) continue;
       if (!(s00 > 0.0)) continue;
       const double l00 = std::sqrt(s00);
       const double l10 = s01 / l00;
@@ -160,7 +187,7 @@ class Search {
       const double y0 = v0 / l00;
       const double y1 = (v1 - l10 * y0) / l11;
       const double d2_new = d2 + y0 * y0 + y1 * y1;
-      if (!(d2_new < gate_[k + 1])) continue;
+      if (!(d2_new < gate)) continue;
       for (int r = 0; r < r0; ++r) {
         L(r0, r) = x_[2 * r];
         L(r0 + 1, r) = x_[2 * r + 1];
@@ -171,6 +198,8 @@ class Search {
       L(r0 + 1, r0 + 1) = l11;
       y_[r0] = y0;
       y_[r0 + 1] = y1;
+      ycum_[r0] = d2 + y0 * y0;
+      ycum_[r0 + 1] = d2_new;
       stack_[k] = c;
       version_[k] = ++version_counter_;
       current_pair_of_[j] = c;
@@ -197,6 +226,7 @@ class Search {
   std::vector<int> order_;
   std::vector<double> gate_;
   std::vector<double> l_, y_, x_;
+  std::vector<double> ycum_;  // ycum_[r]: sum of y_[0..r]^2
   std::vector<int> stack_;
   std::vector<int> current_pair_of_;
   std::vector<int> feature_use_;

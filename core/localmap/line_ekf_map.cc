@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numbers>
 
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_extraction.h"
@@ -37,6 +38,42 @@ class EkfJointCovariance final : public JointCovariance {
   const Eigen::MatrixXd& P_;
   const std::vector<PairJacobian>& h_;
 };
+
+double Sq(double v) { return v * v; }
+
+void Symmetrize(Eigen::MatrixXd& p) {
+  const Eigen::Index n = p.rows();
+  for (Eigen::Index c = 0; c < n; ++c) {
+    for (Eigen::Index r = c + 1; r < n; ++r) {
+      const double v = 0.5 * (p(r, c) + p(c, r));
+      p(r, c) = v;
+      p(c, r) = v;
+    }
+  }
+}
+
+// Per-thread buffers of UpdateWithLines: no heap allocation per scan once warm.
+struct UpdateScratch {
+  std::vector<CandidatePair> cands;
+  std::vector<PairJacobian> jac;
+  std::vector<char> near_feature;
+  std::vector<int> used;
+  Eigen::VectorXd nu;
+  Eigen::MatrixXd s, pht, k_t;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+};
+
+// Whether the canonical line z is within duplicate_rho and duplicate_alpha of (rho, alpha) in
+// either of its representations.
+bool NearLine(const ObservedLine& z, double rho, double alpha, const AssociationOptions& o) {
+  CanonicalizeLine(rho, alpha);
+  const bool same = std::abs(WrapAngle(z.alpha - alpha)) < o.duplicate_alpha &&
+                    std::abs(z.rho - rho) < o.duplicate_rho;
+  const bool flipped =
+      std::abs(WrapAngle(z.alpha - alpha - std::numbers::pi)) < o.duplicate_alpha &&
+      std::abs(z.rho + rho) < o.duplicate_rho;
+  return same || flipped;
+}
 
 double ProjectedPosition(double alpha, const Vec2& p) { return PositionAlongLine(alpha, p); }
 
@@ -86,8 +123,9 @@ Mat3 LineEkfMap::OdometryNoise(const Pose2& u, const OdometryNoiseOptions& o) {
   const double s = u.x >= 0.0 ? d : -d;
   const double dth = u.theta;
   const double b = o.track_width;
-  const double var_l = o.wheel_var_per_m * std::abs(s - 0.5 * dth * b);
-  const double var_r = o.wheel_var_per_m * std::abs(s + 0.5 * dth * b);
+  const double d_l = s - 0.5 * dth * b, d_r = s + 0.5 * dth * b;
+  const double var_l = o.wheel_var_per_m * std::abs(d_l) + Sq(o.wheel_scale_sigma * d_l);
+  const double var_r = o.wheel_var_per_m * std::abs(d_r) + Sq(o.wheel_scale_sigma * d_r);
   Mat2 wheel_cov;  // over (arc, dtheta)
   wheel_cov << 0.25 * (var_l + var_r), 0.5 * (var_r - var_l) / b, 0.5 * (var_r - var_l) / b,
       (var_l + var_r) / (b * b);
@@ -98,7 +136,7 @@ Mat3 LineEkfMap::OdometryNoise(const Pose2& u, const OdometryNoiseOptions& o) {
   const double turn = std::abs(dth);
   q(0, 0) += o.xy_var_per_m * d + o.xy_var_per_rad * turn;
   q(1, 1) += o.xy_var_per_m * d + o.xy_var_per_rad * turn;
-  q(2, 2) += o.theta_var_per_m * d + o.theta_var_per_rad * turn;
+  q(2, 2) += o.theta_var_per_m * d + o.theta_var_per_rad * turn + Sq(o.track_width_sigma * dth);
   return q;
 }
 
@@ -136,11 +174,13 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
   const double gate = ChiSquareQuantile(ao.individual_gate, 2);
   const double loose_gate = ChiSquareQuantile(ao.new_feature_gate, 2);
 
-  std::vector<CandidatePair> cands;
-  std::vector<PairJacobian> jac;
-  std::vector<bool> near_feature(m, false);
-  cands.reserve(static_cast<size_t>(m) * std::max(nf, 1));
-  jac.reserve(cands.capacity());
+  thread_local UpdateScratch scratch;
+  std::vector<CandidatePair>& cands = scratch.cands;
+  std::vector<PairJacobian>& jac = scratch.jac;
+  std::vector<char>& near_feature = scratch.near_feature;
+  cands.clear();
+  jac.clear();
+  near_feature.assign(m, 0);
   const Mat3 prr = P_.topLeftCorner<3, 3>();
   for (int j = 0; j < m; ++j) {
     const ObservedLine& z = observed[j];
@@ -160,7 +200,7 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
       const double det = s_sym.determinant();
       if (!(det > 0.0)) continue;
       const double d2 = nu.dot(s_sym.inverse() * nu);
-      if (d2 < loose_gate) near_feature[j] = true;
+      if (d2 < loose_gate) near_feature[j] = 1;
       if (!(d2 < gate)) continue;
       // Segment-extent check along the feature's line.
       const double alpha = x_(ik + 1);
@@ -184,7 +224,8 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
   const JcbbResult assoc = Jcbb(m, cands, cross, jo);
   out.ambiguous = assoc.status != AssociationStatus::kUnique;
 
-  std::vector<int> used;  // candidate indices applied
+  std::vector<int>& used = scratch.used;  // candidate indices applied
+  used.clear();
   if (assoc.status != AssociationStatus::kBudgetExhausted) {
     for (int j = 0; j < m; ++j) {
       if (assoc.pair_of[j] >= 0 && !assoc.ambiguous[j]) used.push_back(assoc.pair_of[j]);
@@ -194,9 +235,13 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
   const int n = static_cast<int>(x_.size());
   const int q = static_cast<int>(used.size());
   if (q > 0) {
-    Eigen::VectorXd nu(2 * q);
-    Eigen::MatrixXd s(2 * q, 2 * q);
-    Eigen::MatrixXd pht(n, 2 * q);
+    Eigen::VectorXd& nu = scratch.nu;
+    Eigen::MatrixXd& s = scratch.s;
+    Eigen::MatrixXd& pht = scratch.pht;
+    Eigen::MatrixXd& k_t = scratch.k_t;
+    nu.resize(2 * q);
+    s.resize(2 * q, 2 * q);
+    pht.resize(n, 2 * q);
     for (int a = 0; a < q; ++a) {
       const CandidatePair& ca = cands[used[a]];
       const PairJacobian& ja = jac[used[a]];
@@ -210,12 +255,14 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
       pht.middleCols<2>(2 * a) = P_.leftCols<3>() * ja.h_pose.transpose() +
                                  P_.middleCols<2>(3 + 2 * ja.k) * ja.h_line.transpose();
     }
-    const Eigen::LLT<Eigen::MatrixXd> llt(s);
+    Eigen::LLT<Eigen::MatrixXd>& llt = scratch.llt;
+    llt.compute(s);
     if (llt.info() == Eigen::Success) {
-      const Eigen::MatrixXd k_t = llt.solve(pht.transpose());  // (P H^T S^-1)^T
-      x_ += k_t.transpose() * nu;
+      k_t = pht.transpose();
+      llt.solveInPlace(k_t);  // (P H^T S^-1)^T
+      x_.noalias() += k_t.transpose() * nu;
       P_.noalias() -= pht * k_t;
-      P_ = 0.5 * (P_ + P_.transpose()).eval();
+      Symmetrize(P_);
       x_(2) = WrapAngle(x_(2));
       for (int k = 0; k < nf; ++k) x_(4 + 2 * k) = WrapAngle(x_(4 + 2 * k));
       const Pose2 updated = Robot();
@@ -240,10 +287,15 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
     const int first_new = Complexity();
     for (int j : fresh) {
       if (Complexity() >= Capacity()) break;
-      // Two segments of one new wall in the same scan make one feature.
+      // Two segments of one new wall in the same scan make one feature; a line close to a
+      // feature's line is that feature's wall, however the association went.
       bool duplicate = false;
       for (int k = first_new; k < Complexity() && !duplicate; ++k) {
         duplicate = SquaredDistanceTo(observed[j], k) < loose_gate;
+      }
+      const ObservedLine in_map = ObservedLineToParent(Robot(), observed[j]);
+      for (int k = 0; k < Complexity() && !duplicate; ++k) {
+        duplicate = NearLine(in_map, x_(3 + 2 * k), x_(4 + 2 * k), ao);
       }
       if (duplicate) continue;
       AddFeature(observed[j]);
@@ -269,7 +321,7 @@ bool LineEkfMap::UpdateWithMeasurements(const Eigen::VectorXd& nu, const Eigen::
   const Eigen::MatrixXd k_t = llt.solve(pht.transpose());
   x_ += k_t.transpose() * nu;
   P_.noalias() -= pht * k_t;
-  P_ = 0.5 * (P_ + P_.transpose()).eval();
+  Symmetrize(P_);
   x_(2) = WrapAngle(x_(2));
   for (int k = 0; k < Complexity(); ++k) x_(4 + 2 * k) = WrapAngle(x_(4 + 2 * k));
   return true;

@@ -104,6 +104,41 @@ TEST(LineEkfMapTest, ShortCorridorRunIsConsistentAndBounded) {
   EXPECT_GT(nees / kRuns, 1.0);
 }
 
+TEST(LineEkfMapTest, CalibrationErrorsAddNoiseProportionalToTheStep) {
+  OdometryNoiseOptions o;
+  o.wheel_var_per_m = 0.0;
+  o.xy_var_per_m = o.xy_var_per_rad = o.theta_var_per_m = o.theta_var_per_rad = 0.0;
+  EXPECT_EQ(LineEkfMap::OdometryNoise(Pose2{1.0, 0, 0}, o), Mat3::Zero());
+  o.wheel_scale_sigma = 0.01;
+  // Straight 1 m: each wheel 1 m, sigma 1 cm: arc variance (1e-4 + 1e-4) / 4.
+  const Mat3 q = LineEkfMap::OdometryNoise(Pose2{1.0, 0, 0}, o);
+  EXPECT_NEAR(q(0, 0), 0.5e-4, 1e-12);
+  EXPECT_NEAR(q(2, 2), 2e-4 / (o.track_width * o.track_width), 1e-12);
+  // Quadratic in the step: half the step, a quarter of the variance.
+  EXPECT_NEAR(LineEkfMap::OdometryNoise(Pose2{0.5, 0, 0}, o)(0, 0), 0.25 * q(0, 0), 1e-12);
+  o.wheel_scale_sigma = 0.0;
+  o.track_width_sigma = 0.002;
+  EXPECT_NEAR(LineEkfMap::OdometryNoise(Pose2{0, 0, 1.0}, o)(2, 2), 4e-6, 1e-12);
+}
+
+TEST(LineEkfMapTest, LineNearAFeatureIsNotAddedAgain) {
+  // One wall; the robot pose is made wildly uncertain so that association is impossible, yet
+  // the same wall must not become a second feature.
+  FakeLaserOptions lo;
+  FakeWallScanner scanner({{Vec2(3.0, -3.0), Vec2(3.0, 3.0)}}, lo, 4);
+  LineEkfMap map(SimOptions());
+  map.Update(scanner.Scan(Pose2{}), true);
+  ASSERT_EQ(map.Complexity(), 1);
+  UncertainPose p = map.RobotPose();
+  p.mean.x = 0.05;  // 5 cm off, believed to within 1 mm: the observation is incompatible
+  p.cov = Mat3(Vec3(1e-6, 1e-6, 1e-8).asDiagonal());
+  map.ResetRobotPose(p);
+  const ScanUpdate up = map.Update(scanner.Scan(Pose2{}), true);
+  EXPECT_EQ(up.matched, 0);
+  EXPECT_EQ(up.added, 0);
+  EXPECT_EQ(map.Complexity(), 1);
+}
+
 TEST(LineEkfMapTest, CapacityAndJuvenileRule) {
   LocalMapOptions o = SimOptions();
   o.capacity = 3;

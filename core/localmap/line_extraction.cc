@@ -3,12 +3,21 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/localmap/jcbb.h"
+
 namespace atlas {
 namespace {
 
 struct Segment {
   int begin;  // index into points, inclusive
   int end;    // exclusive
+};
+
+struct Scratch {
+  std::vector<Vec2> pts;
+  std::vector<double> var;
+  std::vector<int> beam_of;
+  std::vector<Segment> clusters, segments, stack, merged;
 };
 
 // Max normal distance to the chord through the first and last point; returns its index.
@@ -60,6 +69,13 @@ double MaxResidualTls(const std::vector<Vec2>& p, int begin, int end) {
 
 bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_var,
              double model_var, ObservedLine& line) {
+  if (range_var.size() != points.size()) return false;
+  return FitLine(std::span<const Vec2>(points), std::span<const double>(range_var), model_var,
+                 line);
+}
+
+bool FitLine(std::span<const Vec2> points, std::span<const double> range_var, double model_var,
+             ObservedLine& line) {
   const int n = static_cast<int>(points.size());
   if (n < 2) return false;
   // Unweighted fit, then reweighted twice with the fitted angle: the normal variance of point i
@@ -73,9 +89,10 @@ bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_v
     w = w_heap.data();
   }
   for (int i = 0; i < n; ++i) w[i] = 1.0;
+  // The normal (ca, sa) = (cos alpha, sin alpha) from the double angle, without trigonometry.
+  double ca = 1.0, sa = 0.0;
   for (int iter = 0; iter < 3; ++iter) {
     if (iter > 0) {
-      const double ca = std::cos(alpha), sa = std::sin(alpha);
       for (int i = 0; i < n; ++i) {
         const double r2 = points[i].squaredNorm();
         const double c = points[i].x() * ca + points[i].y() * sa;  // r cos(phi - alpha)
@@ -97,17 +114,21 @@ bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_v
       syy += w[i] * dy * dy;
       sxy += w[i] * dx * dy;
     }
-    // Normal angle minimising sum w (n . (p - c))^2.
-    alpha = 0.5 * std::atan2(-2.0 * sxy, syy - sxx);
-    rho = cx * std::cos(alpha) + cy * std::sin(alpha);
+    // Normal angle minimising sum w (n . (p - c))^2: 2 alpha = atan2(-2 sxy, syy - sxx).
+    const double c2 = syy - sxx, s2 = -2.0 * sxy;
+    const double h = std::hypot(c2, s2);
+    if (!(h > 0.0) || !std::isfinite(h)) return false;
+    ca = std::sqrt(std::max(0.0, 0.5 * (1.0 + c2 / h)));
+    sa = std::copysign(std::sqrt(std::max(0.0, 0.5 * (1.0 - c2 / h))), s2);
+    rho = cx * ca + cy * sa;
     if (rho < 0.0) {
       rho = -rho;
-      alpha += std::numbers::pi;
+      ca = -ca;
+      sa = -sa;
     }
-    alpha = WrapAngle(alpha);
   }
+  alpha = std::atan2(sa, ca);
   double i00 = 0.0, i01 = 0.0, i11 = 0.0;
-  const double ca = std::cos(alpha), sa = std::sin(alpha);
   for (int i = 0; i < n; ++i) {
     const double j1 = -points[i].x() * sa + points[i].y() * ca;
     i00 += w[i];
@@ -119,10 +140,10 @@ bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_v
   line.rho = rho;
   line.alpha = alpha;
   line.cov << i11 / det, -i01 / det, -i01 / det, i00 / det;
-  const double ta = PositionAlongLine(alpha, points.front());
-  const double tb = PositionAlongLine(alpha, points.back());
-  line.endpoint_a = PointOnLine(rho, alpha, ta);
-  line.endpoint_b = PointOnLine(rho, alpha, tb);
+  const double ta = -points.front().x() * sa + points.front().y() * ca;
+  const double tb = -points.back().x() * sa + points.back().y() * ca;
+  line.endpoint_a = Vec2(rho * ca - ta * sa, rho * sa + ta * ca);
+  line.endpoint_b = Vec2(rho * ca - tb * sa, rho * sa + tb * ca);
   line.num_points = n;
   return true;
 }
@@ -132,21 +153,32 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
   std::vector<ObservedLine> lines;
   const int beams = static_cast<int>(scan.ranges.size());
   if (beams == 0) return lines;
-  std::vector<Vec2> pts;
-  std::vector<double> var;
-  std::vector<int> beam_of;
-  pts.reserve(beams);
-  var.reserve(beams);
-  beam_of.reserve(beams);
+  // Per-thread scratch: no heap allocation per scan once warm.
+  thread_local Scratch scratch;
+  std::vector<Vec2>& pts = scratch.pts;
+  std::vector<double>& var = scratch.var;
+  std::vector<int>& beam_of = scratch.beam_of;
+  std::vector<Segment>& clusters = scratch.clusters;
+  pts.clear();
+  var.clear();
+  beam_of.clear();
+  clusters.clear();
   const double max_range = scan.max_range > 0.0f ? scan.max_range : 1e30;
-  std::vector<Segment> clusters;
+  const double max_gap2 = options.max_gap * options.max_gap;
   int cluster_begin = 0;
+  // Beam directions by rotation recurrence (exact to ~1e-13 over a scan).
+  const double inc = scan.angle_increment;
+  const double c_inc = std::cos(inc), s_inc = std::sin(inc);
+  double c_phi = std::cos(static_cast<double>(scan.angle_min));
+  double s_phi = std::sin(static_cast<double>(scan.angle_min));
   for (int i = 0; i < beams; ++i) {
     const float r = scan.ranges[i];
+    const double c = c_phi, sn = s_phi;
+    c_phi = c * c_inc - sn * s_inc;
+    s_phi = sn * c_inc + c * s_inc;
     if (!IsReturn(r) || r < options.min_range || r >= max_range) continue;
-    const double phi = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
-    const Vec2 p(r * std::cos(phi), r * std::sin(phi));
-    if (!pts.empty() && (p - pts.back()).norm() > options.max_gap) {
+    const Vec2 p(r * c, r * sn);
+    if (!pts.empty() && (p - pts.back()).squaredNorm() > max_gap2) {
       clusters.push_back({cluster_begin, static_cast<int>(pts.size())});
       cluster_begin = static_cast<int>(pts.size());
     }
@@ -157,8 +189,10 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
   }
   if (!pts.empty()) clusters.push_back({cluster_begin, static_cast<int>(pts.size())});
 
-  std::vector<Segment> segments;
-  std::vector<Segment> stack;
+  std::vector<Segment>& segments = scratch.segments;
+  std::vector<Segment>& stack = scratch.stack;
+  std::vector<Segment>& merged = scratch.merged;
+  segments.clear();
   for (const Segment& cl : clusters) {
     if (cl.end - cl.begin < options.min_points) continue;
     const size_t first_of_cluster = segments.size();
@@ -182,7 +216,7 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
       }
     }
     // Merge adjacent collinear segments of this cluster.
-    std::vector<Segment> merged;
+    merged.clear();
     for (size_t i = first_of_cluster; i < segments.size(); ++i) {
       if (!merged.empty() &&
           MaxResidualTls(pts, merged.back().begin, segments[i].end) <= options.split_distance) {
@@ -195,9 +229,8 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
     segments.insert(segments.end(), merged.begin(), merged.end());
   }
 
-  std::vector<Vec2> seg_pts;
-  std::vector<double> seg_var;
   const double model_var = options.model_sigma * options.model_sigma;
+  const bool fit_gate_off = options.fit_gate >= 1.0;
   for (const Segment& s : segments) {
     if (s.end - s.begin < options.min_points) continue;
     // Fit, then trim end points that do not belong to the line (the neighbour wall's points
@@ -205,22 +238,67 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
     int b = s.begin, e = s.end;
     ObservedLine line;
     bool ok = false;
-    for (int round = 0; round < 4; ++round) {
-      seg_pts.assign(pts.begin() + b, pts.begin() + e);
-      seg_var.assign(var.begin() + b, var.begin() + e);
-      ok = FitLine(seg_pts, seg_var, model_var, line);
+    for (int round = 0; round < 6; ++round) {
+      ok = FitLine(std::span<const Vec2>(pts.data() + b, e - b),
+                   std::span<const double>(var.data() + b, e - b), model_var, line);
       if (!ok) break;
       const double ca = std::cos(line.alpha), sa = std::sin(line.alpha);
-      const auto outlier = [&](int i) {
+      // Squared normal residual of point i over its normal variance.
+      const auto normalized = [&](int i) {
         const double proj = pts[i].x() * ca + pts[i].y() * sa;
         const double d = proj - line.rho;
         const double c2 = proj * proj / std::max(pts[i].squaredNorm(), 1e-12);
-        return d * d > 9.0 * (var[i] * c2 + model_var);
+        return d * d / std::max(var[i] * c2 + model_var, 1e-12);
       };
       const int b0 = b, e0 = e;
-      while (e - b > options.min_points && outlier(b)) ++b;
-      while (e - b > options.min_points && outlier(e - 1)) --e;
-      if (b == b0 && e == e0) break;
+      while (e - b > options.min_points && normalized(b) > 9.0) ++b;
+      while (e - b > options.min_points && normalized(e - 1) > 9.0) --e;
+      if (b != b0 || e != e0) {
+        ok = false;  // refit
+        continue;
+      }
+      if (fit_gate_off) break;
+      // In a short segment one stray end point pulls the fit towards itself and hides its own
+      // residual: test each end point against the fit of the others (deletion residual).
+      if (e - b <= 3 * options.min_points) {
+        bool stray = false;
+        for (const int i : {b, e - 1}) {
+          const int ob = i == b ? b + 1 : b, oe = i == b ? e : e - 1;
+          ObservedLine others;
+          if (!FitLine(std::span<const Vec2>(pts.data() + ob, oe - ob),
+                       std::span<const double>(var.data() + ob, oe - ob), model_var, others)) {
+            continue;
+          }
+          const double co = std::cos(others.alpha), so = std::sin(others.alpha);
+          const double proj = pts[i].x() * co + pts[i].y() * so;
+          const double c2 = proj * proj / std::max(pts[i].squaredNorm(), 1e-12);
+          const Eigen::RowVector2d j(-1.0, -pts[i].x() * so + pts[i].y() * co);
+          const double v = var[i] * c2 + model_var + j * others.cov * j.transpose();
+          const double d = proj - others.rho;
+          if (d * d > 9.0 * v) {
+            stray = true;
+            if (i == b) {
+              ++b;
+            } else {
+              --e;
+            }
+            break;
+          }
+        }
+        if (stray) {
+          ok = false;
+          if (e - b < options.min_points) break;
+          continue;
+        }
+      }
+      // Goodness of fit: the weighted squared residuals of points of one straight wall are
+      // chi-square with n - 2 dof. A segment that fails (points of a neighbouring wall at a
+      // corner or door jamb that trimming could not remove, seen at a grazing angle) is not a
+      // line: its covariance would be a lie.
+      double chi2 = 0.0;
+      for (int i = b; i < e; ++i) chi2 += normalized(i);
+      if (!(chi2 <= ChiSquareQuantile(options.fit_gate, e - b - 2))) ok = false;
+      break;
     }
     if (!ok || e - b < options.min_points || line.Length() < options.min_length) continue;
     line.cov(0, 0) += options.min_rho_sigma * options.min_rho_sigma;

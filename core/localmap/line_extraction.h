@@ -16,13 +16,17 @@
 //    cos^2(phi_i - alpha) + model_sigma^2): the range noise projected on the line normal. The
 //    (rho, alpha) covariance is the inverse of the Gauss-Newton information
 //    sum_i w_i J_i^T J_i, J_i = d d_i / d(rho, alpha) = (-1, -x_i sin(alpha) + y_i cos(alpha)).
-//    End points farther than 3 sigma from the fit are trimmed and the segment refitted; the
-//    floors min_rho_sigma^2, min_alpha_sigma^2 are then added to the variances.
+//    End points farther than 3 sigma from the fit are trimmed and the segment refitted. The
+//    fit must then pass a chi-square test, sum_i w_i d_i^2 < chi2_inv(fit_gate, n - 2) (the
+//    covariance above is only right for points of one straight wall); a segment that fails is
+//    not a line. The floors min_rho_sigma^2, min_alpha_sigma^2 are then added to the
+//    variances.
 // 5. Endpoints are the first and last point projected on the line; lines shorter than
 //    min_length are dropped. At most max_lines lines are returned (longest kept).
 //
 // Pure function of the scan and options; fixed work bound per scan (O(beams * log) splits).
 
+#include <span>
 #include <vector>
 
 #include "core/common/sensor_types.h"
@@ -43,5 +47,7 @@ std::vector<ObservedLine> ExtractRobotFrameLines(const LaserScan& scan,
 // Needs >= 2 points; returns false if degenerate. Exposed for tests.
 bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_var,
              double model_var, ObservedLine& line);
+bool FitLine(std::span<const Vec2> points, std::span<const double> range_var, double model_var,
+             ObservedLine& line);
 
 }  // namespace atlas

@@ -23,6 +23,7 @@ std::string LineExtractionOptions::Validate() const {
   if (min_points < 3 || min_points > 10000) return "extraction.min_points must be in [3, 10000]";
   if (!In(min_length, 0.0, 100.0)) return "extraction.min_length must be in [0, 100] m";
   if (!In(min_range, 0.0, 100.0)) return "extraction.min_range must be in [0, 100] m";
+  if (!(fit_gate > 0.0 && fit_gate <= 1.0)) return "extraction.fit_gate must be in (0, 1]";
   if (max_lines < 1 || max_lines > 256) return "extraction.max_lines must be in [1, 256]";
   return "";
 }
@@ -34,6 +35,8 @@ std::string OdometryNoiseOptions::Validate() const {
   if (!In(xy_var_per_rad, 0.0, 1.0)) return "odometry.xy_var_per_rad must be in [0, 1]";
   if (!In(theta_var_per_m, 0.0, 1.0)) return "odometry.theta_var_per_m must be in [0, 1]";
   if (!In(theta_var_per_rad, 0.0, 1.0)) return "odometry.theta_var_per_rad must be in [0, 1]";
+  if (!In(wheel_scale_sigma, 0.0, 0.5)) return "odometry.wheel_scale_sigma must be in [0, 0.5]";
+  if (!In(track_width_sigma, 0.0, 0.5)) return "odometry.track_width_sigma must be in [0, 0.5]";
   return "";
 }
 
@@ -49,6 +52,8 @@ std::string AssociationOptions::Validate() const {
   if (!In(ambiguity_margin, 0.0, 1e6)) return "association.ambiguity_margin must be >= 0";
   if (!In(new_feature_min_length, 0.0, 100.0))
     return "association.new_feature_min_length must be in [0, 100] m";
+  if (!In(duplicate_rho, 0.0, 100.0)) return "association.duplicate_rho must be in [0, 100] m";
+  if (!In(duplicate_alpha, 0.0, 3.2)) return "association.duplicate_alpha must be in [0, pi] rad";
   return "";
 }
 

@@ -27,6 +27,9 @@ struct LineExtractionOptions {
   // Ranges outside [min_range, max_range) of the scan are ignored (like no-return beams).
   double min_range = 0.05;
   int max_lines = 32;  // work bound: at most this many lines per scan
+  // Goodness of fit: a segment whose weighted squared residuals exceed the chi-square quantile
+  // of this probability (n - 2 dof) is dropped. 1 = off.
+  double fit_gate = 0.99999;
 
   std::string Validate() const;
 };
@@ -41,6 +44,13 @@ struct OdometryNoiseOptions {
   double xy_var_per_rad = 1e-6;     // m^2 per radian turned
   double theta_var_per_m = 1e-6;    // rad^2 per metre travelled
   double theta_var_per_rad = 1e-5;  // rad^2 per radian turned
+  // Calibration errors of the base (Borenstein's UMBmark): the relative error of each wheel's
+  // distance and of the track width, standard deviations. Within one odometry step they act
+  // as noise of variance (wheel_scale_sigma d_wheel)^2 per wheel and
+  // (track_width_sigma dtheta)^2 on the turn: negligible between frequent scans, and they keep
+  // the filter honest about a base that is not perfectly calibrated.
+  double wheel_scale_sigma = 0.0;
+  double track_width_sigma = 0.0;
 
   std::string Validate() const;
 };
@@ -61,6 +71,11 @@ struct AssociationOptions {
   // feature at this looser chi-square probability either (avoids duplicates).
   double new_feature_gate = 0.9999;
   double new_feature_min_length = 1.0;  // metres
+  // Nor if its line (in the map-frame, at the estimated pose) lies within both of these of a
+  // feature's line: a second feature for one wall would be updated with the same scans as the
+  // first, making both over-confident.
+  double duplicate_rho = 0.1;     // metres
+  double duplicate_alpha = 0.05;  // radians
 
   std::string Validate() const;
 };

@@ -41,6 +41,7 @@ constexpr char kUsage[] =
     "       atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
     "C=100]\n"
     "                                [--png F] [--draw-stretch K=3] [--set name=v,...]\n"
+    "                                [--laser-x X=0]\n"
     "\n"
     "mc:   Monte Carlo consistency of the line EKF in a simulated 20 m corridor (seeded runs of\n"
     "      M minutes each). Prints the 95 %% chi-square band of the average NEES (robot: 3 dof;\n"
@@ -48,6 +49,8 @@ constexpr char kUsage[] =
     "real: mit-csail.clf.gz, one local map per stretch of M metres of travel, restarting at\n"
     "      each stretch (no Genesis). Scores the relations whose two poses lie in one stretch\n"
     "      and dead reckoning on the same relations. --png draws stretch K's map over its scans.\n"
+    "      --laser-x: the laser X metres ahead of the robot's centre (the log's FLASER lines\n"
+    "      give none). --set overrides filter options (a bad name lists them).\n"
     "      Defaults: " ATLAS_SHARED_DIR "/datasets/mit-csail/mit-csail.clf.gz and .relations\n";
 
 struct Args {
@@ -108,6 +111,11 @@ LocalMapOptions SimFilterOptions(int capacity, const WheelOdometryNoiseOptions& 
   o.odometry.xy_var_per_rad = 0.0;
   o.odometry.theta_var_per_m = 0.0;
   o.odometry.theta_var_per_rad = 0.0;
+  // The simulated base's calibration errors (systematic, the same every step): modelled as
+  // per-step noise of the same size.
+  o.odometry.wheel_scale_sigma =
+      std::max(std::abs(wheel.left_scale_error), std::abs(wheel.right_scale_error));
+  o.odometry.track_width_sigma = std::abs(wheel.track_width_error);
   return o;
 }
 
@@ -138,8 +146,7 @@ bool TrueLineOf(const ObservedLine& z, const Pose2& truth, const LaserScan& scan
 std::vector<StepNees> RunOnce(uint64_t seed, double minutes, int capacity,
                               const std::vector<sim::Wall>& walls, const sim::RayCaster& caster,
                               int& features_out) {
-  WheelOdometryNoiseOptions wheel;
-  wheel.left_scale_error = wheel.right_scale_error = wheel.track_width_error = 0.0;
+  const WheelOdometryNoiseOptions wheel;  // the simulator's defaults, calibration errors too
   sim::LaserOptions laser;
   laser.beams = 361;
   laser.range_sigma = 0.01;
@@ -190,6 +197,24 @@ std::vector<StepNees> RunOnce(uint64_t seed, double minutes, int capacity,
         double rho = p.z(0), alpha = p.z(1);
         CanonicalizeLine(rho, alpha);
         true_line[id] = Vec2(rho, alpha);
+        if (std::getenv("LOCALMAP_DEBUG")) {
+          const ObservedLine zw = ObservedLineToParent(truth, map.LastObservations()[j]);
+          std::fprintf(stderr,
+                       "step %d add id %d obs (%.4f %.5f) true (%.4f %.5f) sd %.4f %.5f n %d beams "
+                       "%d-%d len %.2f\n",
+                       s, id, zw.rho, zw.alpha, rho, alpha, std::sqrt(zw.cov(0, 0)),
+                       std::sqrt(zw.cov(1, 1)), zw.num_points, zw.first_beam, zw.last_beam,
+                       zw.Length());
+          const Pose2 sensor = Compose(truth_world, scan.sensor_pose);
+          for (int i = zw.first_beam; i <= zw.last_beam; ++i) {
+            const double phi =
+                sensor.theta + scan.angle_min + i * static_cast<double>(scan.angle_increment);
+            const sim::RayHit hit = caster.Cast(Vec2(sensor.x, sensor.y),
+                                                Vec2(std::cos(phi), std::sin(phi)), scan.max_range);
+            std::fprintf(stderr, " %d:%d", i, hit.wall);
+          }
+          std::fprintf(stderr, "\n");
+        }
       }
     }
     StepNees n;
@@ -351,6 +376,10 @@ std::string ApplyOverrides(const std::string& spec, LocalMapOptions& o) {
       {"split_distance", &o.extraction.split_distance},
       {"min_length", &o.extraction.min_length},
       {"max_gap", &o.extraction.max_gap},
+      {"fit_gate", &o.extraction.fit_gate},
+      {"duplicate_rho", &o.association.duplicate_rho},
+      {"duplicate_alpha", &o.association.duplicate_alpha},
+      {"wheel_scale_sigma", &o.odometry.wheel_scale_sigma},
       {"wheel_var_per_m", &o.odometry.wheel_var_per_m},
       {"xy_var_per_m", &o.odometry.xy_var_per_m},
       {"xy_var_per_rad", &o.odometry.xy_var_per_rad},
@@ -394,9 +423,10 @@ int RunReal(const Args& args) {
   std::string rel_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.relations";
   if (args.values.count("--log")) log_path = args.values.at("--log");
   if (args.values.count("--relations")) rel_path = args.values.at("--relations");
-  double stretch_m = 30, capacity = 100, draw_stretch = 3;
+  double stretch_m = 30, capacity = 100, draw_stretch = 3, laser_x = 0.0;
   std::string error;
   if (!GetNumber(args, "--stretch", 1, 1e6, stretch_m, error) ||
+      !GetNumber(args, "--laser-x", -2, 2, laser_x, error) ||
       !GetNumber(args, "--capacity", 1, 10000, capacity, error) ||
       !GetNumber(args, "--draw-stretch", 0, 1e6, draw_stretch, error)) {
     std::fprintf(stderr, "atlas-localmap-eval real: %s\n", error.c_str());
@@ -455,7 +485,9 @@ int RunReal(const Args& args) {
     }
     last_odo = odo;
     have_odo = true;
-    const ScanUpdate up = map->Update(*scan, true);
+    LaserScan mounted = *scan;
+    mounted.sensor_pose = Compose(Pose2{laser_x, 0.0, 0.0}, scan->sensor_pose);
+    const ScanUpdate up = map->Update(mounted, true);
     ++updates;
     matched += up.matched;
     observed += up.observations;
@@ -501,6 +533,11 @@ int RunReal(const Args& args) {
     }
     const eval::RelationError e = eval::RelationErrorOf(rel, Between(a->estimate, b->estimate));
     const eval::RelationError d = eval::RelationErrorOf(rel, Between(a->odometry, b->odometry));
+    if (std::getenv("LOCALMAP_DEBUG")) {
+      std::fprintf(stderr, "rel stretch %d dt %.2f move %.3f %.3f: ekf %.4f %.3f dr %.4f %.3f\n",
+                   a->stretch, ToSeconds(rel.t2 - rel.t1), rel.delta.x, rel.delta.theta,
+                   e.translation_m, e.rotation_deg, d.translation_m, d.rotation_deg);
+    }
     est_t.push_back(e.translation_m);
     est_r.push_back(e.rotation_deg);
     dr_t.push_back(d.translation_m);
@@ -536,7 +573,8 @@ int RunReal(const Args& args) {
     Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
     for (size_t i : drawn_records) {
       const ScanRecord& r = records[i];
-      const Pose2 sensor = Compose(r.estimate, r.scan->sensor_pose);
+      const Pose2 sensor =
+          Compose(r.estimate, Compose(Pose2{laser_x, 0.0, 0.0}, r.scan->sensor_pose));
       path.push_back(Vec2(r.estimate.x, r.estimate.y));
       for (size_t b = 0; b < r.scan->ranges.size(); ++b) {
         const float range = r.scan->ranges[b];
@@ -613,9 +651,9 @@ int main(int argc, char** argv) {
     return atlas::RunMonteCarlo(a);
   }
   if (cmd == "real") {
-    const atlas::Args a = atlas::ParseArgs(
-        argc, argv, 2,
-        {"--log", "--relations", "--stretch", "--capacity", "--png", "--draw-stretch", "--set"});
+    const atlas::Args a = atlas::ParseArgs(argc, argv, 2,
+                                           {"--log", "--relations", "--stretch", "--capacity",
+                                            "--png", "--draw-stretch", "--set", "--laser-x"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-localmap-eval real: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
