@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -70,7 +71,16 @@ struct Shared {
   std::string status;  // one-line summary, under mutex
   bool reload_pending = false;
   DaemonOptions reloaded;  // under mutex
+  // Scans queued by the laser reader: the loop thread sleeps on `scan_arrived` until a scan
+  // comes (or kIdleWait passes, for dead reckoning and health), never polling.
+  std::mutex scan_mutex;
+  std::condition_variable scan_arrived;
+  uint64_t scans_queued = 0;  // under scan_mutex
 };
+
+// The longest the loop sleeps without a scan: dead-reckoning output (20 Hz), health periods and
+// the heartbeat are checked at least this often.
+constexpr auto kIdleWait = std::chrono::milliseconds(10);
 
 void ApplyScheduling(const SchedulingOptions& s) {
   if (s.policy != SchedPolicy::kOther) {
@@ -295,6 +305,11 @@ void LiveDaemon::LoopThread() {
         ApplyReload(loaded);
       }
     }
+    uint64_t scans_seen;
+    {
+      std::lock_guard<std::mutex> lock(shared_.scan_mutex);
+      scans_seen = shared_.scans_queued;
+    }
     Drain();
     const bool stepped = loop_->StepOne(sink_.get());
     if (stepped && now - last_checkpoint_ >= SecondsToDuration(options_.state.save_period_s)) {
@@ -305,7 +320,12 @@ void LiveDaemon::LoopThread() {
       last_health_ = now;
       PublishHealth(now);
     }
-    if (!stepped) std::this_thread::sleep_for(std::chrono::microseconds(500));
+    if (!stepped) {
+      std::unique_lock<std::mutex> lock(shared_.scan_mutex);
+      shared_.scan_arrived.wait_for(lock, kIdleWait, [&] {
+        return shared_.scans_queued != scans_seen || shared_.stop.load(std::memory_order_acquire);
+      });
+    }
   }
   SubmitCheckpoint();  // the last steps, saved by Run() before it returns
   shared_.loop_running.store(false);
@@ -349,7 +369,15 @@ int LiveDaemon::Run() {
   odometry_ = std::make_unique<OdometryReader>(ToOdometryReaderOptions(options_));
   odometry_->Start();
   if (options_.laser.enabled) {
-    laser_ = std::make_unique<LaserReader>(ToLaserReaderOptions(options_));
+    LaserReaderOptions lo = ToLaserReaderOptions(options_);
+    lo.on_scan = [this] {
+      {
+        std::lock_guard<std::mutex> lock(shared_.scan_mutex);
+        ++shared_.scans_queued;
+      }
+      shared_.scan_arrived.notify_one();
+    };
+    laser_ = std::make_unique<LaserReader>(lo);
     laser_->Start();
   }
   if (options_.sonar.enabled) {
@@ -426,7 +454,11 @@ int LiveDaemon::Run() {
   }
   notifier_.Stopping();
   std::fprintf(stderr, "atlasd: stopping\n");
-  shared_.stop.store(true, std::memory_order_release);
+  {
+    std::lock_guard<std::mutex> lock(shared_.scan_mutex);
+    shared_.stop.store(true, std::memory_order_release);
+  }
+  shared_.scan_arrived.notify_all();
   loop_thread.join();
   if (laser_) laser_->Stop();
   if (odometry_) odometry_->Stop();

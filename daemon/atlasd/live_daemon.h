@@ -8,7 +8,8 @@
 //   raw data when lcm.republish_raw, steps the atlas on the oldest pending scan (older ones
 //   beyond loop.max_pending_scans are dropped and counted), publishes the pose at every step,
 //   the local map, graph and hypotheses at their periods, and health every
-//   lcm.health_period_s; it polls every 1 ms when idle and never blocks on a device. It runs
+//   lcm.health_period_s; when idle it sleeps until the laser reader queues a scan (at most
+//   10 ms, for dead reckoning and health), never polling and never blocking on a device. It runs
 //   with the configured scheduling (policy, priority, affinity); when that is refused it
 //   carries on with the default scheduling and a warning.
 // - the main thread: signals (SIGTERM/SIGINT stop, SIGHUP reload, SIGUSR1 test stall when

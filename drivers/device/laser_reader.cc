@@ -204,6 +204,7 @@ void LaserReader::HandleTelegram(const sick::TelegramView& t, Time stamp) {
     health_.SetDeviceStatus(b);
   }
   queue_.Push(std::move(scan_));
+  if (options_.on_scan) options_.on_scan();
   health_.samples.fetch_add(1, std::memory_order_relaxed);
   scan_ = LaserScan{};
 }

@@ -15,6 +15,7 @@
 // backoff, running the start-up sequence again.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct LaserReaderOptions {
   // adapters (FTDI latency timer: 16 ms) and a loaded machine's scheduling delays.
   Duration truncation_gap = std::chrono::milliseconds(100);
   size_t queue_capacity = 64;
+  // Called by the reader thread right after each scan is queued, so that a consumer can block
+  // until there is a scan instead of polling (atlasd's loop). Must be quick; may be empty.
+  std::function<void()> on_scan;
   ReconnectOptions reconnect;
   std::string Validate() const;
 };

@@ -1,0 +1,100 @@
+// atlas-pose-latency: an LCM subscriber that measures, for every ATLAS_POSE it receives, the
+// time from the scan's arrival stamp (pose_t.utime: the laser driver's CLOCK_MONOTONIC time of
+// the read() that completed the telegram) to the message's arrival in this process (the same
+// clock, read in the handler). See --help.
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <lcm/lcm-cpp.hpp>
+#include <string>
+#include <vector>
+
+#include "atlas/pose_t.hpp"
+#include "core/common/time.h"
+
+namespace {
+
+constexpr const char* kHelp =
+    R"(usage: atlas-pose-latency [--seconds S] [--channel NAME] [--warmup N]
+
+Subscribes to ATLAS_POSE (LCM_DEFAULT_URL) for S seconds (default 60) or until SIGINT/SIGTERM,
+and prints the latency of each pose: from the laser driver's arrival stamp of the scan
+(pose_t.utime, CLOCK_MONOTONIC) to the pose's receipt here (same clock), as
+  poses=N median_us=.. p90_us=.. p99_us=.. max_us=..
+Dead-reckoning poses (published without a scan, utime = odometry time) are counted apart and
+left out. The first N poses (default 20) are skipped (start-up). atlasd must run on this
+machine (one monotonic clock).
+)";
+
+volatile sig_atomic_t g_stop = 0;
+void OnSignal(int) { g_stop = 1; }
+
+struct Collector {
+  std::vector<double> latency_us;
+  int64_t last_utime = -1;
+  int skipped = 0, warmup = 20, repeated = 0;
+  void Handle(const lcm::ReceiveBuffer*, const std::string&, const atlas::pose_t* p) {
+    const int64_t now_us = atlas::Now().time_since_epoch().count() / 1000;
+    if (p->utime == last_utime) {  // the same stamp again: not a new scan
+      ++repeated;
+      return;
+    }
+    last_utime = p->utime;
+    if (skipped < warmup) {
+      ++skipped;
+      return;
+    }
+    latency_us.push_back(static_cast<double>(now_us - p->utime));
+  }
+};
+
+double Quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double seconds = 60;
+  std::string channel = "ATLAS_POSE";
+  Collector c;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "--seconds" && i + 1 < argc) {
+      seconds = std::atof(argv[++i]);
+    } else if (a == "--channel" && i + 1 < argc) {
+      channel = argv[++i];
+    } else if (a == "--warmup" && i + 1 < argc) {
+      c.warmup = std::atoi(argv[++i]);
+    } else {
+      std::fprintf(stderr, "atlas-pose-latency: unknown argument '%s' (see --help)\n", a.c_str());
+      return 2;
+    }
+  }
+  lcm::LCM lcm;
+  if (!lcm.good()) {
+    std::fprintf(stderr,
+                 "atlas-pose-latency: cannot open LCM (LCM_DEFAULT_URL, multicast route)\n");
+    return 1;
+  }
+  lcm.subscribe(channel, &Collector::Handle, &c);
+  signal(SIGINT, OnSignal);
+  signal(SIGTERM, OnSignal);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!g_stop && std::chrono::steady_clock::now() < end) lcm.handleTimeout(100);
+  const std::vector<double>& v = c.latency_us;
+  std::printf("poses=%zu median_us=%.1f p90_us=%.1f p99_us=%.1f max_us=%.1f repeated_stamps=%d\n",
+              v.size(), Quantile(v, 0.5), Quantile(v, 0.9), Quantile(v, 0.99),
+              v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()), c.repeated);
+  return v.empty() ? 1 : 0;
+}
