@@ -116,7 +116,7 @@ bool FitLine(std::span<const Vec2> points, std::span<const double> range_var, do
     }
     // Normal angle minimising sum w (n . (p - c))^2: 2 alpha = atan2(-2 sxy, syy - sxx).
     const double c2 = syy - sxx, s2 = -2.0 * sxy;
-    const double h = std::hypot(c2, s2);
+    const double h = std::sqrt(c2 * c2 + s2 * s2);
     if (!(h > 0.0) || !std::isfinite(h)) return false;
     ca = std::sqrt(std::max(0.0, 0.5 * (1.0 + c2 / h)));
     sa = std::copysign(std::sqrt(std::max(0.0, 0.5 * (1.0 - c2 / h))), s2);
@@ -233,6 +233,10 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
   const bool fit_gate_off = options.fit_gate >= 1.0;
   for (const Segment& s : segments) {
     if (s.end - s.begin < options.min_points) continue;
+    // The fitted extent is the end points projected on the line: never longer than the chord.
+    if ((pts[s.end - 1] - pts[s.begin]).squaredNorm() < options.min_length * options.min_length) {
+      continue;
+    }
     // Fit, then trim end points that do not belong to the line (the neighbour wall's points
     // near a corner, mixed pixels) and refit.
     int b = s.begin, e = s.end;
