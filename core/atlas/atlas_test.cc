@@ -302,7 +302,7 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
   AtlasOptions o = TestWorld::Options();
   Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
   Pose2 truth{};
-  int accepted = 0;
+  int accepted = 0, matched_reason = 0;
   for (int i = 0; i < 200; ++i) {
     const Pose2 delta = SquareRouteDelta(i);
     if (i > 0) truth = Compose(truth, delta);
@@ -310,9 +310,16 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
     const StepStats& s = atlas.Step(delta, TestScan());
     CheckInvariants(atlas);
     accepted += s.match_accepted;
+    // Every map-matching outcome has exactly one reason; an accepted match has kMatched.
+    int by_reason = 0;
+    for (int n : s.match_reasons) by_reason += n;
+    EXPECT_EQ(by_reason, s.match_accepted + s.match_rejected + s.match_ambiguous);
+    EXPECT_GE(s.match_reasons[static_cast<int>(MapMatchReason::kMatched)], s.match_accepted);
+    matched_reason += s.match_reasons[static_cast<int>(MapMatchReason::kMatched)];
     PlaceNewFrames(atlas.Graph(), truth, frame_in_world.get());
   }
   EXPECT_GE(accepted, 1);
+  EXPECT_GE(matched_reason, accepted);
   const int loop_edges = CheckMapMatchEdges(atlas.Graph(), *frame_in_world);
   EXPECT_GE(loop_edges, 1) << "no edge closes the loop";
   std::printf("frames %d, map-match edges accepted %d, loop edges %d\n", atlas.Graph().FrameCount(),

@@ -25,6 +25,7 @@ std::string MapMatchOptions::Validate() const {
   if (!(distinct_translation > 0 && distinct_rotation > 0))
     return "map_match distinct thresholds must be positive";
   if (gauss_newton_iterations < 1) return "map_match.gauss_newton_iterations must be >= 1";
+  if (max_line_checks < 1) return "map_match.max_line_checks must be at least 1";
   return "";
 }
 
@@ -56,6 +57,8 @@ const char* MapMatchReasonName(MapMatchReason r) {
       return "repetitive";
     case MapMatchReason::kRivalTransform:
       return "rival-transform";
+    case MapMatchReason::kWorkBound:
+      return "work-bound";
   }
   return "unknown";
 }
@@ -255,13 +258,21 @@ void AddToClusters(const Pose2& t, Support s, const MapMatchOptions& o,
   if (Better(s, worst->support)) *worst = Cluster{t, std::move(s)};
 }
 
+struct Enumeration {
+  int verified = 0;
+  bool complete = true;  // false when max_line_checks stopped the enumeration
+};
+
 // Enumerates pair hypotheses and collects verified transforms with support >= 2. With
 // `self` set, a and b are the same map and the identity hypotheses are skipped.
-int Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
-                uint64_t usable_b, bool self, const MapMatchOptions& o,
-                std::vector<Cluster>* clusters) {
-  int verified = 0;
+Enumeration Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
+                        uint64_t usable_b, bool self, const MapMatchOptions& o,
+                        std::vector<Cluster>* clusters) {
+  Enumeration out;
   const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+  const int64_t checks_per_hypothesis =
+      std::max<int64_t>(1, int64_t{std::popcount(usable_a)} * std::popcount(usable_b));
+  const int64_t max_verified = o.max_line_checks / checks_per_hypothesis;
   // Angle tables: the angle between every two lines of B, computed once (not per pair of A).
   std::array<std::array<double, 64>, 64> angle_b;
   for (int k = 0; k < nb; ++k)
@@ -294,7 +305,11 @@ int Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector
             if (!SegmentsOverlap(a[i], b[k], rigid, o.overlap_slack) ||
                 !SegmentsOverlap(a[j], b[l], rigid, o.overlap_slack))
               continue;
-            ++verified;
+            if (out.verified >= max_verified) {
+              out.complete = false;
+              return out;
+            }
+            ++out.verified;
             Support s = Verify(a, usable_a, b, usable_b, rigid, o);
             if (s.count >= 2) AddToClusters(t, std::move(s), o, clusters);
           }
@@ -302,7 +317,7 @@ int Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector
       }
     }
   }
-  return verified;
+  return out;
 }
 
 uint64_t AllLines(int n) { return n >= 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1; }
@@ -323,7 +338,7 @@ SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions&
   std::vector<Cluster> clusters;
   clusters.reserve(kMaxClusters);
   const uint64_t all = AllLines(out.usable_lines);
-  Hypothesise(p, all, p, all, /*self=*/true, o, &clusters);
+  out.complete = Hypothesise(p, all, p, all, /*self=*/true, o, &clusters).complete;
   for (const Cluster& c : clusters) {
     if (c.support.count < o.min_support || SameTransform(c.t, Pose2{}, o)) continue;
     out.repetitions.push_back({c.t, c.support.lines_a | c.support.lines_b, c.support.count});
@@ -344,6 +359,10 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
     return out;
   }
   if (o.self_match) {
+    if (!self_a.complete || !self_b.complete) {
+      out.reason = MapMatchReason::kWorkBound;
+      return out;
+    }
     for (const SelfMatch::Repetition& r : self_a.repetitions)
       if (prior == nullptr || InsidePrior(Compose(r.transform, prior->mean), prior, o))
         usable_a &= ~r.lines;
@@ -358,7 +377,12 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
   }
   std::vector<Cluster> clusters;
   clusters.reserve(kMaxClusters);
-  out.hypotheses = Hypothesise(a, usable_a, b, usable_b, /*self=*/false, o, &clusters);
+  const Enumeration e = Hypothesise(a, usable_a, b, usable_b, /*self=*/false, o, &clusters);
+  out.hypotheses = e.verified;
+  if (!e.complete) {
+    out.reason = MapMatchReason::kWorkBound;
+    return out;
+  }
 
   const Cluster* best = nullptr;
   bool gated_away = false;

@@ -23,7 +23,11 @@
 //   pairs, Sigma = (sum H^T S^-1 H)^-1. Matched lines that are all parallel leave a singular
 //   information matrix: kRejected (degenerate), never a guess.
 // Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each
-// verified in O(n^2); bounded by the map capacity, independent of the atlas size.
+// verified in O(n^2); bounded by the map capacity, independent of the atlas size, and by a hard
+// work bound, `max_line_checks` (verified hypotheses x lines of A x lines of B): on maps of
+// many parallel walls the O(n^4) can reach tens of milliseconds. A search cut short by the
+// bound cannot show that a match is unique (Condition 2), so it is refused (kRejected,
+// kWorkBound), and a self-match cut short makes every match of its map refused the same way.
 
 #include <Eigen/LU>
 #include <cstdint>
@@ -50,6 +54,7 @@ struct MapMatchOptions {
   double distinct_rotation = 0.1;      // rad
   double prior_gate_chi2 = 16.27;      // 3 dof, 99.9 %
   bool self_match = true;
+  int64_t max_line_checks = 200000;  // work bound of one match or self-match (see above)
   int gauss_newton_iterations = 4;
   std::string Validate() const;
 };
@@ -63,8 +68,9 @@ enum class MapMatchReason {
   kOutsidePrior,      // rejected: the best transform contradicts the prior (Condition 2)
   kRepetitive,        // ambiguous: structure unique within the maps is too little
   kRivalTransform,    // ambiguous: a distinct transform is (nearly) as well supported
+  kWorkBound,         // rejected: the search (or a self-match) was cut short by max_line_checks
 };
-inline constexpr int kMapMatchReasonCount = 7;
+inline constexpr int kMapMatchReasonCount = 8;
 const char* MapMatchResultName(MapMatchResult r);
 const char* MapMatchReasonName(MapMatchReason r);
 
@@ -77,6 +83,7 @@ struct SelfMatch {
   };
   std::vector<Repetition> repetitions;
   int usable_lines = 0;
+  bool complete = true;  // false when max_line_checks cut the self-match short
 };
 
 struct MapMatch {

@@ -164,3 +164,38 @@ TEST(MapMatch, ParallelOrTooFewLinesAreRejected) {
 
 }  // namespace
 }  // namespace atlas
+
+namespace atlas {
+namespace {
+
+// The work bound: a search cut short is refused, never judged on what it happened to find.
+TEST(MapMatch, SearchCutShortByTheWorkBoundIsRefused) {
+  MapMatchOptions o;
+  const Pose2 truth{8.0, 0.5, 0.3};
+  const auto a = InA(Comb(0, 24));
+  const auto b = SeenFrom(Comb(7, 17), truth);
+  UncertainPose prior{Pose2{8.3, 0.3, 0.32}, Vec3(0.09, 0.09, 0.01).asDiagonal()};
+  const SelfMatch self_a = SelfMatchMap(a, o), self_b = SelfMatchMap(b, o);
+  ASSERT_TRUE(self_a.complete && self_b.complete);
+  ASSERT_EQ(MatchMaps(a, self_a, b, self_b, &prior, o).result, MapMatchResult::kAccepted);
+
+  // A bound too small for the cross-match (self-matches complete): refused.
+  MapMatchOptions tight = o;
+  tight.max_line_checks = 50 * static_cast<int64_t>(a.size()) * static_cast<int64_t>(b.size());
+  const MapMatch m = MatchMaps(a, self_a, b, self_b, &prior, tight);
+  EXPECT_EQ(m.result, MapMatchResult::kRejected);
+  EXPECT_EQ(m.reason, MapMatchReason::kWorkBound);
+  EXPECT_LE(m.hypotheses, 50);
+
+  // A self-match cut short: its repetitions are unknown, so every match of that map is refused.
+  tight.max_line_checks = 10;
+  const SelfMatch partial = SelfMatchMap(a, tight);
+  EXPECT_FALSE(partial.complete);
+  const MapMatch r = MatchMaps(a, partial, b, self_b, &prior, o);
+  EXPECT_EQ(r.result, MapMatchResult::kRejected);
+  EXPECT_EQ(r.reason, MapMatchReason::kWorkBound);
+  EXPECT_EQ(r.hypotheses, 0);
+}
+
+}  // namespace
+}  // namespace atlas
