@@ -7,7 +7,7 @@
 namespace atlas {
 
 SonarRangePrediction PredictSonarRange(const Pose2& robot, const SonarTransducer& mount, double rho,
-                                       double alpha) {
+                                       double alpha, double edge_incidence) {
   SonarRangePrediction p;
   const Pose2 s = Compose(robot, mount.pose);
   const double c = std::cos(alpha), sn = std::sin(alpha);
@@ -24,6 +24,21 @@ SonarRangePrediction PredictSonarRange(const Pose2& robot, const SonarTransducer
   const double dsy_dth = mount.pose.x * ct - mount.pose.y * st;
   p.d_pose << -sign * c, -sign * sn, -sign * (c * dsx_dth + sn * dsy_dth);
   p.d_line << sign, sign * (s.x * sn - s.y * c);
+  const double half = 0.5 * mount.beam_width;
+  const double psi = std::abs(p.incidence) - half;
+  if (p.in_cone || !(psi <= edge_incidence)) return p;
+  p.edge_echo = true;
+  const double cpsi = std::cos(psi);
+  const double d = p.range;
+  p.range = d / cpsi;
+  const double edge = s.theta + (p.incidence >= 0.0 ? half : -half);
+  p.foot = Vec2(s.x, s.y) + p.range * Vec2(std::cos(edge), std::sin(edge));
+  // r = d / cos(psi), psi = |phi| - h, phi = normal - robot.theta - mount.theta.
+  const double k = (p.incidence >= 0.0 ? 1.0 : -1.0) * d * std::sin(psi) / (cpsi * cpsi);
+  p.d_pose /= cpsi;
+  p.d_line /= cpsi;
+  p.d_pose(2) -= k;
+  p.d_line(1) += k;
   return p;
 }
 

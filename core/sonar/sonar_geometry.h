@@ -22,19 +22,28 @@
 namespace atlas {
 
 // The predicted range of the transducer `mount` (on the robot at `robot`) to the map line
-// (rho, alpha): the distance from the transducer to the line. `in_cone` tells whether the
-// line's normal (from the transducer to the line) lies within the beam cone, i.e. whether the
-// transducer can see this line at all; `foot` is the tangent point (map frame).
+// (rho, alpha). `incidence` is the signed angle phi of the line's normal (from the transducer
+// to the line) from the transducer's heading; h = beam_width / 2.
+// - |phi| <= h (`in_cone`): the echo comes back along the normal, range = distance d from the
+//   transducer to the line; `foot` is the tangent point.
+// - h < |phi| <= h + edge_incidence (`edge_echo`): the ray at the cone's edge meets the wall at
+//   incidence psi = |phi| - h, within the critical angle of a specular surface, and echoes back
+//   along itself: range = d / cos(psi); `foot` is where the edge ray meets the line. With
+//   edge_incidence = 0 there are no edge echoes (pure tangent model).
+// Otherwise the line cannot echo (`echoes` false) and `range` is d. Jacobians are those of the
+// predicted range.
 struct SonarRangePrediction {
   double range = 0.0;
   bool in_cone = false;
+  bool edge_echo = false;
   double incidence = 0.0;  // signed angle of the line normal from the transducer heading
   Vec2 foot = Vec2::Zero();
   Eigen::RowVector3d d_pose = Eigen::RowVector3d::Zero();
   Eigen::RowVector2d d_line = Eigen::RowVector2d::Zero();
+  bool echoes() const { return in_cone || edge_echo; }
 };
 SonarRangePrediction PredictSonarRange(const Pose2& robot, const SonarTransducer& mount, double rho,
-                                       double alpha);
+                                       double alpha, double edge_incidence = 0.0);
 
 // The line tangent to the arc of radius `range` around the transducer pose `sensor` (in any
 // frame) at the normal angle sensor.theta + phi: canonical (rho, alpha) in that frame.

@@ -12,6 +12,32 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
+// d range / d(robot, line) of PredictSonarRange against central differences.
+void ExpectJacobiansMatchNumerical(const Pose2& robot, const SonarTransducer& t, const Vec2& line,
+                                   double edge, double tol) {
+  const SonarRangePrediction p = PredictSonarRange(robot, t, line(0), line(1), edge);
+  const double eps = 1e-6;
+  for (int i = 0; i < 3; ++i) {
+    Vec3 a = robot.ToVector(), b = a;
+    a(i) += eps;
+    b(i) -= eps;
+    const double num =
+        (PredictSonarRange(Pose2{a(0), a(1), a(2)}, t, line(0), line(1), edge).range -
+         PredictSonarRange(Pose2{b(0), b(1), b(2)}, t, line(0), line(1), edge).range) /
+        (2 * eps);
+    EXPECT_NEAR(p.d_pose(i), num, tol) << "pose " << i;
+  }
+  for (int i = 0; i < 2; ++i) {
+    Vec2 a = line, b = line;
+    a(i) += eps;
+    b(i) -= eps;
+    const double num = (PredictSonarRange(robot, t, a(0), a(1), edge).range -
+                        PredictSonarRange(robot, t, b(0), b(1), edge).range) /
+                       (2 * eps);
+    EXPECT_NEAR(p.d_line(i), num, tol) << "line " << i;
+  }
+}
+
 TEST(TangentLine, DistanceFromTransducerEqualsRange) {
   const Pose2 sensor{1.0, 2.0, 0.3};
   for (double phi : {-12 * kDeg, 0.0, 9 * kDeg}) {
@@ -51,26 +77,33 @@ TEST(PredictSonarRange, JacobiansMatchNumerical) {
   t.pose = Pose2{0.2, -0.13, 0.4};
   const Pose2 robot{1.1, -0.7, 0.25};
   for (const Vec2& line : {Vec2(4.0, 0.6), Vec2(0.5, -2.5), Vec2(3.0, 2.9)}) {
-    const SonarRangePrediction p = PredictSonarRange(robot, t, line(0), line(1));
-    const double eps = 1e-6;
-    for (int i = 0; i < 3; ++i) {
-      Vec3 a = robot.ToVector(), b = a;
-      a(i) += eps;
-      b(i) -= eps;
-      const double num = (PredictSonarRange(Pose2{a(0), a(1), a(2)}, t, line(0), line(1)).range -
-                          PredictSonarRange(Pose2{b(0), b(1), b(2)}, t, line(0), line(1)).range) /
-                         (2 * eps);
-      EXPECT_NEAR(p.d_pose(i), num, 1e-7) << "pose " << i;
-    }
-    for (int i = 0; i < 2; ++i) {
-      Vec2 a = line, b = line;
-      a(i) += eps;
-      b(i) -= eps;
-      const double num = (PredictSonarRange(robot, t, a(0), a(1)).range -
-                          PredictSonarRange(robot, t, b(0), b(1)).range) /
-                         (2 * eps);
-      EXPECT_NEAR(p.d_line(i), num, 1e-7) << "line " << i;
-    }
+    ExpectJacobiansMatchNumerical(robot, t, line, 0.0, 1e-7);
+  }
+}
+
+TEST(PredictSonarRange, EdgeEchoAlongTheConeEdgeRay) {
+  SonarTransducer t;  // facing +x, half cone 12.5 degrees
+  // Wall x = 3 seen from (0.5, 0) turned 20 degrees: the normal is 7.5 degrees outside the cone;
+  // the edge ray (at 7.5 degrees from the normal) echoes at 2.5 / cos(7.5 deg).
+  const Pose2 robot{0.5, 0.0, 20 * kDeg};
+  SonarRangePrediction p = PredictSonarRange(robot, t, 3.0, 0.0, 0.3);
+  EXPECT_FALSE(p.in_cone);
+  EXPECT_TRUE(p.edge_echo);
+  EXPECT_TRUE(p.echoes());
+  const double psi = 20 * kDeg - 0.5 * t.beam_width;  // 7.5 degrees
+  EXPECT_NEAR(p.range, 2.5 / std::cos(psi), 1e-12);
+  EXPECT_NEAR(p.foot.x(), 3.0, 1e-12);
+  EXPECT_NEAR(p.foot.y(), 2.5 * std::tan(psi), 1e-12);
+  // Beyond the critical incidence (0.1 rad): no echo; without edge_incidence: none either.
+  EXPECT_FALSE(PredictSonarRange(robot, t, 3.0, 0.0, 0.1).echoes());
+  EXPECT_FALSE(PredictSonarRange(robot, t, 3.0, 0.0).echoes());
+  // Jacobians of the edge range (both sides of the cone).
+  t.pose = Pose2{0.2, -0.13, 0.4};
+  for (const double heading : {0.0, 0.75}) {
+    const Pose2 r{1.1, -0.7, heading};
+    const Vec2 line(4.0, 0.6 + 0.3);
+    ASSERT_TRUE(PredictSonarRange(r, t, line(0), line(1), 0.5).edge_echo) << heading;
+    ExpectJacobiansMatchNumerical(r, t, line, 0.5, 1e-6);
   }
 }
 

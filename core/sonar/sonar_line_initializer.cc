@@ -81,7 +81,7 @@ void SonarLineInitializer::Add(const SonarTransducer& mount, double range) {
 double SonarLineInitializer::ReturnVariance(const BufferedReturn& r, double rho,
                                             double alpha) const {
   const SonarVantage& v = vantage_[r.vantage];
-  const SonarRangePrediction p = PredictSonarRange(v.pose, r.mount, rho, alpha);
+  const SonarRangePrediction p = PredictSonarRange(v.pose, r.mount, rho, alpha, m_.edge_incidence);
   const double sigma = m_.range_sigma + m_.range_sigma_per_m * r.range;
   return sigma * sigma + m_.model_sigma * m_.model_sigma +
          (p.d_pose * v.cov * p.d_pose.transpose())(0, 0);
@@ -95,8 +95,8 @@ int SonarLineInitializer::CountInliers(const Vec2& line, std::vector<char>& mask
   for (int j = 0; j < n; ++j) {
     const BufferedReturn& r = returns_[j];
     const SonarRangePrediction p =
-        PredictSonarRange(vantage_[r.vantage].pose, r.mount, line(0), line(1));
-    if (!p.in_cone) continue;
+        PredictSonarRange(vantage_[r.vantage].pose, r.mount, line(0), line(1), m_.edge_incidence);
+    if (!p.echoes()) continue;
     const double e = r.range - p.range;
     if (e * e > k2 * ReturnVariance(r, line(0), line(1))) continue;
     mask[j] = 1;
@@ -113,7 +113,7 @@ bool SonarLineInitializer::Refine(Vec2& line, const std::vector<char>& mask, Mat
       if (!mask[j]) continue;
       const BufferedReturn& r = returns_[j];
       const SonarRangePrediction p =
-          PredictSonarRange(vantage_[r.vantage].pose, r.mount, line(0), line(1));
+          PredictSonarRange(vantage_[r.vantage].pose, r.mount, line(0), line(1), m_.edge_incidence);
       const double w = 1.0 / ReturnVariance(r, line(0), line(1));
       a += w * p.d_line.transpose() * p.d_line;
       b += w * p.d_line.transpose() * (r.range - p.range);
@@ -206,8 +206,8 @@ GroupingDecision SonarLineInitializer::Decide() {
     for (int j = 0; j < n; ++j) {
       if (!best.mask[j]) continue;
       const BufferedReturn& r = returns_[j];
-      const SonarRangePrediction p =
-          PredictSonarRange(vantage_[r.vantage].pose, r.mount, best.line(0), best.line(1));
+      const SonarRangePrediction p = PredictSonarRange(
+          vantage_[r.vantage].pose, r.mount, best.line(0), best.line(1), m_.edge_incidence);
       init.tangent_points.push_back(p.foot);
       init.vantage.push_back(vantage_[r.vantage].pose);
       init.sensors.push_back(Compose(vantage_[r.vantage].pose, r.mount.pose));

@@ -13,9 +13,9 @@
 // least min_pair_baseline apart and takes the (at most two) lines tangent to both arcs with the
 // normal inside both cones (CommonTangentLines). Its consensus is the set of returns whose range
 // matches the distance to the line within inlier_sigmas (range noise plus the vantage pose's
-// uncertainty) with the line inside the cone. The best consensus is refined by Gauss-Newton
-// (weighted least squares over (rho, alpha) in the robot frame) and accepted only when the
-// decision is clear:
+// uncertainty) with the line echoing (in the cone, or an edge echo). The best consensus is refined
+// by Gauss-Newton (weighted least squares over (rho, alpha) in the robot frame) and accepted only
+// when the decision is clear:
 //   - support >= min_support returns from >= min_vantage vantage points spanning >= min_baseline;
 //   - the tangent points span >= min_extent_ratio of that baseline (arcs through one corner or
 //     edge are tangent to many lines: a point reflector, not a wall);
@@ -33,6 +33,7 @@
 
 #include <Eigen/Core>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "core/common/sensor_types.h"
@@ -81,6 +82,14 @@ class SonarLineInitializer {
   // One decision (see above); accepted lines are removed from the buffer.
   GroupingDecision Decide();
   void Clear();
+  // Drops the buffered returns for which drop(sensor pose in the current robot frame, mount,
+  // range) is true (e.g. returns that a newly mapped wall shows to be multipath).
+  template <typename Pred>
+  void DropReturnsIf(Pred drop) {
+    std::erase_if(returns_, [&](const BufferedReturn& r) {
+      return drop(Compose(vantage_[r.vantage].pose, r.mount.pose), r.mount, r.range);
+    });
+  }
 
   const std::vector<SonarVantage>& Vantages() const { return vantage_; }
   const std::vector<BufferedReturn>& Returns() const { return returns_; }

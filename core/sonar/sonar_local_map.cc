@@ -65,6 +65,35 @@ bool SonarLocalMap::Duplicate(const ObservedLine& z) const {
   return false;
 }
 
+bool SonarLocalMap::ThroughWall(const Pose2& sensor, double half_cone, double range) const {
+  const double sigma = o_.model.range_sigma + o_.model.range_sigma_per_m * range;
+  const double limit = range - o_.update.behind_sigmas * sigma;
+  if (!(limit > 0.0)) return false;
+  const Vec2 origin(sensor.x, sensor.y);
+  for (const MapLine& l : ekf_.Lines()) {
+    const Vec2 ab = l.endpoint_b - l.endpoint_a;
+    bool blocked = true;
+    for (const double off : {-half_cone, 0.0, half_cone}) {
+      const Vec2 u(std::cos(sensor.theta + off), std::sin(sensor.theta + off));
+      // origin + t u = a + s ab, t in (0, limit), s in [0, 1].
+      const double det = ab.x() * u.y() - ab.y() * u.x();
+      if (std::abs(det) < 1e-9) {
+        blocked = false;
+        break;
+      }
+      const Vec2 w = l.endpoint_a - origin;
+      const double t = (ab.x() * w.y() - ab.y() * w.x()) / det;
+      const double sp = (u.x() * w.y() - u.y() * w.x()) / det;
+      if (!(t > 0.0 && t < limit && sp >= 0.0 && sp <= 1.0)) {
+        blocked = false;
+        break;
+      }
+    }
+    if (blocked) return true;
+  }
+  return false;
+}
+
 SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
                                        const std::vector<SonarTransducer>& ring,
                                        bool allow_new_features) {
@@ -104,18 +133,12 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
     double best_d2 = 0.0, second_d2 = -1.0, best_nu = 0.0;
     Eigen::RowVectorXd best_h(n);
     Vec2 best_foot = Vec2::Zero();
-    bool near = false;
+    bool near = false, behind = false;
     for (int k = 0; k < nf; ++k) {
       const int ik = 3 + 2 * k;
-      const SonarRangePrediction pr = PredictSonarRange(robot, mount, x(ik), x(ik + 1));
-      const double excess = std::abs(pr.incidence) - 0.5 * mount.beam_width;
-      if (!pr.in_cone) {
-        if (excess <= o_.update.explain_margin && range >= pr.range - 3.0 * std::sqrt(var) &&
-            range <= pr.range / std::cos(excess) + 3.0 * std::sqrt(var)) {
-          near = true;
-        }
-        continue;
-      }
+      const SonarRangePrediction pr =
+          PredictSonarRange(robot, mount, x(ik), x(ik + 1), o_.model.edge_incidence);
+      if (!pr.echoes()) continue;
       const MapLine& l = lines[k];
       const double t = PositionAlongLine(l.alpha, pr.foot);
       const double ta = PositionAlongLine(l.alpha, l.endpoint_a);
@@ -131,6 +154,7 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
       const double innov = range - pr.range;
       const double d2 = innov * innov / s;
       if (d2 < loose) near = true;
+      if (innov > o_.update.behind_sigmas * std::sqrt(s)) behind = true;
       if (!(d2 < gate)) continue;
       if (best < 0 || d2 < best_d2) {
         if (best >= 0) second_d2 = best_d2;
@@ -151,6 +175,9 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
       extents.emplace_back(best, best_foot);
     } else if (best >= 0) {
       ++out.ambiguous;
+    } else if (!near &&
+               (behind || ThroughWall(Compose(robot, mount.pose), 0.5 * mount.beam_width, range))) {
+      ++out.behind;
     } else if (!near) {
       unexplained.emplace_back(ring[ret.transducer], range);
     }
@@ -173,6 +200,12 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
         ++out.added;
         out.initialised.push_back(std::move(line));
       }
+    }
+    if (out.added > 0) {
+      const Pose2 now = ekf_.RobotPose().mean;
+      init_.DropReturnsIf([&](const Pose2& sensor, const SonarTransducer& m, double range) {
+        return ThroughWall(Compose(now, sensor), 0.5 * m.beam_width, range);
+      });
     }
   }
   sonar_recent_.Add(out.usable, out.matched);

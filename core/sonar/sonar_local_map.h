@@ -15,6 +15,11 @@
 //   the caller allows new features (mature hypotheses, Section III-E) and there is capacity,
 //   its RANSAC + delayed-decision grouping may initialise lines, added with
 //   LineEkfMap::AddObservedFeature unless compatible with an existing feature (duplicate).
+// - Specular misses: a return that is longer than a mapped wall echoing in its cone, or whose
+//   whole cone crosses a mapped wall short of the range, came back after a second bounce
+//   (multipath): it is neither used nor buffered, and buffered returns that a new feature shows
+//   to be multipath are dropped. Edge-of-cone echoes are modelled (edge_incidence), not
+//   rejected.
 // - Update(scan) is the laser path (LineEkfMap::Update) when the laser is enabled; in
 //   sonar-only mode it returns an empty ScanUpdate and changes nothing.
 //
@@ -43,6 +48,7 @@ struct SonarUpdate {
   int usable = 0;     // with a range in [min_range, max_range_fraction * max_range)
   int matched = 0;    // applied to a feature
   int ambiguous = 0;  // compatible with two features alike: not used
+  int behind = 0;     // longer than a mapped wall that echoes in the cone (multipath): dropped
   int buffered = 0;   // kept for initialisation
   int added = 0;      // features initialised
   GroupingOutcome grouping = GroupingOutcome::kInsufficient;
@@ -78,6 +84,10 @@ class SonarLocalMap final : public LocalMap {
 
  private:
   bool Duplicate(const ObservedLine& z) const;
+  // True when the cone of a return fired from `sensor` (map frame) is blocked by a mapped wall
+  // nearer than the range (central and both edge rays meet a feature's extent at least
+  // behind_sigmas range sigmas short of it): the echo came back after a second bounce.
+  bool ThroughWall(const Pose2& sensor, double half_cone, double range) const;
 
   SonarLocalMapOptions o_;
   LineEkfMap ekf_;

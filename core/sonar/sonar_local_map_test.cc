@@ -89,12 +89,14 @@ TEST(SonarLocalMap, UpdateReducesUncertaintyAndGatesOutliers) {
   SonarUpdate up = map.UpdateSonar(good, ring, false);
   EXPECT_EQ(up.matched, 1);
   EXPECT_LT(map.RobotPose().cov(1, 1), 0.5 * var_before);
-  // A multipath return 1.5 m too long is not used.
+  // A multipath return 1.5 m too long (behind the mapped wall that echoes in the cone) is
+  // neither used nor kept for initialisation.
   SonarReading bad;
   bad.returns.push_back(SonarReturn{5, static_cast<float>(expected + 1.5)});
   up = copy.UpdateSonar(bad, ring, false);
   EXPECT_EQ(up.matched, 0);
-  EXPECT_EQ(up.buffered, 1);
+  EXPECT_EQ(up.buffered, 0);
+  EXPECT_EQ(up.behind, 1);
   EXPECT_DOUBLE_EQ(copy.RobotPose().cov(1, 1), var_before);
   // Out-of-ring transducers and no-returns are skipped.
   SonarReading junk;

@@ -14,6 +14,8 @@ std::string SonarModelOptions::Validate() const {
   if (!(max_range_fraction > 0.0 && max_range_fraction <= 1.0))
     return "model.max_range_fraction: must be in (0, 1]";
   if (!(min_range >= 0.0)) return "model.min_range: must be >= 0";
+  if (!(edge_incidence >= 0.0 && edge_incidence < 1.2))
+    return "model.edge_incidence: must be in [0, 1.2) rad";
   return "";
 }
 
@@ -22,8 +24,7 @@ std::string SonarUpdateOptions::Validate() const {
     return "update.gate: gate and loose_gate must be in (0, 1), loose_gate >= gate";
   if (!(max_extent_gap >= 0.0)) return "update.max_extent_gap: must be >= 0";
   if (!(ambiguity_margin >= 0.0)) return "update.ambiguity_margin: must be >= 0";
-  if (!(explain_margin >= 0.0 && explain_margin < 1.0))
-    return "update.explain_margin: must be in [0, 1)";
+  if (!(behind_sigmas > 0.0)) return "update.behind_sigmas: must be > 0";
   if (!(duplicate_alpha >= 0.0 && duplicate_rho >= 0.0))
     return "update.duplicate_alpha: duplicate thresholds must be >= 0";
   return "";

@@ -21,6 +21,10 @@ struct SonarModelOptions {
   double model_sigma = 0.02;
   // The cone used for interpretation is the transducer's beam_width times this (>= 1 widens it).
   double cone_scale = 1.0;
+  // Critical incidence of a specular wall (radians): a wall whose normal lies up to this much
+  // outside the cone still echoes along the cone's edge ray, range d / cos(psi)
+  // (PredictSonarRange). 0 = pure tangent model (edge echoes are then outliers).
+  double edge_incidence = 0.3;
   // Returns at or beyond this fraction of the transducer's max_range are not used.
   double max_range_fraction = 0.95;
   double min_range = 0.1;  // metres
@@ -38,10 +42,10 @@ struct SonarUpdateOptions {
   // Two features within the gate: the return is ambiguous unless the best one's squared
   // distance is smaller than the other's minus this margin.
   double ambiguity_margin = 4.0;
-  // Strong reflectors echo a little outside the nominal cone (the ray nearest the normal,
-  // range up to r / cos(excess)): a return that a feature explains that way, with the normal
-  // at most explain_margin (radians) outside the cone, is neither used nor buffered.
-  double explain_margin = 0.3;
+  // A return longer than the range predicted for a mapped feature that echoes in this cone
+  // (within its extent) by more than behind_sigmas standard deviations of the innovation came
+  // back after a second bounce (multipath, Fig. 9's specular misses): neither used nor buffered.
+  double behind_sigmas = 4.0;
   // A line from the initialiser closer than this to a feature (|d alpha| radians and
   // |d rho| metres, map frame) is a duplicate of it and is not added.
   double duplicate_alpha = 0.25;
