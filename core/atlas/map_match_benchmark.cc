@@ -10,26 +10,12 @@
 #include <random>
 
 #include "core/atlas/map_match.h"
+#include "core/atlas/segment_line.h"
 
 namespace atlas {
 namespace {
 
-MapLine Segment(const Vec2& p, const Vec2& q) {
-  MapLine l;
-  const Vec2 d = (q - p).normalized();
-  Vec2 n(-d.y(), d.x());
-  double rho = n.dot(p);
-  if (rho < 0) {
-    n = -n;
-    rho = -rho;
-  }
-  l.rho = rho;
-  l.alpha = std::atan2(n.y(), n.x());
-  l.cov = Vec2(0.02 * 0.02, 0.01 * 0.01).asDiagonal();
-  l.endpoint_a = p;
-  l.endpoint_b = q;
-  return l;
-}
+MapLine Segment(const Vec2& p, const Vec2& q) { return SegmentLine(p, q, 0.02, 0.01); }
 
 // `n` wall segments of an office floor, seen from frame `pose` (the pose of the map's frame in
 // the world); walls are axis-aligned except every fifth, which is at 30 degrees.
@@ -84,4 +70,3 @@ BENCHMARK(BM_SelfMatch)->Arg(10)->Arg(24)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace atlas
-

@@ -5,24 +5,13 @@
 #include <Eigen/Eigenvalues>
 #include <random>
 
+#include "core/atlas/segment_line.h"
+
 namespace atlas {
 namespace {
 
 MapLine Segment(Vec2 p, Vec2 q, double sigma_rho = 0.01, double sigma_alpha = 0.003) {
-  MapLine l;
-  const Vec2 d = (q - p).normalized();
-  Vec2 n(-d.y(), d.x());
-  double rho = n.dot(p);
-  if (rho < 0) {
-    n = -n;
-    rho = -rho;
-  }
-  l.rho = rho;
-  l.alpha = std::atan2(n.y(), n.x());
-  l.cov = Vec2(sigma_rho * sigma_rho, sigma_alpha * sigma_alpha).asDiagonal();
-  l.endpoint_a = p;
-  l.endpoint_b = q;
-  return l;
+  return SegmentLine(p, q, sigma_rho, sigma_alpha);
 }
 
 // The same segments (given in A's frame) as map B sees them, B's frame being `b_in_a`.
