@@ -1,0 +1,93 @@
+#include "tools/render/atlas_drawing.h"
+
+#include <cairo.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+namespace atlas::draw {
+namespace {
+
+// Three frames in a row, 10 m apart, each edge with 0.1 m^2 position variance; one line per
+// frame. From frame 0 the projection reaches all three, frame 2 with twice the covariance.
+struct Fixture {
+  replay::ReplayOutput run;
+  AtlasGraph graph{4};
+  Fixture() {
+    for (int f = 0; f < 3; ++f) {
+      replay::FrameLine l;
+      l.frame = f;
+      l.line.endpoint_a = Vec2(0, 1);
+      l.line.endpoint_b = Vec2(5, 1);
+      run.lines.push_back(l);
+      graph.AddFrame(nullptr);
+    }
+    UncertainPose e;
+    e.mean = Pose2{10, 0, 0};
+    e.cov = Vec3(0.1, 0.1, 1e-4).asDiagonal();
+    graph.AddEdge(0, 1, e, EdgeKind::kGenesis);
+    graph.AddEdge(1, 2, e, EdgeKind::kGenesis);
+    run.frame_count = 3;
+  }
+};
+
+TEST(AtlasDrawing, LayoutPlacesFramesByTheProjection) {
+  Fixture fx;
+  AtlasDrawOptions o;
+  o.width_px = 800;
+  AtlasLayout layout;
+  int height = 0;
+  ViewTransform view;
+  ASSERT_EQ(LayoutAtlas(fx.run, fx.graph, o, nullptr, &layout, &height, &view), "");
+  EXPECT_EQ(layout.reached, 3);
+  ASSERT_TRUE(layout.frame_pose[2].has_value());
+  EXPECT_NEAR(layout.frame_pose[2]->mean.x, 20.0, 1e-12);
+  EXPECT_NEAR(layout.frame_pose[2]->cov(0, 0), 0.2, 1e-9);
+  EXPECT_NEAR(layout.max.x(), 26.0, 1e-12);  // frame 2's line ends at x = 25, plus 1 m margin
+  // From frame 2, frame 0 lies 20 m behind.
+  o.source = 2;
+  ASSERT_EQ(LayoutAtlas(fx.run, fx.graph, o, nullptr, &layout, &height, &view), "");
+  EXPECT_NEAR(layout.frame_pose[0]->mean.x, -20.0, 1e-12);
+  o.source = 7;
+  EXPECT_NE(LayoutAtlas(fx.run, fx.graph, o, nullptr, &layout, &height, &view), "");
+}
+
+TEST(AtlasDrawing, ProjectionAndTimelinePicturesAreWritten) {
+  Fixture fx;
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("atlas_drawing_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  AtlasDrawOptions o;
+  o.width_px = 600;
+  AtlasLayout layout;
+  int height = 0;
+  ViewTransform view;
+  ASSERT_EQ(LayoutAtlas(fx.run, fx.graph, o, nullptr, &layout, &height, &view), "");
+  std::string error;
+  const std::string projection = (dir / "p.png").string();
+  auto canvas = Canvas::Create(ImageFormat::kPng, projection, o.width_px, height, view, &error);
+  ASSERT_NE(canvas, nullptr) << error;
+  DrawAtlasProjection(*canvas, fx.run, fx.graph, layout, o);
+  ASSERT_EQ(canvas->Finish(), "");
+  EXPECT_GT(std::filesystem::file_size(projection), 1000u);
+
+  std::vector<replay::TimingRecord> timing;
+  for (int i = 0; i < 500; ++i)
+    timing.push_back({i + 1, 0.1 * i, 1 + i / 100, 2, i / 100, 50000 + 100 * (i % 7)});
+  TimelineOptions t;
+  t.width_px = 600;
+  t.height_px = 400;
+  const std::string timeline = (dir / "t.png").string();
+  canvas = Canvas::Create(ImageFormat::kPng, timeline, t.width_px, t.height_px,
+                          ViewTransform::Fit(Vec2(0, 0), Vec2(600, 400), 0, 0, 600, 400), &error);
+  ASSERT_NE(canvas, nullptr) << error;
+  DrawTimeline(*canvas, timing, t);
+  ASSERT_EQ(canvas->Finish(), "");
+  EXPECT_GT(std::filesystem::file_size(timeline), 1000u);
+  canvas.reset();
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace atlas::draw
