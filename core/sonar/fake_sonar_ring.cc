@@ -8,10 +8,10 @@
 
 namespace atlas {
 
-std::vector<SonarTransducer> FakeSonarRing24() {
+std::vector<SonarTransducer> FakeSonarRing(int count) {
   std::vector<SonarTransducer> ring;
-  for (int i = 0; i < 24; ++i) {
-    const double a = WrapAngle((7.5 + 15.0 * i) * std::numbers::pi / 180.0);
+  for (int i = 0; i < count; ++i) {
+    const double a = WrapAngle((0.5 + i) * 2.0 * std::numbers::pi / count);
     SonarTransducer s;
     s.pose = Pose2{0.26 * std::cos(a), 0.26 * std::sin(a), a};
     s.max_range = 6.0;
@@ -19,6 +19,8 @@ std::vector<SonarTransducer> FakeSonarRing24() {
   }
   return ring;
 }
+
+std::vector<SonarTransducer> FakeSonarRing24() { return FakeSonarRing(24); }
 
 SonarReading FireFakeSonarRing(const std::vector<FakeSonarWall>& walls,
                                const std::vector<SonarTransducer>& ring, const Pose2& robot,

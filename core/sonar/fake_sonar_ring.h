@@ -17,7 +17,10 @@ struct FakeSonarWall {
   Vec2 b = Vec2::Zero();
 };
 
-// 24 transducers evenly around a 0.26 m radius (B21-like), max range 6 m.
+// `count` transducers evenly around a 0.26 m radius, the first at half a spacing from the
+// heading, max range 6 m, 25 degree cones.
+std::vector<SonarTransducer> FakeSonarRing(int count);
+// 24 of them (B21-like).
 std::vector<SonarTransducer> FakeSonarRing24();
 
 // One reading with every transducer of `ring` fired from `robot`.

@@ -212,6 +212,16 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
   return out;
 }
 
+ScanUpdate SonarLocalMap::UpdateWithSonar(const SonarReading& reading, bool allow_new_features) {
+  const SonarUpdate s = UpdateSonar(reading, o_.ring, allow_new_features);
+  ScanUpdate out;
+  out.observations = s.usable;
+  out.matched = s.matched;
+  out.added = s.added;
+  out.ambiguous = s.ambiguous > 0;
+  return out;
+}
+
 double SonarLocalMap::Quality() const {
   const Mat3 cov = ekf_.RobotPose().cov;
   switch (o_.sensors) {

@@ -58,6 +58,40 @@ void BM_UpdateSonarAtCapacity(benchmark::State& state) {
 }
 BENCHMARK(BM_UpdateSonarAtCapacity)->Unit(benchmark::kMicrosecond);
 
+// The Atlas's per-SIP call (LocalMap::UpdateWithSonar, ring from the options) for a reading of
+// the whole ring (16 or 24 transducers), with the map built with that ring and at capacity
+// (10 features): the gated EKF update and one delayed-decision round on the buffer.
+void BM_UpdateWithSonarFullRing(benchmark::State& state) {
+  const int count = static_cast<int>(state.range(0));
+  SonarLocalMapOptions o;
+  o.line_map.capacity = 10;
+  o.ring = FakeSonarRing(count);
+  SonarLocalMap base(o);
+  std::mt19937_64 rng(3);
+  Pose2 truth{0.0, -1.0, 0.0};
+  base.ResetRobotPose(UncertainPose{truth, Mat3::Zero()});
+  const Pose2 u{0.05, 0.0, 0.05};
+  for (int i = 0; i < 500; ++i) {
+    base.UpdateWithSonar(FireFakeSonarRing(Rooms(), o.ring, truth, 0.01, rng), true);
+    truth = Compose(truth, u);
+    base.Predict(u);
+  }
+  const SonarReading reading = FireFakeSonarRing(Rooms(), o.ring, truth, 0.01, rng);
+  int matched = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    SonarLocalMap map = base;
+    state.ResumeTiming();
+    const ScanUpdate up = map.UpdateWithSonar(reading, true);
+    matched = up.matched;
+    benchmark::DoNotOptimize(up);
+  }
+  state.counters["features"] = base.Complexity();
+  state.counters["returns"] = static_cast<double>(reading.returns.size());
+  state.counters["matched"] = matched;
+}
+BENCHMARK(BM_UpdateWithSonarFullRing)->Arg(16)->Arg(24)->Unit(benchmark::kMicrosecond);
+
 void BM_UpdateSonarWithRansac(benchmark::State& state) {
   // Capacity left, buffer full of returns that no feature explains.
   SonarLocalMap base = MappedCorridor(40);

@@ -49,6 +49,11 @@ std::string SonarInitOptions::Validate() const {
 }
 
 std::string SonarLocalMapOptions::Validate() const {
+  if (ring.size() > 64) return "ring: at most 64 transducers";
+  for (const SonarTransducer& t : ring) {
+    if (!(t.beam_width > 0.0 && t.beam_width < 3.14) || !(t.max_range > 0.0))
+      return "ring: beam_width must be in (0, pi) and max_range > 0";
+  }
   std::string e = line_map.Validate();
   if (e.empty()) e = model.Validate();
   if (e.empty()) e = update.Validate();

@@ -5,7 +5,9 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "core/common/sensor_types.h"
 #include "core/localmap/localmap_options.h"
 
 namespace atlas {
@@ -87,6 +89,9 @@ struct SonarInitOptions {
 
 struct SonarLocalMapOptions {
   RangeSensors sensors = RangeSensors::kSonar;
+  // The transducers of the robot's ring (drivers/p2os P3dxSonarRing/B21SonarRing), used by
+  // UpdateWithSonar; index = SonarReturn::transducer. Empty: UpdateWithSonar uses no return.
+  std::vector<SonarTransducer> ring;
   LocalMapOptions line_map;  // the EKF (odometry noise, capacity, laser path)
   SonarModelOptions model;
   SonarUpdateOptions update;
