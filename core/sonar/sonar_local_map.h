@@ -77,7 +77,7 @@ class SonarLocalMap final : public LocalMap {
 
   // The Atlas's sonar step (LocalMap::UpdateWithSonar): UpdateSonar with options.ring; for q
   // (eq. 5) the usable returns are the observations ||Z|| and the matched ones eta_a.
-  ScanUpdate UpdateWithSonar(const SonarReading& reading, bool allow_new_features);
+  ScanUpdate UpdateWithSonar(const SonarReading& reading, bool allow_new_features) override;
 
   // eq. 5 over the recent window of the enabled sensors.
   double Quality() const;

@@ -20,13 +20,17 @@
 #include <string>
 #include <vector>
 
+#include "core/atlas/atlas.h"
+#include "core/atlas/line_map_bootstrapper.h"
 #include "core/eval/error_stats.h"
 #include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/sonar/sonar_local_map.h"
+#include "drivers/sim/building_generator.h"
 #include "drivers/sim/laser_model.h"
 #include "drivers/sim/ray_caster.h"
 #include "drivers/sim/route.h"
+#include "drivers/sim/simulation.h"
 #include "drivers/sim/sonar_model.h"
 #include "drivers/sim/wheel_odometry_model.h"
 #include "tools/eval/trajectory_files.h"
@@ -40,11 +44,17 @@ constexpr char kUsage[] =
     "                             [--capacity C=20]\n"
     "       atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--lines K=4]\n"
+    "       atlas-sonar-eval atlas [--ring 16|24 (24)] [--seed S=1] [--km K=0.4] [--rooms R=6]\n"
+    "                             [--capacity C=10]\n"
     "\n"
     "mc:   simulated 20 m corridor, robot driving back and forth; on each seeded run a sonar-only\n"
     "      and a laser-only local map (same odometry). Prints the robot NEES (3 dof) against its\n"
     "      95 %% band and relative-pose errors over pairs 5, 30 and 90 s apart for sonar, laser\n"
     "      and dead reckoning.\n"
+    "atlas: a simulated building with corridor loops (atlas-sim's generator, R rooms), one run\n"
+    "      with laser and sonar; a sonar-only atlas (SonarLocalMap) and a laser-only atlas\n"
+    "      (LineEkfMap) on it: frames, map matches accepted / refused as ambiguous, robot NEES\n"
+    "      in its frame, relative-pose errors (5 s, 30 s) next to dead reckoning.\n"
     "fig9: the returns, vantage points and lines of the first K sonar feature initialisations\n"
     "      (map-frame, estimated poses) over the true walls, like the paper's Fig. 9.\n";
 
@@ -413,6 +423,196 @@ int RunFig9(const Args& args) {
   return 0;
 }
 
+// ---- atlas mode: sonar-only and laser-only atlases on one simulated building run ----
+
+struct SimEvent {
+  bool sonar = false;
+  Time stamp{};
+  Pose2 odometry;
+  LaserScan scan;
+  SonarReading reading;
+};
+
+struct RecordingSink final : sim::SimulationSink {
+  std::vector<TruthSample> truth;
+  std::vector<SimEvent> events;
+  void OnTruth(const TruthSample& t) override { truth.push_back(t); }
+  void OnOdometry(const OdometrySample&, double, double) override {}
+  void OnLaser(const LaserScan& scan, const Pose2& odometry) override {
+    SimEvent e;
+    e.stamp = scan.stamp;
+    e.odometry = odometry;
+    e.scan = scan;
+    events.push_back(std::move(e));
+  }
+  void OnSonar(const SonarReading& reading, const Pose2& odometry) override {
+    SimEvent e;
+    e.sonar = true;
+    e.stamp = reading.stamp;
+    e.odometry = odometry;
+    e.reading = reading;
+    events.push_back(std::move(e));
+  }
+  Pose2 TruthAt(Time t) const {
+    auto it = std::lower_bound(truth.begin(), truth.end(), t,
+                               [](const TruthSample& s, Time x) { return s.stamp < x; });
+    if (it == truth.begin()) return truth.front().pose;
+    if (it == truth.end()) return truth.back().pose;
+    const TruthSample& b = *it;
+    const TruthSample& a = *(it - 1);
+    const double span = ToSeconds(b.stamp) - ToSeconds(a.stamp);
+    const double f = span > 0 ? (ToSeconds(t) - ToSeconds(a.stamp)) / span : 0.0;
+    return sim::InterpolatePose(a.pose, b.pose, f);
+  }
+};
+
+struct AtlasTrace {
+  std::vector<Pose2> truth, estimate, odometry;
+  std::vector<FrameId> frame;
+  std::vector<double> nees;  // < 0: frame origin not known
+  int frames = 0, accepted = 0, ambiguous = 0, rejected = 0, genesis = 0;
+};
+
+AtlasTrace RunAtlasOn(Atlas& atlas, const RecordingSink& rec, bool sonar) {
+  AtlasTrace tr;
+  std::map<FrameId, Pose2> origin_truth;
+  bool first = true;
+  Pose2 last_odo, odo0;
+  for (const SimEvent& e : rec.events) {
+    if (e.sonar != sonar) continue;
+    const Pose2 u = first ? Pose2{} : Between(last_odo, e.odometry);
+    if (first) odo0 = e.odometry;
+    const Pose2 truth = rec.TruthAt(e.stamp);
+    if (first) origin_truth[0] = truth;
+    const StepStats& st = sonar ? atlas.Step(u, e.reading) : atlas.Step(u, e.scan);
+    first = false;
+    last_odo = e.odometry;
+    if (st.genesis > 0) origin_truth.emplace(static_cast<FrameId>(st.frames - 1), truth);
+    tr.accepted += st.match_accepted;
+    tr.ambiguous += st.match_ambiguous;
+    tr.rejected += st.match_rejected;
+    tr.genesis += st.genesis;
+    tr.frames = st.frames;
+    const DominantOutput d = atlas.Dominant();
+    if (!d.valid) continue;
+    tr.truth.push_back(truth);
+    tr.estimate.push_back(d.pose.mean);
+    tr.odometry.push_back(Between(odo0, e.odometry));
+    tr.frame.push_back(d.frame);
+    auto it = origin_truth.find(d.frame);
+    tr.nees.push_back(it == origin_truth.end() ? -1.0 : Nees(d.pose, Between(it->second, truth)));
+  }
+  return tr;
+}
+
+void PrintAtlasErrors(const char* name, const AtlasTrace& t, int gap, bool dr) {
+  std::vector<double> tr, rot;
+  int skipped = 0;
+  for (size_t i = 0; i + gap < t.truth.size(); i += gap) {
+    if (!dr && t.frame[i] != t.frame[i + gap]) {
+      ++skipped;
+      continue;
+    }
+    const Pose2 a = Between(t.truth[i], t.truth[i + gap]);
+    const Pose2 b = dr ? Between(t.odometry[i], t.odometry[i + gap])
+                       : Between(t.estimate[i], t.estimate[i + gap]);
+    tr.push_back(std::hypot(a.x - b.x, a.y - b.y));
+    rot.push_back(std::abs(WrapAngle(a.theta - b.theta)) * 180.0 / std::numbers::pi);
+  }
+  const eval::ErrorStats et = eval::Summarize(tr), er = eval::Summarize(rot);
+  std::printf(
+      "    %-22s: trans %.4f +- %.4f m (rmse %.4f, max %.3f), rot %.3f +- %.3f deg, %lld pairs"
+      " (%d across frames skipped)\n",
+      name, et.mean, et.stddev, et.rmse, et.max, er.mean, er.stddev,
+      static_cast<long long>(et.count), skipped);
+}
+
+int RunAtlasMode(const Args& args) {
+  double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10;
+  std::string error;
+  if (!GetNumber(args, "--ring", 16, 24, ring, error) ||
+      !GetNumber(args, "--seed", 0, 1e15, seed, error) ||
+      !GetNumber(args, "--km", 0.01, 100, km, error) ||
+      !GetNumber(args, "--rooms", 1, 10000, rooms, error) ||
+      !GetNumber(args, "--capacity", 2, 100, capacity, error)) {
+    std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n", error.c_str());
+    return 2;
+  }
+  if (ring != 16 && ring != 24) {
+    std::fprintf(stderr, "atlas-sonar-eval atlas: --ring must be 16 or 24\n");
+    return 2;
+  }
+  sim::BuildingOptions bo;
+  bo.min_rooms = static_cast<int>(rooms);
+  const sim::World world = sim::GenerateBuilding(bo, static_cast<uint64_t>(seed));
+  sim::SimulationOptions so;
+  so.length_m = km * 1000.0;
+  so.laser = true;
+  so.sonar = true;
+  so.sonar_options = CorridorRun::Sonar(static_cast<int>(ring));
+  so.seed = static_cast<uint64_t>(seed);
+  if (std::string e = so.Validate(); !e.empty()) {
+    std::fprintf(stderr, "atlas-sonar-eval atlas: simulation options: %s\n", e.c_str());
+    return 2;
+  }
+  RecordingSink rec;
+  const sim::SimulationSummary sum = sim::Simulate(
+      world, so, rec, [](double d) { std::fprintf(stderr, "\rsimulated %.0f m   ", d); });
+  std::fprintf(stderr, "\n");
+  if (!sum.error.empty() || rec.truth.empty()) {
+    std::fprintf(stderr, "atlas-sonar-eval atlas: simulation failed: %s\n", sum.error.c_str());
+    return 1;
+  }
+  SonarLocalMapOptions sonar_o = FilterOptions(RangeSensors::kSonar, static_cast<int>(capacity),
+                                               so.odometry_options, so.sonar_options);
+  sonar_o.ring = so.sonar_options.ring;
+  SonarLocalMapOptions laser_o = FilterOptions(RangeSensors::kLaser, static_cast<int>(capacity),
+                                               so.odometry_options, so.sonar_options);
+  if (std::string e = sonar_o.Validate(); !e.empty()) {
+    std::fprintf(stderr, "atlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
+    return 2;
+  }
+  AtlasOptions ao;
+  Atlas sonar_atlas(
+      ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, nullptr);
+  Atlas laser_atlas(
+      ao, [lm = laser_o.line_map]() { return std::make_unique<LineEkfMap>(lm); },
+      std::make_shared<LineMapBootstrapper>(laser_o.line_map));
+  std::fprintf(stderr, "sonar atlas...\n");
+  const AtlasTrace st = RunAtlasOn(sonar_atlas, rec, true);
+  std::fprintf(stderr, "laser atlas...\n");
+  const AtlasTrace lt = RunAtlasOn(laser_atlas, rec, false);
+  std::printf(
+      "building seed %d (%zu walls), %.2f km driven in %.0f s, %d-transducer ring (specular "
+      "misses, multipath), map capacity %d\n",
+      static_cast<int>(seed), world.walls.size(), sum.distance_m / 1000.0, sum.duration_s,
+      static_cast<int>(ring), static_cast<int>(capacity));
+  for (const auto& [name, t] : {std::pair{"sonar-only", &st}, std::pair{"laser-only", &lt}}) {
+    double mean = 0.0;
+    int n = 0, inside = 0;
+    for (double v : t->nees) {
+      if (v < 0) continue;
+      mean += v;
+      ++n;
+      inside += v <= ChiSquareQuantile(0.95, 3) ? 1 : 0;
+    }
+    std::printf(
+        "  %s atlas: %zu steps with a dominant, %d frames (%d Genesis), map matches accepted %d, "
+        "refused as ambiguous %d, rejected %d; robot NEES in its frame (3 dof): mean %.2f over "
+        "%d steps, %.1f%% below the 95%% bound %.2f\n",
+        name, t->truth.size(), t->frames, t->genesis, t->accepted, t->ambiguous, t->rejected,
+        n ? mean / n : 0.0, n, n ? 100.0 * inside / n : 0.0, ChiSquareQuantile(0.95, 3));
+  }
+  for (const int gap_s : {5, 30}) {
+    std::printf("  relative-pose errors, pairs %d s apart, same dominant frame at both ends:\n",
+                gap_s);
+    PrintAtlasErrors("sonar-only atlas", st, gap_s * 10, false);
+    PrintAtlasErrors("laser-only atlas", lt, gap_s * 10, false);
+    PrintAtlasErrors("dead reckoning", st, gap_s * 10, true);
+  }
+  return 0;
+}
+
 }  // namespace
 }  // namespace atlas
 
@@ -430,6 +630,15 @@ int main(int argc, char** argv) {
       return 2;
     }
     return atlas::RunMonteCarlo(a);
+  }
+  if (cmd == "atlas") {
+    const atlas::Args a =
+        atlas::ParseArgs(argc, argv, {"--ring", "--seed", "--km", "--rooms", "--capacity"});
+    if (!a.error.empty()) {
+      std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
+      return 2;
+    }
+    return atlas::RunAtlasMode(a);
   }
   if (cmd == "fig9") {
     const atlas::Args a = atlas::ParseArgs(argc, argv, {"--png", "--ring", "--seed", "--lines"});
