@@ -63,16 +63,16 @@ struct UpdateScratch {
   Eigen::LLT<Eigen::MatrixXd> llt;
 };
 
-// Whether the canonical line z is within duplicate_rho and duplicate_alpha of (rho, alpha) in
-// either of its representations.
+// Whether the segment z (map-frame, canonical) lies on the line (rho, alpha): its direction
+// within duplicate_alpha and its middle within duplicate_rho of the line. Measured at the
+// segment, not at the map-frame origin, where a small heading error moves rho by its lever arm.
 bool NearLine(const ObservedLine& z, double rho, double alpha, const AssociationOptions& o) {
-  CanonicalizeLine(rho, alpha);
-  const bool same = std::abs(WrapAngle(z.alpha - alpha)) < o.duplicate_alpha &&
-                    std::abs(z.rho - rho) < o.duplicate_rho;
-  const bool flipped =
-      std::abs(WrapAngle(z.alpha - alpha - std::numbers::pi)) < o.duplicate_alpha &&
-      std::abs(z.rho + rho) < o.duplicate_rho;
-  return same || flipped;
+  const double dalpha = WrapAngle(z.alpha - alpha);
+  const bool parallel = std::abs(dalpha) < o.duplicate_alpha ||
+                        std::abs(WrapAngle(dalpha - std::numbers::pi)) < o.duplicate_alpha;
+  const Vec2 mid = 0.5 * (z.endpoint_a + z.endpoint_b);
+  const double offset = mid.x() * std::cos(alpha) + mid.y() * std::sin(alpha) - rho;
+  return parallel && std::abs(offset) < o.duplicate_rho;
 }
 
 double ProjectedPosition(double alpha, const Vec2& p) { return PositionAlongLine(alpha, p); }
@@ -118,27 +118,68 @@ LineEkfMap::LineEkfMap(const LocalMapOptions& options)
 
 std::unique_ptr<LocalMap> LineEkfMap::Clone() const { return std::make_unique<LineEkfMap>(*this); }
 
-Mat3 LineEkfMap::OdometryNoise(const Pose2& u, const OdometryNoiseOptions& o) {
-  const double d = std::hypot(u.x, u.y);
-  const double s = u.x >= 0.0 ? d : -d;
-  const double dth = u.theta;
-  const double b = o.track_width;
-  const double d_l = s - 0.5 * dth * b, d_r = s + 0.5 * dth * b;
-  const double var_l = o.wheel_var_per_m * std::abs(d_l) + Sq(o.wheel_scale_sigma * d_l);
-  const double var_r = o.wheel_var_per_m * std::abs(d_r) + Sq(o.wheel_scale_sigma * d_r);
+namespace {
+
+// Q over (dx, dy, dtheta) of a step of chord s and turn dth whose left and right wheel distances
+// have variances var_l, var_r (track width b).
+Mat3 WheelNoise(double s, double dth, double b, double var_l, double var_r) {
   Mat2 wheel_cov;  // over (arc, dtheta)
   wheel_cov << 0.25 * (var_l + var_r), 0.5 * (var_r - var_l) / b, 0.5 * (var_r - var_l) / b,
       (var_l + var_r) / (b * b);
   const double c = std::cos(0.5 * dth), sn = std::sin(0.5 * dth);
   Eigen::Matrix<double, 3, 2> j;
   j << c, -0.5 * s * sn, sn, 0.5 * s * c, 0.0, 1.0;
-  Mat3 q = j * wheel_cov * j.transpose();
+  return j * wheel_cov * j.transpose();
+}
+
+double SignedChord(const Pose2& u) {
+  const double d = std::hypot(u.x, u.y);
+  return u.x >= 0.0 ? d : -d;
+}
+
+}  // namespace
+
+Mat3 LineEkfMap::OdometryNoise(const Pose2& u, const OdometryNoiseOptions& o) {
+  const double d = std::hypot(u.x, u.y);
+  const double s = SignedChord(u);
+  const double dth = u.theta;
+  const double b = o.track_width;
+  const double d_l = s - 0.5 * dth * b, d_r = s + 0.5 * dth * b;
+  const double var_l = o.wheel_var_per_m * std::abs(d_l) + Sq(o.wheel_scale_sigma * d_l);
+  const double var_r = o.wheel_var_per_m * std::abs(d_r) + Sq(o.wheel_scale_sigma * d_r);
+  Mat3 q = WheelNoise(s, dth, b, var_l, var_r);
   const double turn = std::abs(dth);
   q(0, 0) += o.xy_var_per_m * d + o.xy_var_per_rad * turn;
   q(1, 1) += o.xy_var_per_m * d + o.xy_var_per_rad * turn;
   q(2, 2) += o.theta_var_per_m * d + o.theta_var_per_rad * turn + Sq(o.track_width_sigma * dth);
   return q;
 }
+
+Mat3 LineEkfMap::PredictNoise(const Pose2& u) {
+  OdometryNoiseOptions white = options_.odometry;
+  white.wheel_scale_sigma = 0.0;
+  white.track_width_sigma = 0.0;
+  Mat3 q = OdometryNoise(u, white);
+  const OdometryNoiseOptions& o = options_.odometry;
+  if (o.wheel_scale_sigma <= 0.0 && o.track_width_sigma <= 0.0) return q;
+  // Calibration errors repeat every step: since the last corrected pose their errors add up
+  // (standard deviation sigma * accumulated distance), so each step adds the growth of that
+  // variance, not an independent share.
+  const double s = SignedChord(u);
+  const double b = o.track_width;
+  const double d_l = std::abs(s - 0.5 * u.theta * b), d_r = std::abs(s + 0.5 * u.theta * b);
+  const double var_l = Sq(o.wheel_scale_sigma) * (Sq(calib_left_ + d_l) - Sq(calib_left_));
+  const double var_r = Sq(o.wheel_scale_sigma) * (Sq(calib_right_ + d_r) - Sq(calib_right_));
+  q += WheelNoise(s, u.theta, b, var_l, var_r);
+  const double turn = std::abs(u.theta);
+  q(2, 2) += Sq(o.track_width_sigma) * (Sq(calib_turn_ + turn) - Sq(calib_turn_));
+  calib_left_ += d_l;
+  calib_right_ += d_r;
+  calib_turn_ += turn;
+  return q;
+}
+
+void LineEkfMap::ClearCalibrationDrift() { calib_left_ = calib_right_ = calib_turn_ = 0.0; }
 
 void LineEkfMap::Predict(const Pose2& u) {
   const Pose2 r = Robot();
@@ -149,8 +190,8 @@ void LineEkfMap::Predict(const Pose2& u) {
   x_(1) = moved.y;
   x_(2) = moved.theta;
   const int n = static_cast<int>(x_.size());
-  P_.topLeftCorner<3, 3>() = f * P_.topLeftCorner<3, 3>() * f.transpose() +
-                             g * OdometryNoise(u, options_.odometry) * g.transpose();
+  P_.topLeftCorner<3, 3>() =
+      f * P_.topLeftCorner<3, 3>() * f.transpose() + g * PredictNoise(u) * g.transpose();
   if (n > 3) {
     P_.topRightCorner(3, n - 3) = f * P_.topRightCorner(3, n - 3);
     P_.bottomLeftCorner(n - 3, 3) = P_.topRightCorner(3, n - 3).transpose();
@@ -272,6 +313,7 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
         GrowExtent(ca.feature, ObservedLineToParent(updated, observed[ca.observation]));
       }
       out.matched = q;
+      ClearCalibrationDrift();
     }
   }
 
@@ -324,6 +366,7 @@ bool LineEkfMap::UpdateWithMeasurements(const Eigen::VectorXd& nu, const Eigen::
   Symmetrize(P_);
   x_(2) = WrapAngle(x_(2));
   for (int k = 0; k < Complexity(); ++k) x_(4 + 2 * k) = WrapAngle(x_(4 + 2 * k));
+  ClearCalibrationDrift();
   return true;
 }
 
@@ -389,6 +432,7 @@ UncertainPose LineEkfMap::RobotPose() const {
 }
 
 void LineEkfMap::ResetRobotPose(const UncertainPose& pose) {
+  ClearCalibrationDrift();
   x_(0) = pose.mean.x;
   x_(1) = pose.mean.y;
   x_(2) = WrapAngle(pose.mean.theta);
@@ -420,6 +464,7 @@ void LineEkfMap::SetRobotPoseFromFeatures(const Pose2& pose, const Mat3& observa
   P_.topRows(3) = cross;
   P_.leftCols(3) = cross.transpose();
   P_.topLeftCorner<3, 3>() = 0.5 * (prr + prr.transpose());
+  ClearCalibrationDrift();
 }
 
 double LineEkfMap::Quality() const {
@@ -536,6 +581,7 @@ bool LineEkfMap::Deserialize(const std::string& bytes) {
   recent_ = recent;
   last_association_.clear();
   last_observations_.clear();
+  ClearCalibrationDrift();
   return true;
 }
 

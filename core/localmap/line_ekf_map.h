@@ -9,7 +9,9 @@
 // - Predict(u): x <- x (+) u (SE(2) composition, se2.h); P_rr <- F P_rr F^T + G Q(u) G^T,
 //   P_rl <- F P_rl, with F = d(x (+) u)/dx, G = d(x (+) u)/du and Q(u) the wheel-odometry noise
 //   of OdometryNoiseOptions (variance linear in the distance each wheel rolled, plus floors
-//   linear in distance and turn).
+//   linear in distance and turn; the calibration errors wheel_scale_sigma, track_width_sigma
+//   repeat every step, so their standard deviation grows linearly with the distance and turn
+//   since the last update that matched a line).
 // - Update(scan): lines are extracted (line_extraction.h) and moved to the robot frame, paired
 //   with features by JCBB (jcbb.h) after a chi-square gate and a segment-extent check, and all
 //   unambiguous pairings are applied in one batch update (z = PredictLine, line_model.h).
@@ -101,6 +103,11 @@ class LineEkfMap final : public LocalMap {
   };
   Pose2 Robot() const { return Pose2{x_(0), x_(1), x_(2)}; }
   void AddFeature(const ObservedLine& z);
+  // Q(u) of Predict: OdometryNoise without the calibration terms, plus the calibration errors
+  // as errors that repeat every step since the last update that matched (their standard
+  // deviation grows linearly with the distance and turn since then).
+  Mat3 PredictNoise(const Pose2& u);
+  void ClearCalibrationDrift();
   // Mahalanobis distance squared between an observation and the prediction of feature k.
   double SquaredDistanceTo(const ObservedLine& z, int k) const;
   void GrowExtent(int k, const ObservedLine& z);
@@ -114,6 +121,8 @@ class LineEkfMap final : public LocalMap {
   RecentObservations recent_;
   std::vector<int> last_association_;
   std::vector<ObservedLine> last_observations_;
+  // Distances each wheel rolled and turn since the last corrected pose (not serialised).
+  double calib_left_ = 0.0, calib_right_ = 0.0, calib_turn_ = 0.0;
 };
 
 }  // namespace atlas

@@ -71,9 +71,9 @@ struct AssociationOptions {
   // feature at this looser chi-square probability either (avoids duplicates).
   double new_feature_gate = 0.9999;
   double new_feature_min_length = 1.0;  // metres
-  // Nor if its line (in the map-frame, at the estimated pose) lies within both of these of a
-  // feature's line: a second feature for one wall would be updated with the same scans as the
-  // first, making both over-confident.
+  // Nor if, in the map-frame at the estimated pose, it is parallel to a feature's line within
+  // duplicate_alpha and its middle lies within duplicate_rho of that line: a second feature for
+  // one wall would be updated with the same scans as the first, making both over-confident.
   double duplicate_rho = 0.1;     // metres
   double duplicate_alpha = 0.05;  // radians
 
