@@ -98,8 +98,7 @@ const StepStats& Atlas::Step(const Pose2& odometry_delta, const SonarReading& re
   return StepWith(odometry_delta, nullptr, &reading);
 }
 
-FrameId Atlas::ResumeInNewFrame() {
-  hypotheses_.clear();
+FrameId Atlas::StartUnconnectedFrame() {
   std::unique_ptr<LocalMap> map = factory_();
   map->ResetRobotPose(UncertainPose{});
   Hypothesis h;
@@ -109,11 +108,17 @@ FrameId Atlas::ResumeInNewFrame() {
   h.born_step = step_;
   h.window = QualityWindow(options_.quality.window);
   hypotheses_.push_back(std::move(h));
-  FindDominant();
   last_genesis_step_ = step_;
+  return hypotheses_.back().frame;
+}
+
+FrameId Atlas::ResumeInNewFrame() {
+  hypotheses_.clear();
+  const FrameId f = StartUnconnectedFrame();
+  FindDominant();
   projection_step_ = -1;
   projection_source_ = kNoFrame;
-  return hypotheses_.back().frame;
+  return f;
 }
 
 const StepStats& Atlas::StepWith(const Pose2& odometry_delta, const LaserScan* scan,
@@ -121,18 +126,7 @@ const StepStats& Atlas::StepWith(const Pose2& odometry_delta, const LaserScan* s
   stats_ = StepStats{};
   stats_.step = ++step_;
   const bool first = graph_.FrameCount() == 0;
-  if (first) {
-    std::unique_ptr<LocalMap> map = factory_();
-    map->ResetRobotPose(UncertainPose{});
-    Hypothesis h;
-    h.id = next_hypothesis_id_++;
-    h.frame = AddFrame(std::move(map));
-    h.state = HypothesisState::kMature;
-    h.born_step = step_;
-    h.window = QualityWindow(options_.quality.window);
-    hypotheses_.push_back(std::move(h));
-    last_genesis_step_ = step_;
-  }
+  if (first) StartUnconnectedFrame();
   UpdateHypotheses(odometry_delta, scan, sonar, first);
   JudgeJuveniles();
   HandleFailures();

@@ -188,6 +188,8 @@ class Atlas {
   // the edge when accepted.
   void MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior);
   FrameId AddFrame(std::unique_ptr<LocalMap> map);
+  // A new frame without edges, robot at exactly zero, one mature hypothesis in it.
+  FrameId StartUnconnectedFrame();
   AddEdgeResult AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, EdgeKind kind);
   void RefineEdges();
   const SelfMatch& SelfMatchOf(FrameId f);

@@ -27,21 +27,18 @@ std::string WriteText(const std::string& dir, const char* name, const std::strin
 
 }  // namespace
 
-std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return "cannot create " + dir + ": " + ec.message();
-  const AtlasGraph& graph = atlas.Graph();
-  std::string text = "# atlasd graph: from to x y theta c00 c01 c02 c11 c12 c22 kind\n";
-  for (const AtlasEdge& edge : graph.Edges()) {
-    const Pose2& p = edge.b_in_a.mean;
-    const Mat3& c = edge.b_in_a.cov;
-    Append(text, "%d\t%d\t%.6f\t%.6f\t%.6f\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%s\n", edge.a,
-           edge.b, p.x, p.y, p.theta, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2),
-           EdgeKindName(edge.kind));
-  }
-  if (std::string e = WriteText(dir, "graph.tsv", text); !e.empty()) return e;
-  text = "# atlasd maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
+std::string GraphTsvRow(const AtlasEdge& edge) {
+  std::string text;
+  const Pose2& p = edge.b_in_a.mean;
+  const Mat3& c = edge.b_in_a.cov;
+  Append(text, "%d\t%d\t%.6f\t%.6f\t%.6f\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%s\n", edge.a, edge.b,
+         p.x, p.y, p.theta, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2),
+         EdgeKindName(edge.kind));
+  return text;
+}
+
+std::string MapsTsvRows(const AtlasGraph& graph) {
+  std::string text;
   for (FrameId f = 0; f < graph.FrameCount(); ++f) {
     const LocalMap* map = graph.Frame(f).map.get();
     if (map == nullptr) continue;
@@ -50,6 +47,19 @@ std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
              l.alpha, l.endpoint_a.x(), l.endpoint_a.y(), l.endpoint_b.x(), l.endpoint_b.y(),
              l.cov(0, 0), l.cov(0, 1), l.cov(1, 1));
   }
+  return text;
+}
+
+std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return "cannot create " + dir + ": " + ec.message();
+  const AtlasGraph& graph = atlas.Graph();
+  std::string text = "# atlasd graph: from to x y theta c00 c01 c02 c11 c12 c22 kind\n";
+  for (const AtlasEdge& edge : graph.Edges()) text += GraphTsvRow(edge);
+  if (std::string e = WriteText(dir, "graph.tsv", text); !e.empty()) return e;
+  text = "# atlasd maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
+  text += MapsTsvRows(graph);
   return WriteText(dir, "maps.tsv", text);
 }
 

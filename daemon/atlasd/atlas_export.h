@@ -12,6 +12,12 @@
 
 namespace atlas {
 
+// One graph.tsv row (with its newline) for an edge: "from to x y theta c00 c01 c02 c11 c12 c22
+// kind". Shared with atlas-replay, which writes the same format.
+std::string GraphTsvRow(const AtlasEdge& edge);
+// The maps.tsv rows of every frame's lines: "frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa".
+std::string MapsTsvRows(const AtlasGraph& graph);
+
 // Writes DIR/graph.tsv and DIR/maps.tsv of `atlas`; empty on success, else what failed.
 std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir);
 

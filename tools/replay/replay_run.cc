@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "core/atlas/dijkstra_projection.h"
+#include "daemon/atlasd/atlas_export.h"
 #include "tools/replay/replay_files.h"
 
 namespace atlas::replay {
@@ -235,11 +236,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
         break;
     }
     if (edge.origin == EdgeKind::kMapMatch) ++sum.map_match_origin_edges;
-    const Pose2& p = edge.b_in_a.mean;
-    const Mat3& c = edge.b_in_a.cov;
-    Append(text, "%d\t%d\t%.6f\t%.6f\t%.6f\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%s\n", edge.a,
-           edge.b, p.x, p.y, p.theta, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2),
-           EdgeKindName(edge.kind));
+    text += GraphTsvRow(edge);
   }
   if (std::string e = WriteFile(out_dir, "graph.tsv", text); !e.empty()) {
     result.error = e;
@@ -307,14 +304,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   }
 
   text = "# atlas-replay maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
-  for (FrameId f = 0; f < sum.frames; ++f) {
-    const LocalMap* map = graph.Frame(f).map.get();
-    if (map == nullptr) continue;
-    for (const MapLine& l : map->Lines())
-      Append(text, "%d\t%d\t%.6f\t%.6f\t%.4f\t%.4f\t%.4f\t%.4f\t%.9g\t%.9g\t%.9g\n", f, l.id, l.rho,
-             l.alpha, l.endpoint_a.x(), l.endpoint_a.y(), l.endpoint_b.x(), l.endpoint_b.y(),
-             l.cov(0, 0), l.cov(0, 1), l.cov(1, 1));
-  }
+  text += MapsTsvRows(graph);
   if (std::string e = WriteFile(out_dir, "maps.tsv", text); !e.empty()) {
     result.error = e;
     return result;
