@@ -8,6 +8,7 @@
 //   relations file    Freiburg SLAM benchmark: "t1 t2 x y z roll pitch yaw", the pose at t2 in
 //                     the frame of the pose at t1 (z, roll and pitch are ignored).
 
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -66,6 +67,19 @@ TimedTrajectory ReferenceAtScans(const carmen::CarmenLog& log);
 
 // A whole command-line argument as a finite number.
 bool ParseArgumentNumber(const char* s, double& out);
+
+// Options of the form "--key value" from argv[first..] (the evaluation tools' modes). A key not
+// in `known`, or one without a value, sets `error` (naming it) and stops parsing.
+struct ToolOptions {
+  std::map<std::string, std::string> values;
+  std::string error;
+};
+ToolOptions ParseToolOptions(int argc, char** argv, int first,
+                             const std::vector<std::string>& known);
+// Reads option `key` as a number in [lo, hi] into `out`; true when absent (out unchanged) or
+// valid, else false with `error` naming the key, the range and the value given.
+bool GetNumberOption(const ToolOptions& options, const std::string& key, double lo, double hi,
+                     double& out, std::string& error);
 
 // Human-readable and JSON summaries.
 std::string FormatStats(const char* name, const char* unit, const ErrorStats& s);

@@ -53,43 +53,8 @@ constexpr char kUsage[] =
     "      give none). --set overrides filter options (a bad name lists them).\n"
     "      Defaults: " ATLAS_SHARED_DIR "/datasets/mit-csail/mit-csail.clf.gz and .relations\n";
 
-struct Args {
-  std::map<std::string, std::string> values;
-  std::string error;
-};
-
-Args ParseArgs(int argc, char** argv, int first, const std::vector<std::string>& known) {
-  Args a;
-  for (int i = first; i < argc; ++i) {
-    const std::string k = argv[i];
-    bool ok = false;
-    for (const std::string& n : known) ok = ok || k == n;
-    if (!ok) {
-      a.error = "unknown option '" + k + "'";
-      return a;
-    }
-    if (i + 1 >= argc) {
-      a.error = "option '" + k + "' needs a value";
-      return a;
-    }
-    a.values[k] = argv[++i];
-  }
-  return a;
-}
-
-bool GetNumber(const Args& a, const std::string& key, double lo, double hi, double& out,
-               std::string& error) {
-  auto it = a.values.find(key);
-  if (it == a.values.end()) return true;
-  double v = 0.0;
-  if (!eval::ParseArgumentNumber(it->second.c_str(), v) || v < lo || v > hi) {
-    error = key + " must be a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-            "], got '" + it->second + "'";
-    return false;
-  }
-  out = v;
-  return true;
-}
+using Args = eval::ToolOptions;
+using eval::GetNumberOption;
 
 // ---------------------------------------------------------------------------------------------
 // Monte Carlo consistency.
@@ -271,10 +236,10 @@ std::vector<sim::Wall> SimCorridor() {
 int RunMonteCarlo(const Args& args) {
   double runs = 50, minutes = 4, seed = 1, capacity = 20;
   std::string error;
-  if (!GetNumber(args, "--runs", 1, 10000, runs, error) ||
-      !GetNumber(args, "--minutes", 0.05, 600, minutes, error) ||
-      !GetNumber(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumber(args, "--capacity", 1, 1000, capacity, error)) {
+  if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) ||
+      !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
+      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
+      !GetNumberOption(args, "--capacity", 1, 1000, capacity, error)) {
     std::fprintf(stderr, "atlas-localmap-eval mc: %s\n", error.c_str());
     return 2;
   }
@@ -427,10 +392,10 @@ int RunReal(const Args& args) {
   if (args.values.count("--relations")) rel_path = args.values.at("--relations");
   double stretch_m = 30, capacity = 100, draw_stretch = 3, laser_x = 0.0;
   std::string error;
-  if (!GetNumber(args, "--stretch", 1, 1e6, stretch_m, error) ||
-      !GetNumber(args, "--laser-x", -2, 2, laser_x, error) ||
-      !GetNumber(args, "--capacity", 1, 10000, capacity, error) ||
-      !GetNumber(args, "--draw-stretch", 0, 1e6, draw_stretch, error)) {
+  if (!GetNumberOption(args, "--stretch", 1, 1e6, stretch_m, error) ||
+      !GetNumberOption(args, "--laser-x", -2, 2, laser_x, error) ||
+      !GetNumberOption(args, "--capacity", 1, 10000, capacity, error) ||
+      !GetNumberOption(args, "--draw-stretch", 0, 1e6, draw_stretch, error)) {
     std::fprintf(stderr, "atlas-localmap-eval real: %s\n", error.c_str());
     return 2;
   }
@@ -644,8 +609,8 @@ int main(int argc, char** argv) {
   }
   const std::string cmd = argv[1];
   if (cmd == "mc") {
-    const atlas::Args a =
-        atlas::ParseArgs(argc, argv, 2, {"--runs", "--minutes", "--seed", "--capacity"});
+    const atlas::Args a = atlas::eval::ParseToolOptions(
+        argc, argv, 2, {"--runs", "--minutes", "--seed", "--capacity"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-localmap-eval mc: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
@@ -653,9 +618,10 @@ int main(int argc, char** argv) {
     return atlas::RunMonteCarlo(a);
   }
   if (cmd == "real") {
-    const atlas::Args a = atlas::ParseArgs(argc, argv, 2,
-                                           {"--log", "--relations", "--stretch", "--capacity",
-                                            "--png", "--draw-stretch", "--set", "--laser-x"});
+    const atlas::Args a =
+        atlas::eval::ParseToolOptions(argc, argv, 2,
+                                      {"--log", "--relations", "--stretch", "--capacity", "--png",
+                                       "--draw-stretch", "--set", "--laser-x"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-localmap-eval real: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;

@@ -58,41 +58,8 @@ constexpr char kUsage[] =
     "fig9: the returns, vantage points and lines of the first K sonar feature initialisations\n"
     "      (map-frame, estimated poses) over the true walls, like the paper's Fig. 9.\n";
 
-struct Args {
-  std::map<std::string, std::string> values;
-  std::string error;
-};
-
-Args ParseArgs(int argc, char** argv, const std::vector<std::string>& known) {
-  Args a;
-  for (int i = 2; i < argc; ++i) {
-    const std::string k = argv[i];
-    if (std::find(known.begin(), known.end(), k) == known.end()) {
-      a.error = "unknown option '" + k + "'";
-      return a;
-    }
-    if (i + 1 >= argc) {
-      a.error = "option '" + k + "' needs a value";
-      return a;
-    }
-    a.values[k] = argv[++i];
-  }
-  return a;
-}
-
-bool GetNumber(const Args& a, const std::string& key, double lo, double hi, double& out,
-               std::string& error) {
-  auto it = a.values.find(key);
-  if (it == a.values.end()) return true;
-  double v = 0.0;
-  if (!eval::ParseArgumentNumber(it->second.c_str(), v) || v < lo || v > hi) {
-    error = key + " must be a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-            "], got '" + it->second + "'";
-    return false;
-  }
-  out = v;
-  return true;
-}
+using Args = eval::ToolOptions;
+using eval::GetNumberOption;
 
 // One simulated corridor run, stepped by the caller.
 struct CorridorRun {
@@ -236,11 +203,11 @@ void AddRelativeErrors(const std::vector<Step>& steps, int gap, Pose2 Step::*whi
 int RunMonteCarlo(const Args& args) {
   double runs = 20, minutes = 3, ring = 24, seed = 1, capacity = 20;
   std::string error;
-  if (!GetNumber(args, "--runs", 1, 10000, runs, error) ||
-      !GetNumber(args, "--minutes", 0.05, 600, minutes, error) ||
-      !GetNumber(args, "--ring", 16, 24, ring, error) ||
-      !GetNumber(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumber(args, "--capacity", 1, 1000, capacity, error)) {
+  if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) ||
+      !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
+      !GetNumberOption(args, "--ring", 16, 24, ring, error) ||
+      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
+      !GetNumberOption(args, "--capacity", 1, 1000, capacity, error)) {
     std::fprintf(stderr, "atlas-sonar-eval mc: %s\n", error.c_str());
     return 2;
   }
@@ -324,9 +291,9 @@ void Arc(draw::Canvas& c, const Pose2& sensor, double range, double half, const 
 int RunFig9(const Args& args) {
   double ring = 24, seed = 1, lines = 4;
   std::string error;
-  if (!GetNumber(args, "--ring", 16, 24, ring, error) ||
-      !GetNumber(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumber(args, "--lines", 1, 20, lines, error)) {
+  if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
+      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
+      !GetNumberOption(args, "--lines", 1, 20, lines, error)) {
     std::fprintf(stderr, "atlas-sonar-eval fig9: %s\n", error.c_str());
     return 2;
   }
@@ -530,11 +497,11 @@ void PrintAtlasErrors(const char* name, const AtlasTrace& t, int gap, bool dr) {
 int RunAtlasMode(const Args& args) {
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10;
   std::string error;
-  if (!GetNumber(args, "--ring", 16, 24, ring, error) ||
-      !GetNumber(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumber(args, "--km", 0.01, 100, km, error) ||
-      !GetNumber(args, "--rooms", 1, 10000, rooms, error) ||
-      !GetNumber(args, "--capacity", 2, 100, capacity, error)) {
+  if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
+      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
+      !GetNumberOption(args, "--km", 0.01, 100, km, error) ||
+      !GetNumberOption(args, "--rooms", 1, 10000, rooms, error) ||
+      !GetNumberOption(args, "--capacity", 2, 100, capacity, error)) {
     std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n", error.c_str());
     return 2;
   }
@@ -623,8 +590,8 @@ int main(int argc, char** argv) {
   }
   const std::string cmd = argv[1];
   if (cmd == "mc") {
-    const atlas::Args a =
-        atlas::ParseArgs(argc, argv, {"--runs", "--minutes", "--ring", "--seed", "--capacity"});
+    const atlas::Args a = atlas::eval::ParseToolOptions(
+        argc, argv, 2, {"--runs", "--minutes", "--ring", "--seed", "--capacity"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval mc: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
@@ -632,8 +599,8 @@ int main(int argc, char** argv) {
     return atlas::RunMonteCarlo(a);
   }
   if (cmd == "atlas") {
-    const atlas::Args a =
-        atlas::ParseArgs(argc, argv, {"--ring", "--seed", "--km", "--rooms", "--capacity"});
+    const atlas::Args a = atlas::eval::ParseToolOptions(
+        argc, argv, 2, {"--ring", "--seed", "--km", "--rooms", "--capacity"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
@@ -641,7 +608,8 @@ int main(int argc, char** argv) {
     return atlas::RunAtlasMode(a);
   }
   if (cmd == "fig9") {
-    const atlas::Args a = atlas::ParseArgs(argc, argv, {"--png", "--ring", "--seed", "--lines"});
+    const atlas::Args a =
+        atlas::eval::ParseToolOptions(argc, argv, 2, {"--png", "--ring", "--seed", "--lines"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval fig9: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
