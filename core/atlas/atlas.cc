@@ -91,11 +91,21 @@ AddEdgeResult Atlas::AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, 
 }
 
 const StepStats& Atlas::Step(const Pose2& odometry_delta, const LaserScan& scan) {
-  return StepWith(odometry_delta, &scan, nullptr);
+  LocalizeWith(odometry_delta, &scan, nullptr);
+  return MaintainGraph();
 }
 
 const StepStats& Atlas::Step(const Pose2& odometry_delta, const SonarReading& reading) {
-  return StepWith(odometry_delta, nullptr, &reading);
+  LocalizeWith(odometry_delta, nullptr, &reading);
+  return MaintainGraph();
+}
+
+const StepStats& Atlas::Localize(const Pose2& odometry_delta, const LaserScan& scan) {
+  return LocalizeWith(odometry_delta, &scan, nullptr);
+}
+
+const StepStats& Atlas::Localize(const Pose2& odometry_delta, const SonarReading& reading) {
+  return LocalizeWith(odometry_delta, nullptr, &reading);
 }
 
 FrameId Atlas::StartUnconnectedFrame() {
@@ -121,8 +131,10 @@ FrameId Atlas::ResumeInNewFrame() {
   return f;
 }
 
-const StepStats& Atlas::StepWith(const Pose2& odometry_delta, const LaserScan* scan,
-                                 const SonarReading* sonar) {
+const StepStats& Atlas::LocalizeWith(const Pose2& odometry_delta, const LaserScan* scan,
+                                     const SonarReading* sonar) {
+  assert(!graph_pending_);
+  graph_pending_ = true;
   stats_ = StepStats{};
   stats_.step = ++step_;
   const bool first = graph_.FrameCount() == 0;
@@ -133,15 +145,22 @@ const StepStats& Atlas::StepWith(const Pose2& odometry_delta, const LaserScan* s
   int d = FindDominant();
   if (d >= 0) Traverse(d);
   GenesisAtCapacity();
-  d = FindDominant();
+  FindDominant();
+  stats_.frames = graph_.FrameCount();
+  stats_.hypotheses_alive = static_cast<int>(hypotheses_.size());
+  return stats_;
+}
+
+const StepStats& Atlas::MaintainGraph() {
+  assert(graph_pending_);
+  graph_pending_ = false;
+  const int d = DominantIndex(hypotheses_);
   if (d >= 0 && step_ % options_.match_interval_steps == 0) {
     MatchMaps(d);
     MatchUnconnected(d);
   }
   RefineEdges();
-  FindDominant();
   stats_.frames = graph_.FrameCount();
-  stats_.hypotheses_alive = static_cast<int>(hypotheses_.size());
   return stats_;
 }
 
@@ -684,6 +703,7 @@ bool Atlas::Deserialize(const std::string& bytes) {
   components_.Rebuild(graph_);
   hypotheses_ = std::move(hypotheses);
   step_ = step;
+  graph_pending_ = false;
   next_hypothesis_id_ = next_id;
   last_genesis_step_ = last_genesis;
   match_cursor_ = cursor;

@@ -142,6 +142,17 @@ class Atlas {
   // judged on q alone.
   const StepStats& Step(const Pose2& odometry_delta, const SonarReading& reading);
 
+  // The same step in two halves, for a daemon that publishes the pose as early as it can:
+  // Localize() runs steps 1-5 above (hypotheses, juveniles, failures, traversal, Genesis), after
+  // which Dominant() is this step's output; MaintainGraph() runs steps 6-7 (map-matching, edge
+  // refinement), which add or change edges but never change a hypothesis, so Dominant() is the
+  // same after it. Step() == Localize() then MaintainGraph(). Every Localize() must be followed
+  // by one MaintainGraph() before the next Localize() (asserted); the returned stats are
+  // complete after MaintainGraph().
+  const StepStats& Localize(const Pose2& odometry_delta, const LaserScan& scan);
+  const StepStats& Localize(const Pose2& odometry_delta, const SonarReading& reading);
+  const StepStats& MaintainGraph();
+
   // After Deserialize() of a saved atlas: the robot is somewhere unknown, so every hypothesis
   // is dropped and the robot starts in a new frame, unconnected, at pose exactly zero (as after
   // Genesis). Map-matching then also tries frames of the unconnected old parts, without a prior
@@ -169,8 +180,8 @@ class Atlas {
  private:
   LocalMap& MapOf(Hypothesis& h);
   // Exactly one of `scan`, `sonar` is non-null.
-  const StepStats& StepWith(const Pose2& odometry_delta, const LaserScan* scan,
-                            const SonarReading* sonar);
+  const StepStats& LocalizeWith(const Pose2& odometry_delta, const LaserScan* scan,
+                                const SonarReading* sonar);
   void UpdateHypotheses(const Pose2& odometry_delta, const LaserScan* scan,
                         const SonarReading* sonar, bool first);
   void JudgeJuveniles();
@@ -202,6 +213,7 @@ class Atlas {
   uint64_t resume_cursor_ = 0;
   std::vector<Hypothesis> hypotheses_;
   int64_t step_ = 0;
+  bool graph_pending_ = false;  // Localize() ran, MaintainGraph() not yet
   int64_t next_hypothesis_id_ = 0;
   int64_t last_genesis_step_ = -1000000;
   uint64_t match_cursor_ = 0;

@@ -326,6 +326,41 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
               accepted, loop_edges);
 }
 
+// The two halves of a step: Localize() gives the step's output, MaintainGraph() (map-matching,
+// refinement) never changes it, and the halves together are exactly Step().
+TEST(Atlas, LocalizeThenMaintainGraphIsStepAndKeepsTheDominantPose) {
+  TestWorld w1, w2;
+  const auto world1 = InstallSquareRoom(&w1);
+  const auto world2 = InstallSquareRoom(&w2);
+  Atlas whole(TestWorld::Options(), w1.Factory(), std::make_shared<FakeBootstrapper>());
+  Atlas halves(TestWorld::Options(), w2.Factory(), std::make_shared<FakeBootstrapper>());
+  Pose2 truth{};
+  int graph_changes = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Pose2 delta = SquareRouteDelta(i);
+    if (i > 0) truth = Compose(truth, delta);
+    whole.Step(delta, TestScan());
+    halves.Localize(delta, TestScan());
+    const DominantOutput before = halves.Dominant();
+    const int edges_before = halves.Graph().EdgeCount();
+    const StepStats& s = halves.MaintainGraph();
+    const DominantOutput after = halves.Dominant();
+    ASSERT_TRUE(after.valid);
+    EXPECT_EQ(before.hypothesis, after.hypothesis);
+    EXPECT_EQ(before.frame, after.frame);
+    EXPECT_EQ((before.pose.mean.ToVector() - after.pose.mean.ToVector()).norm(), 0.0);
+    EXPECT_EQ(before.q, after.q);
+    graph_changes += (halves.Graph().EdgeCount() != edges_before) + s.refined;
+    EXPECT_EQ(s.step, whole.LastStats().step);
+    EXPECT_EQ(s.match_accepted, whole.LastStats().match_accepted);
+    EXPECT_EQ(s.refined, whole.LastStats().refined);
+    PlaceNewFrames(whole.Graph(), truth, world1.get());
+    PlaceNewFrames(halves.Graph(), truth, world2.get());
+  }
+  EXPECT_GT(graph_changes, 0) << "MaintainGraph never did anything: the test shows nothing";
+  EXPECT_TRUE(whole.Serialize() == halves.Serialize());
+}
+
 }  // namespace
 }  // namespace atlas
 

@@ -70,7 +70,17 @@ bool StepLoop::StepOne(StepSink* sink) {
   if (!have_previous_) laser_silent_ = false;
 
   const auto t0 = std::chrono::steady_clock::now();
-  atlas_->Step(delta, scan);
+  atlas_->Localize(delta, scan);
+  have_previous_ = true;
+  previous_odometry_ = odometry;
+  last_scan_stamp_ = scan.stamp;
+  laser_silent_ = false;
+  last_dominant_ = atlas_->Dominant();
+  const Time stamp = scan.stamp;
+  pending_head_ = (pending_head_ + 1) % pending_.size();
+  --pending_size_;
+  sink->OnPose(stamp, last_dominant_, PoseSource::kScan);
+  atlas_->MaintainGraph();
   const auto elapsed = std::chrono::steady_clock::now() - t0;
 
   ++steps_;
@@ -81,16 +91,6 @@ bool StepLoop::StepOne(StepSink* sink) {
   period_max_ = std::max(period_max_, us);
   if (period_us_.size() < kPeriodSample) period_us_.push_back(us);
   ++period_count_;
-
-  have_previous_ = true;
-  previous_odometry_ = odometry;
-  last_scan_stamp_ = scan.stamp;
-  laser_silent_ = false;
-  last_dominant_ = atlas_->Dominant();
-  const Time stamp = scan.stamp;
-  pending_head_ = (pending_head_ + 1) % pending_.size();
-  --pending_size_;
-  sink->OnPose(stamp, last_dominant_, PoseSource::kScan);
   sink->OnStep(stamp, *atlas_);
   return true;
 }

@@ -14,7 +14,10 @@
 //   the scan was added, so that a scan stepped late gives the same result as one stepped at
 //   once (live and replay agree). Ranges beyond max_range_m become kNoReturn.
 //   The step time is measured; a step longer than step_budget is an overrun (counted).
-//   The pose is reported to the sink after every step.
+//   The pose is reported to the sink (OnPose) as soon as the atlas has localised
+//   (Atlas::Localize), before map-matching and edge refinement (Atlas::MaintainGraph), so that
+//   the pose latency does not carry the graph work; OnStep follows the whole step, and the
+//   step time covers both halves.
 // - Dead reckoning: when the newest odometry is more than `laser_timeout` (data time) past the
 //   last stepped scan, the laser is considered away: every `dead_reckoning_period` of odometry
 //   the sink gets the last dominant pose moved by the odometry since that scan, with covariance
