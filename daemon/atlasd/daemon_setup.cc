@@ -7,7 +7,13 @@
 namespace atlas {
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
+
+// The driver threads run at the loop's real-time priority (SCHED_FIFO) when the loop has one:
+// the arrival stamp and the wake-up of the loop are on the pose's latency path.
+int ReaderPriority(const DaemonOptions& o) {
+  return o.scheduling.policy == SchedPolicy::kOther ? 0 : o.scheduling.priority;
 }
+}  // namespace
 
 MapperSettings ToMapperSettings(const DaemonOptions& o) {
   MapperSettings s;
@@ -44,6 +50,7 @@ LaserReaderOptions ToLaserReaderOptions(const DaemonOptions& o) {
       o.laser.unit == LaserUnit::kCentimetre ? sick::Unit::kCentimetre : sick::Unit::kMillimetre;
   l.sensor_pose = Pose2{o.laser.mount.x_m, o.laser.mount.y_m, o.laser.mount.theta_deg * kDegToRad};
   l.queue_capacity = static_cast<size_t>(o.laser.queue_capacity);
+  l.reconnect.realtime_priority = ReaderPriority(o);
   return l;
 }
 
@@ -54,6 +61,7 @@ OdometryReaderOptions ToOdometryReaderOptions(const DaemonOptions& o) {
   r.odometry.max_speed_mps = o.odometry.max_speed_mps;
   r.odometry.slack_m = o.odometry.slack_m;
   r.queue_capacity = static_cast<size_t>(o.odometry.queue_capacity);
+  r.reconnect.realtime_priority = ReaderPriority(o);
   return r;
 }
 
@@ -68,6 +76,7 @@ SonarReaderOptions ToSonarReaderOptions(const DaemonOptions& o) {
   s.sonar.range_factor_mm = o.sonar.range_factor_mm;
   s.sonar.ring = o.sonar.ring == SonarRing::kB21_24 ? p2os::B21SonarRing() : p2os::P3dxSonarRing();
   s.queue_capacity = static_cast<size_t>(o.sonar.queue_capacity);
+  s.reconnect.realtime_priority = ReaderPriority(o);
   return s;
 }
 

@@ -14,6 +14,9 @@
 # one core. Also printed: the atlas-fakedev process's own use (it shares the machine), the
 # last health line, and (atlas-pose-latency, over the same seconds) the latency from the laser
 # driver's arrival stamp of each scan to its ATLAS_POSE received by an LCM subscriber.
+# RT_PRIORITY=N (optional) runs atlasd's loop thread as the service may (systemd/atlasd.service
+# allows LimitRTPRIO=50): [scheduling] policy "fifo" at priority N with mlockall, and the
+# subscriber under `chrt -f N`, as a robot's consumer of the pose would run.
 source "$(dirname "$0")/hil_lib.sh"
 need_multicast
 : "${SIM:?set SIM to the atlas-sim binary}"
@@ -24,13 +27,20 @@ DATASET=$WORK/sim/run.clf
 write_config "$WORK/atlasd.toml" 1
 # write_config's laser section is for the recorded logs; the simulated laser reaches 30 m.
 sed -i 's/^max_range_m = 50.0/max_range_m = 30.0\nangular_resolution_deg = 1.0/; /^republish_raw = true/d; /^health_period_s = 0.5/d' "$WORK/atlasd.toml"
+if [ -n "${RT_PRIORITY:-}" ]; then
+  sed -i "s/^policy = .*/policy = \"fifo\"/; s/^priority = .*/priority = $RT_PRIORITY/; s/^mlockall = .*/mlockall = true/" "$WORK/atlasd.toml"
+  grep -q '^policy = "fifo"' "$WORK/atlasd.toml" || printf '\n[scheduling]\npolicy = "fifo"\npriority = %d\nmlockall = true\n' "$RT_PRIORITY" >>"$WORK/atlasd.toml"
+  POSE_LATENCY_CMD=(chrt -f "$RT_PRIORITY" "$POSE_LATENCY")
+else
+  POSE_LATENCY_CMD=("$POSE_LATENCY")
+fi
 start_fakedev --speed 1
 start_atlasd "$WORK/atlasd.toml" --health-every 30
 ticks() { awk '{ print $14 + $15 }' "/proc/$1/stat"; }
 hz=$(getconf CLK_TCK)
 sleep 15
 kill -0 "$ATLASD_PID" || fail "atlasd died"
-"$POSE_LATENCY" --seconds "$MEASURED" >"$WORK/latency.txt" 2>&1 &
+"${POSE_LATENCY_CMD[@]}" --seconds "$MEASURED" >"$WORK/latency.txt" 2>&1 &
 LATENCY_PID=$!
 PIDS+=("$LATENCY_PID")
 a0=$(ticks "$ATLASD_PID")
