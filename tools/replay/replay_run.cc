@@ -45,10 +45,17 @@ class RecordingSink final : public StepSink {
     match_accepted += s.match_accepted;
     match_rejected += s.match_rejected;
     match_ambiguous += s.match_ambiguous;
+    for (int r = 0; r < kMapMatchReasonCount; ++r) match_reasons[r] += s.match_reasons[r];
+    seeded += s.seeded;
+    matured += s.matured;
+    deleted += s.deleted;
+    killed_by_w += s.killed_by_w;
   }
   std::vector<StampedFramePose> trajectory;
   std::vector<TimingRow> timing;
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
+  std::array<int64_t, kMapMatchReasonCount> match_reasons{};
+  int64_t seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
 };
 
 struct OutFile {
@@ -208,6 +215,11 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   sum.match_accepted = sink.match_accepted;
   sum.match_rejected = sink.match_rejected;
   sum.match_ambiguous = sink.match_ambiguous;
+  sum.match_reasons = sink.match_reasons;
+  sum.seeded = sink.seeded;
+  sum.matured = sink.matured;
+  sum.deleted = sink.deleted;
+  sum.killed_by_w = sink.killed_by_w;
 
   const AtlasGraph& graph = atlas->Graph();
   sum.frames = graph.FrameCount();
@@ -373,6 +385,15 @@ std::string SummaryJson(const ReplaySummary& s) {
   Append(t, "\"match_accepted\": %lld, \"match_rejected\": %lld, \"match_ambiguous\": %lld, ",
          static_cast<long long>(s.match_accepted), static_cast<long long>(s.match_rejected),
          static_cast<long long>(s.match_ambiguous));
+  t += "\"match_reasons\": {";
+  for (int r = 0; r < kMapMatchReasonCount; ++r)
+    Append(t, "%s\"%s\": %lld", r > 0 ? ", " : "",
+           MapMatchReasonName(static_cast<MapMatchReason>(r)),
+           static_cast<long long>(s.match_reasons[r]));
+  t += "}, ";
+  Append(t, "\"seeded\": %lld, \"matured\": %lld, \"deleted\": %lld, \"killed_by_w\": %lld, ",
+         static_cast<long long>(s.seeded), static_cast<long long>(s.matured),
+         static_cast<long long>(s.deleted), static_cast<long long>(s.killed_by_w));
   Append(t, "\"global_rows\": %d, \"data_seconds\": %.6f, \"wall_seconds\": %.6f, ", s.global_rows,
          s.data_seconds, s.wall_seconds);
   Append(t, "\"speedup\": %.3f, \"step_ns_median\": %.0f, \"step_ns_max\": %.0f, ",
@@ -418,6 +439,14 @@ std::string SummaryText(const ReplaySummary& s) {
   Append(t, "map-match outcomes   accepted %lld, rejected %lld, ambiguous %lld\n",
          static_cast<long long>(s.match_accepted), static_cast<long long>(s.match_rejected),
          static_cast<long long>(s.match_ambiguous));
+  t += "  by reason         ";
+  for (int r = 0; r < kMapMatchReasonCount; ++r)
+    Append(t, "%s%s %lld", r > 0 ? ", " : " ", MapMatchReasonName(static_cast<MapMatchReason>(r)),
+           static_cast<long long>(s.match_reasons[r]));
+  t += "\n";
+  Append(t, "traversal            seeded %lld, matured %lld, deleted %lld (w failed %lld)\n",
+         static_cast<long long>(s.seeded), static_cast<long long>(s.matured),
+         static_cast<long long>(s.deleted), static_cast<long long>(s.killed_by_w));
   Append(t, "global rows          %d\n", s.global_rows);
   Append(t, "data time            %.3f s\n", s.data_seconds);
   Append(t, "stepping wall time   %.3f s (%.1fx real time)\n", s.wall_seconds,

@@ -21,6 +21,7 @@
 // Deterministic: the same events and settings give byte-identical files, except step_ns in
 // timing.tsv and the wall-clock figures of the summary.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -53,6 +54,10 @@ struct ReplaySummary {
   int genesis_edges = 0, map_match_edges = 0, refined_edges = 0;  // by current kind
   int map_match_origin_edges = 0;  // edges first made by map-matching
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
+  // Map-matching outcomes by MapMatchReason (index static_cast<int>(reason)).
+  std::array<int64_t, kMapMatchReasonCount> match_reasons{};
+  // Traversal (III-E): juveniles seeded, matured, deleted (of which killed because w failed).
+  int64_t seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
   int global_rows = 0;        // trajectory rows placed in the global projection
   double data_seconds = 0.0;  // last scan stamp - first scan stamp
   double wall_seconds = 0.0;  // stepping only (not reading the log or writing files)
