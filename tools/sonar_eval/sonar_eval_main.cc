@@ -12,11 +12,14 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +38,8 @@
 #include "drivers/sim/wheel_odometry_model.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/render/canvas.h"
+#include "tools/sonar_eval/alcove_loop_world.h"
+#include "tools/sonar_eval/sonar_atlas_run.h"
 
 namespace atlas {
 namespace {
@@ -44,17 +49,27 @@ constexpr char kUsage[] =
     "                             [--capacity C=20]\n"
     "       atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--lines K=4]\n"
-    "       atlas-sonar-eval atlas [--ring 16|24 (24)] [--seed S=1] [--km K=0.4] [--rooms R=6]\n"
-    "                             [--capacity C=10]\n"
+    "       atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
+    "                             [--seed S=1] [--runs N=1] [--km K=0.4] [--capacity C=10]\n"
+    "                             [--laser 0|1 (1)] [--self-match 0|1 (1)] [--trace FILE]\n"
+    "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
+    "                             [--loop-length L=36] [--loop-width W=14]\n"
     "\n"
     "mc:   simulated 20 m corridor, robot driving back and forth; on each seeded run a sonar-only\n"
     "      and a laser-only local map (same odometry). Prints the robot NEES (3 dof) against its\n"
     "      95 %% band and relative-pose errors over pairs 5, 30 and 90 s apart for sonar, laser\n"
     "      and dead reckoning.\n"
-    "atlas: a simulated building with corridor loops (atlas-sim's generator, R rooms), one run\n"
-    "      with laser and sonar; a sonar-only atlas (SonarLocalMap) and a laser-only atlas\n"
-    "      (LineEkfMap) on it: frames, map matches accepted / refused as ambiguous, robot NEES\n"
-    "      in its frame, relative-pose errors (5 s, 30 s) next to dead reckoning.\n"
+    "atlas: N simulated runs (noise seeds S..S+N-1) with laser and sonar through a world: the\n"
+    "      building with corridor loops of atlas-sim (R rooms, layout from --seed), or 'alcoves':\n"
+    "      one L x W corridor loop with an alcove every P metres (repetitive structure: Condition\n"
+    "      2). On each run a sonar-only atlas (SonarLocalMap) and a laser-only atlas (LineEkfMap;\n"
+    "      --laser 0: none). Prints frames, map-matching outcomes by reason (accepted / refused\n"
+    "      as ambiguous / rejected), every map-match edge against the ground truth (chi-square\n"
+    "      3 dof > 14.16: false closure), the robot NEES of the dominant pose in its frame\n"
+    "      averaged over the runs against its 95 %% band, and relative-pose errors (5 s, 30 s)\n"
+    "      next to dead reckoning. --trace FILE: one row per step and live hypothesis.\n"
+    "      --self-match 0: map-matching without the self-match test of repetitive structure\n"
+    "      (what Condition 2's refusals protect against).\n"
     "fig9: the returns, vantage points and lines of the first K sonar feature initialisations\n"
     "      (map-frame, estimated poses) over the true walls, like the paper's Fig. 9.\n";
 
@@ -121,33 +136,6 @@ struct CorridorRun {
         follower(Motion(), Waypoints()) {}
 };
 
-SonarLocalMapOptions FilterOptions(RangeSensors sensors, int capacity,
-                                   const WheelOdometryNoiseOptions& wheel,
-                                   const sim::SonarOptions& sonar) {
-  SonarLocalMapOptions o;
-  o.sensors = sensors;
-  o.line_map.capacity = capacity;
-  o.line_map.extraction.range_sigma = 0.01;
-  o.line_map.odometry.track_width = wheel.track_width_m;
-  o.line_map.odometry.wheel_var_per_m = wheel.wheel_noise_per_m;
-  o.line_map.odometry.xy_var_per_m = 0.0;
-  o.line_map.odometry.xy_var_per_rad = 0.0;
-  o.line_map.odometry.theta_var_per_m = 0.0;
-  o.line_map.odometry.theta_var_per_rad = 0.0;
-  o.model.range_sigma = sonar.range_sigma;
-  o.model.range_sigma_per_m = sonar.range_sigma_per_m;
-  // Walls the wide-beam model does not quite explain (the simulator's discrete rays, corner
-  // echoes). With edge echoes modelled and multipath through mapped walls dropped, 0.03 m gives
-  // a robot NEES mean near 3-4 over 20 runs (0.02 m: 4.4, 0.05 m: 4.4 on 6 runs).
-  o.model.model_sigma = 0.03;
-  return o;
-}
-
-double Nees(const UncertainPose& est, const Pose2& truth) {
-  const Vec3 e(truth.x - est.mean.x, truth.y - est.mean.y, WrapAngle(truth.theta - est.mean.theta));
-  return e.dot(est.cov.ldlt().solve(e));
-}
-
 struct Step {
   Pose2 truth, sonar, laser, odometry;
   double sonar_nees = 0.0, laser_nees = 0.0;
@@ -156,8 +144,10 @@ struct Step {
 std::vector<Step> RunOnce(uint64_t seed, double minutes, int ring, int capacity, int& sonar_lines,
                           int& laser_lines) {
   CorridorRun run(seed, ring);
-  SonarLocalMap sonar(FilterOptions(RangeSensors::kSonar, capacity, run.wheel, run.sonar));
-  SonarLocalMap laser(FilterOptions(RangeSensors::kLaser, capacity, run.wheel, run.sonar));
+  SonarLocalMap sonar(
+      sonar_eval::SimulatedMapOptions(RangeSensors::kSonar, capacity, run.wheel, run.sonar));
+  SonarLocalMap laser(
+      sonar_eval::SimulatedMapOptions(RangeSensors::kLaser, capacity, run.wheel, run.sonar));
   const double dt = 0.02;
   const int steps = static_cast<int>(minutes * 60.0 / dt);
   const Pose2 origin = run.follower.pose();
@@ -181,8 +171,8 @@ std::vector<Step> RunOnce(uint64_t seed, double minutes, int ring, int capacity,
     st.sonar = sonar.RobotPose().mean;
     st.laser = laser.RobotPose().mean;
     st.odometry = Between(odo_origin, odo);
-    st.sonar_nees = Nees(sonar.RobotPose(), st.truth);
-    st.laser_nees = Nees(laser.RobotPose(), st.truth);
+    st.sonar_nees = sonar_eval::PoseNees(sonar.RobotPose(), st.truth);
+    st.laser_nees = sonar_eval::PoseNees(laser.RobotPose(), st.truth);
     out.push_back(st);
   }
   sonar_lines = sonar.Complexity();
@@ -304,7 +294,8 @@ int RunFig9(const Args& args) {
     return 2;
   }
   CorridorRun run(static_cast<uint64_t>(seed), static_cast<int>(ring));
-  SonarLocalMap map(FilterOptions(RangeSensors::kSonar, 20, run.wheel, run.sonar));
+  SonarLocalMap map(
+      sonar_eval::SimulatedMapOptions(RangeSensors::kSonar, 20, run.wheel, run.sonar));
   struct Drawn {
     Pose2 robot;
     InitialisedLine line;
@@ -390,101 +381,94 @@ int RunFig9(const Args& args) {
   return 0;
 }
 
-// ---- atlas mode: sonar-only and laser-only atlases on one simulated building run ----
+// ---- atlas mode: sonar-only and laser-only atlases on simulated runs ----
 
-struct SimEvent {
-  bool sonar = false;
-  Time stamp{};
-  Pose2 odometry;
-  LaserScan scan;
-  SonarReading reading;
-};
-
-struct RecordingSink final : sim::SimulationSink {
-  std::vector<TruthSample> truth;
-  std::vector<SimEvent> events;
-  void OnTruth(const TruthSample& t) override { truth.push_back(t); }
-  void OnOdometry(const OdometrySample&, double, double) override {}
-  void OnLaser(const LaserScan& scan, const Pose2& odometry) override {
-    SimEvent e;
-    e.stamp = scan.stamp;
-    e.odometry = odometry;
-    e.scan = scan;
-    events.push_back(std::move(e));
+// Mean over runs of the per-step NEES (steps where every run has a value), against the 95 %
+// band of chi-square(3 runs) / runs, as atlas-localmap-eval mc does for one map.
+void PrintNeesBand(const char* name, const std::vector<sonar_eval::AtlasRunReport>& runs) {
+  size_t steps = runs[0].nees.size();
+  for (const auto& r : runs) steps = std::min(steps, r.nees.size());
+  const int n = static_cast<int>(runs.size());
+  const double lo = ChiSquareQuantile(0.025, 3 * n) / n, hi = ChiSquareQuantile(0.975, 3 * n) / n;
+  int used = 0, inside = 0, below = 0;
+  double mean = 0.0, max = 0.0;
+  for (size_t k = 0; k < steps; ++k) {
+    double sum = 0.0;
+    bool known = true;
+    for (const auto& r : runs) {
+      known &= r.nees[k] >= 0.0;
+      sum += r.nees[k];
+    }
+    if (!known) continue;
+    const double avg = sum / n;
+    ++used;
+    mean += avg;
+    max = std::max(max, avg);
+    inside += avg >= lo && avg <= hi;
+    below += avg <= hi;
   }
-  void OnSonar(const SonarReading& reading, const Pose2& odometry) override {
-    SimEvent e;
-    e.sonar = true;
-    e.stamp = reading.stamp;
-    e.odometry = odometry;
-    e.reading = reading;
-    events.push_back(std::move(e));
-  }
-  Pose2 TruthAt(Time t) const {
-    auto it = std::lower_bound(truth.begin(), truth.end(), t,
-                               [](const TruthSample& s, Time x) { return s.stamp < x; });
-    if (it == truth.begin()) return truth.front().pose;
-    if (it == truth.end()) return truth.back().pose;
-    const TruthSample& b = *it;
-    const TruthSample& a = *(it - 1);
-    const double span = ToSeconds(b.stamp) - ToSeconds(a.stamp);
-    const double f = span > 0 ? (ToSeconds(t) - ToSeconds(a.stamp)) / span : 0.0;
-    return sim::InterpolatePose(a.pose, b.pose, f);
-  }
-};
-
-struct AtlasTrace {
-  std::vector<Pose2> truth, estimate, odometry;
-  std::vector<FrameId> frame;
-  std::vector<double> nees;  // < 0: frame origin not known
-  int frames = 0, accepted = 0, ambiguous = 0, rejected = 0, genesis = 0;
-};
-
-AtlasTrace RunAtlasOn(Atlas& atlas, const RecordingSink& rec, bool sonar) {
-  AtlasTrace tr;
-  std::map<FrameId, Pose2> origin_truth;
-  bool first = true;
-  Pose2 last_odo, odo0;
-  for (const SimEvent& e : rec.events) {
-    if (e.sonar != sonar) continue;
-    const Pose2 u = first ? Pose2{} : Between(last_odo, e.odometry);
-    if (first) odo0 = e.odometry;
-    const Pose2 truth = rec.TruthAt(e.stamp);
-    if (first) origin_truth[0] = truth;
-    const StepStats& st = sonar ? atlas.Step(u, e.reading) : atlas.Step(u, e.scan);
-    first = false;
-    last_odo = e.odometry;
-    if (st.genesis > 0) origin_truth.emplace(static_cast<FrameId>(st.frames - 1), truth);
-    tr.accepted += st.match_accepted;
-    tr.ambiguous += st.match_ambiguous;
-    tr.rejected += st.match_rejected;
-    tr.genesis += st.genesis;
-    tr.frames = st.frames;
-    const DominantOutput d = atlas.Dominant();
-    if (!d.valid) continue;
-    tr.truth.push_back(truth);
-    tr.estimate.push_back(d.pose.mean);
-    tr.odometry.push_back(Between(odo0, e.odometry));
-    tr.frame.push_back(d.frame);
-    auto it = origin_truth.find(d.frame);
-    tr.nees.push_back(it == origin_truth.end() ? -1.0 : Nees(d.pose, Between(it->second, truth)));
-  }
-  return tr;
+  std::printf(
+      "  robot NEES %s (dominant pose in its frame, mean over %d runs per step): 95%% band "
+      "[%.3f, %.3f]; mean %.2f, max %.1f; steps inside %d/%d = %.1f%%, below the upper bound "
+      "%.1f%%\n",
+      name, n, lo, hi, used ? mean / used : 0.0, max, inside, used,
+      used ? 100.0 * inside / used : 0.0, used ? 100.0 * below / used : 0.0);
 }
 
-void PrintAtlasErrors(const char* name, const AtlasTrace& t, int gap, bool dr) {
+void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport>& runs) {
+  int frames = 0, genesis = 0, acc = 0, amb = 0, rej = 0, edges = 0, false_chi2 = 0, gross = 0;
+  std::array<int, kMapMatchReasonCount> reasons{};
+  for (const auto& r : runs) {
+    frames += r.frames;
+    genesis += r.genesis;
+    acc += r.accepted;
+    amb += r.ambiguous;
+    rej += r.rejected;
+    edges += r.closures.map_match_edges;
+    false_chi2 += r.closures.false_chi2;
+    gross += r.closures.gross;
+    for (int k = 0; k < kMapMatchReasonCount; ++k) reasons[k] += r.reasons[k];
+  }
+  std::printf(
+      "  %s atlas: %d frames (%d Genesis) over %zu runs; map matches accepted %d, refused as "
+      "ambiguous %d, rejected %d; by reason:",
+      name, frames, genesis, runs.size(), acc, amb, rej);
+  for (int k = 0; k < kMapMatchReasonCount; ++k) {
+    if (reasons[k] > 0)
+      std::printf(" %s %d", MapMatchReasonName(static_cast<MapMatchReason>(k)), reasons[k]);
+  }
+  std::printf(
+      "\n    map-match edges vs ground truth: %d edges, %d false closures (chi2 3 dof > 14.16), "
+      "%d gross (> 0.5 m or 5 deg)\n",
+      edges, false_chi2, gross);
+  for (size_t i = 0; i < runs.size(); ++i) {
+    for (const replay::ClosureVerdict& v : runs[i].closures.edges) {
+      std::printf(
+          "    run %zu edge %d-%d: estimate (%.3f, %.3f, %.2f deg), truth (%.3f, %.3f, %.2f "
+          "deg), d2 %.2f: %s\n",
+          i + 1, v.a, v.b, v.estimate.x, v.estimate.y, v.estimate.theta * 180.0 / std::numbers::pi,
+          v.reference.x, v.reference.y, v.reference.theta * 180.0 / std::numbers::pi, v.d2,
+          v.false_chi2 ? "FALSE CLOSURE" : "true");
+    }
+  }
+}
+
+void PrintAtlasErrors(const char* name, const std::vector<sonar_eval::AtlasRunReport>& runs,
+                      int gap, bool dr) {
   std::vector<double> tr, rot;
   int skipped = 0;
-  for (size_t i = 0; i + gap < t.truth.size(); i += gap) {
-    if (!dr && t.frame[i] != t.frame[i + gap]) {
-      ++skipped;
-      continue;
+  for (const auto& t : runs) {
+    for (size_t i = 0; i + gap < t.truth.size(); i += gap) {
+      if (!dr && t.frame[i] != t.frame[i + gap]) {
+        ++skipped;
+        continue;
+      }
+      const Pose2 a = Between(t.truth[i], t.truth[i + gap]);
+      const Pose2 b = dr ? Between(t.odometry[i], t.odometry[i + gap])
+                         : Between(t.estimate[i], t.estimate[i + gap]);
+      tr.push_back(std::hypot(a.x - b.x, a.y - b.y));
+      rot.push_back(std::abs(WrapAngle(a.theta - b.theta)) * 180.0 / std::numbers::pi);
     }
-    const Pose2 a = Between(t.truth[i], t.truth[i + gap]);
-    const Pose2 b = dr ? Between(t.odometry[i], t.odometry[i + gap])
-                       : Between(t.estimate[i], t.estimate[i + gap]);
-    tr.push_back(std::hypot(a.x - b.x, a.y - b.y));
-    rot.push_back(std::abs(WrapAngle(a.theta - b.theta)) * 180.0 / std::numbers::pi);
   }
   const eval::ErrorStats et = eval::Summarize(tr), er = eval::Summarize(rot);
   std::printf(
@@ -494,14 +478,47 @@ void PrintAtlasErrors(const char* name, const AtlasTrace& t, int gap, bool dr) {
       static_cast<long long>(et.count), skipped);
 }
 
+// --trace: one row per step and live hypothesis (the dominant marked), its pose error in its
+// frame and what its map made of the reading.
+struct TraceWriter {
+  std::FILE* f = nullptr;
+  int run = 0;
+  void Row(const Atlas& atlas, Time stamp, const Pose2& truth,
+           const std::vector<std::optional<Pose2>>& origin) const {
+    for (const Hypothesis& h : atlas.Hypotheses()) {
+      if (h.frame < 0 || static_cast<size_t>(h.frame) >= origin.size()) continue;
+      const UncertainPose p = atlas.PoseOf(h);
+      const Pose2 t = Between(*origin[h.frame], truth);
+      std::fprintf(
+          f,
+          "%d\t%.2f\t%lld\t%d\t%s\t%d\t%.3f\t%.2f\t%.3f\t%.3f\t%.4f\t%.3f\t%.3f\t%.4f\t%d\t"
+          "%d\t%d\t%d\n",
+          run, ToSeconds(stamp), static_cast<long long>(h.id), h.frame,
+          HypothesisStateName(h.state), h.dominant ? 1 : 0, h.q, sonar_eval::PoseNees(p, t),
+          p.mean.x - t.x, p.mean.y - t.y, WrapAngle(p.mean.theta - t.theta), std::sqrt(p.cov(0, 0)),
+          std::sqrt(p.cov(1, 1)), std::sqrt(p.cov(2, 2)), h.last_update.observations,
+          h.last_update.matched, h.last_update.added,
+          atlas.Graph().Frame(h.frame).map->Complexity());
+    }
+  }
+};
+
 int RunAtlasMode(const Args& args) {
-  double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10;
+  double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
+         self_match = 1;
+  sonar_eval::AlcoveLoopOptions loop;
   std::string error;
   if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
       !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
       !GetNumberOption(args, "--km", 0.01, 100, km, error) ||
       !GetNumberOption(args, "--rooms", 1, 10000, rooms, error) ||
-      !GetNumberOption(args, "--capacity", 2, 100, capacity, error)) {
+      !GetNumberOption(args, "--capacity", 2, 100, capacity, error) ||
+      !GetNumberOption(args, "--runs", 1, 1000, runs, error) ||
+      !GetNumberOption(args, "--laser", 0, 1, laser, error) ||
+      !GetNumberOption(args, "--self-match", 0, 1, self_match, error) ||
+      !GetNumberOption(args, "--period", 0.5, 100, loop.period, error) ||
+      !GetNumberOption(args, "--loop-length", 5, 1000, loop.length, error) ||
+      !GetNumberOption(args, "--loop-width", 5, 1000, loop.width, error)) {
     std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n", error.c_str());
     return 2;
   }
@@ -509,73 +526,116 @@ int RunAtlasMode(const Args& args) {
     std::fprintf(stderr, "atlas-sonar-eval atlas: --ring must be 16 or 24\n");
     return 2;
   }
-  sim::BuildingOptions bo;
-  bo.min_rooms = static_cast<int>(rooms);
-  const sim::World world = sim::GenerateBuilding(bo, static_cast<uint64_t>(seed));
-  sim::SimulationOptions so;
-  so.length_m = km * 1000.0;
-  so.laser = true;
-  so.sonar = true;
-  so.sonar_options = CorridorRun::Sonar(static_cast<int>(ring));
-  so.seed = static_cast<uint64_t>(seed);
-  if (std::string e = so.Validate(); !e.empty()) {
-    std::fprintf(stderr, "atlas-sonar-eval atlas: simulation options: %s\n", e.c_str());
-    return 2;
-  }
-  RecordingSink rec;
-  const sim::SimulationSummary sum = sim::Simulate(
-      world, so, rec, [](double d) { std::fprintf(stderr, "\rsimulated %.0f m   ", d); });
-  std::fprintf(stderr, "\n");
-  if (!sum.error.empty() || rec.truth.empty()) {
-    std::fprintf(stderr, "atlas-sonar-eval atlas: simulation failed: %s\n", sum.error.c_str());
-    return 1;
-  }
-  SonarLocalMapOptions sonar_o = FilterOptions(RangeSensors::kSonar, static_cast<int>(capacity),
-                                               so.odometry_options, so.sonar_options);
-  sonar_o.ring = so.sonar_options.ring;
-  SonarLocalMapOptions laser_o = FilterOptions(RangeSensors::kLaser, static_cast<int>(capacity),
-                                               so.odometry_options, so.sonar_options);
-  if (std::string e = sonar_o.Validate(); !e.empty()) {
-    std::fprintf(stderr, "atlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
-    return 2;
-  }
-  AtlasOptions ao;
-  Atlas sonar_atlas(
-      ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, nullptr);
-  Atlas laser_atlas(
-      ao, [lm = laser_o.line_map]() { return std::make_unique<LineEkfMap>(lm); },
-      std::make_shared<LineMapBootstrapper>(laser_o.line_map));
-  std::fprintf(stderr, "sonar atlas...\n");
-  const AtlasTrace st = RunAtlasOn(sonar_atlas, rec, true);
-  std::fprintf(stderr, "laser atlas...\n");
-  const AtlasTrace lt = RunAtlasOn(laser_atlas, rec, false);
-  std::printf(
-      "building seed %d (%zu walls), %.2f km driven in %.0f s, %d-transducer ring (specular "
-      "misses, multipath), map capacity %d\n",
-      static_cast<int>(seed), world.walls.size(), sum.distance_m / 1000.0, sum.duration_s,
-      static_cast<int>(ring), static_cast<int>(capacity));
-  for (const auto& [name, t] : {std::pair{"sonar-only", &st}, std::pair{"laser-only", &lt}}) {
-    double mean = 0.0;
-    int n = 0, inside = 0;
-    for (double v : t->nees) {
-      if (v < 0) continue;
-      mean += v;
-      ++n;
-      inside += v <= ChiSquareQuantile(0.95, 3) ? 1 : 0;
+  const std::string world_name =
+      args.values.count("--world") ? args.values.at("--world") : "building";
+  sim::World world;
+  if (world_name == "building") {
+    sim::BuildingOptions bo;
+    bo.min_rooms = static_cast<int>(rooms);
+    world = sim::GenerateBuilding(bo, static_cast<uint64_t>(seed));
+  } else if (world_name == "alcoves") {
+    if (std::string e = loop.Validate(); !e.empty()) {
+      std::fprintf(stderr, "atlas-sonar-eval atlas: alcove loop: %s\n", e.c_str());
+      return 2;
     }
-    std::printf(
-        "  %s atlas: %zu steps with a dominant, %d frames (%d Genesis), map matches accepted %d, "
-        "refused as ambiguous %d, rejected %d; robot NEES in its frame (3 dof): mean %.2f over "
-        "%d steps, %.1f%% below the 95%% bound %.2f\n",
-        name, t->truth.size(), t->frames, t->genesis, t->accepted, t->ambiguous, t->rejected,
-        n ? mean / n : 0.0, n, n ? 100.0 * inside / n : 0.0, ChiSquareQuantile(0.95, 3));
+    world = sonar_eval::AlcoveLoopWorld(loop);
+  } else {
+    std::fprintf(stderr,
+                 "atlas-sonar-eval atlas: --world must be 'building' or 'alcoves', not '%s'\n",
+                 world_name.c_str());
+    return 2;
+  }
+  std::FILE* trace = nullptr;
+  if (args.values.count("--trace")) {
+    trace = std::fopen(args.values.at("--trace").c_str(), "w");
+    if (!trace) {
+      std::fprintf(stderr, "atlas-sonar-eval atlas: cannot write --trace %s: %s\n",
+                   args.values.at("--trace").c_str(), std::strerror(errno));
+      return 1;
+    }
+    std::fprintf(trace,
+                 "# run\tt\thypothesis\tframe\tstate\tdominant\tq\tnees\tex\tey\tetheta\tsx\tsy\t"
+                 "stheta\tobservations\tmatched\tadded\tlines\n");
+  }
+  const int n = static_cast<int>(runs);
+  std::vector<sonar_eval::AtlasRunReport> sonar_runs, laser_runs;
+  sim::SimulationSummary sum;
+  for (int r = 0; r < n; ++r) {
+    sim::SimulationOptions so;
+    so.length_m = km * 1000.0;
+    so.laser = laser != 0;
+    so.sonar = true;
+    so.sonar_options = CorridorRun::Sonar(static_cast<int>(ring));
+    so.seed = static_cast<uint64_t>(seed) + r;
+    if (std::string e = so.Validate(); !e.empty()) {
+      std::fprintf(stderr, "atlas-sonar-eval atlas: simulation options: %s\n", e.c_str());
+      return 2;
+    }
+    sonar_eval::SimRecording rec;
+    sum = sim::Simulate(world, so, rec, [&](double d) {
+      std::fprintf(stderr, "\rrun %d/%d: simulated %.0f m   ", r + 1, n, d);
+    });
+    if (!sum.error.empty() || rec.Empty()) {
+      std::fprintf(stderr, "\natlas-sonar-eval atlas: simulation failed: %s\n", sum.error.c_str());
+      return 1;
+    }
+    const SonarLocalMapOptions sonar_o = sonar_eval::SimulatedMapOptions(
+        RangeSensors::kSonar, static_cast<int>(capacity), so.odometry_options, so.sonar_options);
+    if (std::string e = sonar_o.Validate(); !e.empty()) {
+      std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
+      return 2;
+    }
+    AtlasOptions ao;
+    ao.match.self_match = self_match != 0;
+    Atlas sonar_atlas(
+        ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, nullptr);
+    TraceWriter tw{trace, r + 1};
+    sonar_runs.push_back(sonar_eval::RunAtlas(
+        sonar_atlas, rec, true,
+        [&](double f) {
+          std::fprintf(stderr, "\rrun %d/%d: sonar atlas %.0f%%   ", r + 1, n, 100 * f);
+        },
+        trace ? [&](const Atlas& a, Time t, const Pose2& truth,
+                    const std::vector<std::optional<Pose2>>& o) { tw.Row(a, t, truth, o); }
+              : sonar_eval::StepObserver{}));
+    if (laser != 0) {
+      const LocalMapOptions lm =
+          sonar_eval::SimulatedMapOptions(RangeSensors::kLaser, static_cast<int>(capacity),
+                                          so.odometry_options, so.sonar_options)
+              .line_map;
+      Atlas laser_atlas(
+          ao, [lm]() { return std::make_unique<LineEkfMap>(lm); },
+          std::make_shared<LineMapBootstrapper>(lm));
+      laser_runs.push_back(sonar_eval::RunAtlas(laser_atlas, rec, false, [&](double f) {
+        std::fprintf(stderr, "\rrun %d/%d: laser atlas %.0f%%   ", r + 1, n, 100 * f);
+      }));
+    }
+  }
+  std::fprintf(stderr, "\n");
+  if (trace) std::fclose(trace);
+  if (world_name == "building") {
+    std::printf("building seed %d (%zu walls)", static_cast<int>(seed), world.walls.size());
+  } else {
+    std::printf("alcove loop %.0f x %.0f m, an alcove every %.1f m (%zu walls)", loop.length,
+                loop.width, loop.period, world.walls.size());
+  }
+  std::printf(
+      ", %d run(s) (simulation seeds %d..%d) of %.2f km in %.0f s, %d-transducer ring (specular "
+      "misses, multipath), map capacity %d\n",
+      n, static_cast<int>(seed), static_cast<int>(seed) + n - 1, sum.distance_m / 1000.0,
+      sum.duration_s, static_cast<int>(ring), static_cast<int>(capacity));
+  PrintMatches("sonar-only", sonar_runs);
+  PrintNeesBand("sonar-only", sonar_runs);
+  if (!laser_runs.empty()) {
+    PrintMatches("laser-only", laser_runs);
+    PrintNeesBand("laser-only", laser_runs);
   }
   for (const int gap_s : {5, 30}) {
     std::printf("  relative-pose errors, pairs %d s apart, same dominant frame at both ends:\n",
                 gap_s);
-    PrintAtlasErrors("sonar-only atlas", st, gap_s * 10, false);
-    PrintAtlasErrors("laser-only atlas", lt, gap_s * 10, false);
-    PrintAtlasErrors("dead reckoning", st, gap_s * 10, true);
+    PrintAtlasErrors("sonar-only atlas", sonar_runs, gap_s * 10, false);
+    if (!laser_runs.empty()) PrintAtlasErrors("laser-only atlas", laser_runs, gap_s * 10, false);
+    PrintAtlasErrors("dead reckoning", sonar_runs, gap_s * 10, true);
   }
   return 0;
 }
@@ -600,7 +660,9 @@ int main(int argc, char** argv) {
   }
   if (cmd == "atlas") {
     const atlas::Args a = atlas::eval::ParseToolOptions(
-        argc, argv, 2, {"--ring", "--seed", "--km", "--rooms", "--capacity"});
+        argc, argv, 2,
+        {"--world", "--ring", "--seed", "--runs", "--km", "--rooms", "--capacity", "--laser",
+         "--trace", "--self-match", "--period", "--loop-length", "--loop-width"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;

@@ -1,0 +1,93 @@
+#pragma once
+// The atlas part of atlas-sonar-eval (issue 7): a simulated run recorded once, then stepped
+// through an Atlas (paper, Sections II-III) of sonar-only SonarLocalMaps or of laser maps, with
+// the ground truth kept beside it.
+//
+// What a run reports:
+// - map-matching outcomes (III-D) summed over the steps, by MapMatchReason: accepted, refused as
+//   ambiguous (Condition 2, II-A: repetitive structure inside the prior), rejected;
+// - every edge made by map-matching checked against the ground truth (tools/replay
+//   closure_check.h: the reference pose of frame b in frame a from the true poses at the
+//   frames' origins; chi-square 3 dof > 14.16 is a false closure);
+// - the dominant hypothesis's robot pose (its output, III-E) in its own frame against the true
+//   pose in that frame, per step: NEES (3 dof) and relative-pose errors.
+// A frame's origin is the true pose at the step that created it (Genesis, III-C: the robot is
+// at exactly zero in the new frame).
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/atlas/atlas.h"
+#include "core/sonar/sonar_options.h"
+#include "drivers/sim/simulation.h"
+#include "drivers/sim/wheel_odometry_model.h"
+#include "tools/replay/closure_check.h"
+
+namespace atlas::sonar_eval {
+
+// The EKF options of the evaluation's maps for the simulator's base and sonar: odometry noise
+// and calibration errors as simulated, the sonar range noise of the model, capacity `capacity`.
+SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
+                                         const WheelOdometryNoiseOptions& wheel,
+                                         const sim::SonarOptions& sonar);
+
+// NEES (3 dof) of `estimate` against `truth` (heading difference wrapped). The covariance gets
+// a floor of (1 mm)^2, (1 mm)^2, (1 mrad)^2, the size of the ground truth's own error (linear
+// interpolation between 50 Hz samples): right after Genesis the pose covariance is zero or of
+// rank 2 (wheel noise moves x and theta only), and a truth error of a micrometre across it
+// would read as a NEES of 10^5, dominating any mean.
+inline constexpr double kNeesFloorM = 1e-3, kNeesFloorRad = 1e-3;
+double PoseNees(const UncertainPose& estimate, const Pose2& truth);
+
+// A whole simulated run in memory: ground truth, and every laser scan and sonar reading with
+// the odometry pose at its stamp, in stamp order.
+class SimRecording final : public sim::SimulationSink {
+ public:
+  struct Event {
+    bool sonar = false;
+    Time stamp{};
+    Pose2 odometry;
+    LaserScan scan;
+    SonarReading reading;
+  };
+  void OnTruth(const TruthSample& t) override { truth_.push_back(t); }
+  void OnOdometry(const OdometrySample&, double, double) override {}
+  void OnLaser(const LaserScan& scan, const Pose2& odometry) override;
+  void OnSonar(const SonarReading& reading, const Pose2& odometry) override;
+
+  const std::vector<Event>& Events() const { return events_; }
+  bool Empty() const { return truth_.empty(); }
+  // The true pose at `t`, interpolated between the samples around it.
+  Pose2 TruthAt(Time t) const;
+
+ private:
+  std::vector<TruthSample> truth_;
+  std::vector<Event> events_;
+};
+
+struct AtlasRunReport {
+  // Per step with a dominant hypothesis.
+  std::vector<Pose2> truth, estimate, odometry;  // estimate in its frame; odometry from start
+  std::vector<FrameId> frame;
+  std::vector<double> nees;  // of the dominant pose in its frame; < 0 when the origin is unknown
+  int steps = 0, frames = 0, genesis = 0;
+  int accepted = 0, ambiguous = 0, rejected = 0;
+  std::array<int, kMapMatchReasonCount> reasons{};
+  replay::ClosureReport closures;  // the map-match edges of the final graph vs ground truth
+};
+
+// Called after every step with the atlas, the event's stamp, the true pose (world) and the true
+// poses of the frames' origins so far (index = frame id).
+using StepObserver =
+    std::function<void(const Atlas&, Time, const Pose2&, const std::vector<std::optional<Pose2>>&)>;
+
+// Steps `atlas` through the sonar readings (`sonar`) or the laser scans of `run`. `progress`
+// (may be empty) is called every 1000 events with the fraction done; `observer` (may be empty)
+// after every step.
+AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
+                        const std::function<void(double)>& progress = {},
+                        const StepObserver& observer = {});
+
+}  // namespace atlas::sonar_eval

@@ -1,0 +1,101 @@
+// Condition 2 in a simulated sonar-only atlas run (paper, Sections II-A and IV): round a
+// corridor loop with an alcove every 4 m, the atlas must refuse the ambiguous map-matches and
+// add no false loop closure.
+
+#include "tools/sonar_eval/sonar_atlas_run.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/sonar/sonar_local_map.h"
+#include "drivers/sim/route.h"
+#include "drivers/sim/simulation.h"
+#include "drivers/sim/sonar_model.h"
+#include "tools/sonar_eval/alcove_loop_world.h"
+
+namespace atlas::sonar_eval {
+namespace {
+
+TEST(AlcoveLoopWorld, AlcovesRepeatAtThePeriodAndTheRouteGoesRound) {
+  AlcoveLoopOptions o;
+  ASSERT_EQ(o.Validate(), "");
+  const sim::World w = AlcoveLoopWorld(o);
+  // Alcove back walls: alcove_width long, alcove_depth outside the outer rectangle.
+  std::vector<double> bottom;  // x of the back walls on the side y = 0
+  for (const sim::Wall& wall : w.walls) {
+    if (std::abs(wall.a.y() + o.alcove_depth) < 1e-9 && std::abs(wall.b.y() - wall.a.y()) < 1e-9) {
+      EXPECT_NEAR(std::abs(wall.b.x() - wall.a.x()), o.alcove_width, 1e-9);
+      bottom.push_back(std::min(wall.a.x(), wall.b.x()));
+    }
+  }
+  ASSERT_GE(bottom.size(), 5u);
+  for (size_t k = 1; k < bottom.size(); ++k) EXPECT_NEAR(bottom[k] - bottom[k - 1], o.period, 1e-9);
+  // The route graph is one ring on the centreline: every node has degree 2.
+  std::vector<int> degree(w.nodes.size(), 0);
+  for (const sim::RouteEdge& e : w.edges) ++degree[e.from], ++degree[e.to];
+  for (int d : degree) EXPECT_EQ(d, 2);
+  // A route of two laps visits every node twice: round the loop, one way.
+  const double lap = 2.0 * (o.length - o.corridor_width) + 2.0 * (o.width - o.corridor_width);
+  const std::vector<int> route = sim::PlanRoute(w, 2.0 * lap, sim::StartNode(w), 7);
+  std::vector<int> visits(w.nodes.size(), 0);
+  for (size_t k = 1; k < route.size(); ++k) ++visits[route[k]];
+  for (int v : visits) EXPECT_GE(v, 2);
+}
+
+TEST(AlcoveLoopWorld, ValidateNamesTheBadOption) {
+  AlcoveLoopOptions o;
+  o.period = 1.0;  // not wider than an alcove
+  EXPECT_NE(o.Validate().find("period"), std::string::npos);
+  o = AlcoveLoopOptions{};
+  o.width = 4.0;
+  EXPECT_NE(o.Validate().find("width"), std::string::npos);
+}
+
+TEST(PoseNees, FloorKeepsASingularCovarianceFinite) {
+  UncertainPose p;  // zero covariance, as right after Genesis
+  EXPECT_NEAR(PoseNees(p, Pose2{1e-3, 0.0, 0.0}), 1.0, 1e-9);
+  p.cov = Vec3(0.01, 0.04, 0.0001).asDiagonal();
+  EXPECT_NEAR(PoseNees(p, Pose2{0.1, 0.0, 0.0}), 0.01 / (0.01 + 1e-6), 1e-9);
+}
+
+// The seeded run: 0.3 km (3.3 laps) with a 24-transducer ring, sonar only.
+TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
+  const AlcoveLoopOptions loop;
+  const sim::World world = AlcoveLoopWorld(loop);
+  sim::SimulationOptions so;
+  so.length_m = 300.0;
+  so.laser = false;
+  so.sonar = true;
+  so.sonar_options.ring = sim::B21SonarRing();
+  so.seed = 2;
+  ASSERT_EQ(so.Validate(), "");
+  SimRecording run;
+  const sim::SimulationSummary sum = sim::Simulate(world, so, run);
+  ASSERT_EQ(sum.error, "");
+  const SonarLocalMapOptions mo =
+      SimulatedMapOptions(RangeSensors::kSonar, 10, so.odometry_options, so.sonar_options);
+  ASSERT_EQ(mo.Validate(), "");
+  Atlas atlas(
+      AtlasOptions{}, [mo]() { return std::make_unique<SonarLocalMap>(mo); }, nullptr);
+  const AtlasRunReport r = RunAtlas(atlas, run, true);
+
+  ASSERT_GT(r.steps, 3000);
+  EXPECT_GE(r.frames, 4);
+  // Refused as ambiguous, and for Condition 2's reasons: repetitive structure or a rival.
+  EXPECT_GE(r.ambiguous, 1);
+  EXPECT_EQ(r.ambiguous, r.reasons[static_cast<int>(MapMatchReason::kRepetitive)] +
+                             r.reasons[static_cast<int>(MapMatchReason::kRivalTransform)]);
+  // Every edge added by map-matching agrees with the ground truth: no false closure.
+  EXPECT_EQ(r.closures.map_match_edges, r.accepted);
+  EXPECT_EQ(r.closures.unreferenced, 0);
+  EXPECT_EQ(r.closures.false_chi2, 0);
+  EXPECT_EQ(r.closures.gross, 0);
+  for (const replay::ClosureVerdict& v : r.closures.edges) {
+    EXPECT_LT(std::hypot(v.error[0], v.error[1]), 0.5) << v.a << "-" << v.b;
+    EXPECT_LT(v.d2, 14.16) << v.a << "-" << v.b;
+  }
+}
+
+}  // namespace
+}  // namespace atlas::sonar_eval
