@@ -10,8 +10,11 @@ namespace {
 LocalMapOptions ToLocalMapOptions(const MapperSettings& s) {
   LocalMapOptions o;
   o.capacity = s.map_capacity;
-  o.odometry.track_width = s.track_width_m;
+  o.odometry = s.odometry;
   o.extraction.range_sigma = s.laser_range_sigma_m;
+  o.extraction.model_sigma = s.wall_sigma_m;
+  o.extraction.min_rho_sigma = s.line_rho_sigma_min_m;
+  o.extraction.min_alpha_sigma = s.line_alpha_sigma_min_rad;
   o.quality.alpha = s.quality_alpha;
   o.quality.max_sigma_x = s.max_sigma_x;
   o.quality.max_sigma_y = s.max_sigma_y;

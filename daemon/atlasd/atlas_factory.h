@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/atlas/atlas.h"
+#include "core/localmap/localmap_options.h"
 
 namespace atlas {
 
@@ -24,8 +25,13 @@ struct MapperSettings {
   double max_sigma_theta = 0.2;
   int frames_examined_per_step = 24;
   int match_candidates_per_step = 1;
-  double track_width_m = 0.4;
+  // The local maps' noise models (core/localmap/localmap_options.h): wheel odometry, and the
+  // laser's range noise and line-fit floors. Defaults: core/localmap's.
+  OdometryNoiseOptions odometry;
   double laser_range_sigma_m = 0.01;
+  double wall_sigma_m = 0.0;            // ExtractionOptions::model_sigma
+  double line_rho_sigma_min_m = 0.0;    // ExtractionOptions::min_rho_sigma
+  double line_alpha_sigma_min_rad = 0.0;  // ExtractionOptions::min_alpha_sigma
 };
 
 // Empty when the settings give valid atlas and local-map options, else the first problem.

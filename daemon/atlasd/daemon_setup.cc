@@ -26,8 +26,19 @@ MapperSettings ToMapperSettings(const DaemonOptions& o) {
   s.max_sigma_theta = o.atlas.max_sigma_theta;
   s.frames_examined_per_step = o.atlas.frames_examined_per_step;
   s.match_candidates_per_step = o.atlas.match_candidates_per_step;
-  s.track_width_m = o.odometry.track_width_m;
+  const OdometryErrorConfig& n = o.noise.odometry;
+  s.odometry.track_width = o.odometry.track_width_m;
+  s.odometry.wheel_var_per_m = n.wheel_sigma_per_m * n.wheel_sigma_per_m;
+  s.odometry.xy_var_per_m = n.translation_sigma_per_m * n.translation_sigma_per_m;
+  s.odometry.xy_var_per_rad = n.translation_sigma_per_rad * n.translation_sigma_per_rad;
+  s.odometry.theta_var_per_m = n.rotation_sigma_per_m * n.rotation_sigma_per_m;
+  s.odometry.theta_var_per_rad = n.rotation_sigma_per_rad * n.rotation_sigma_per_rad;
+  s.odometry.wheel_scale_sigma = n.wheel_scale_sigma;
+  s.odometry.track_width_sigma = n.track_width_sigma;
   s.laser_range_sigma_m = o.noise.laser.range_sigma_m;
+  s.wall_sigma_m = o.noise.laser.wall_sigma_m;
+  s.line_rho_sigma_min_m = o.noise.laser.line_rho_sigma_min_m;
+  s.line_alpha_sigma_min_rad = o.noise.laser.line_alpha_sigma_min_deg * kDegToRad;
   return s;
 }
 

@@ -85,14 +85,20 @@ void VisitOptions(V& v, DaemonOptions& o) {
   v.Section("noise", [&] {
     v.Section("odometry", [&] {
       OdometryErrorConfig& n = o.noise.odometry;
+      v.Double("wheel_sigma_per_m", n.wheel_sigma_per_m, 0.0, 1.0);
       v.Double("translation_sigma_per_m", n.translation_sigma_per_m, 0.0, 1.0);
-      v.Double("rotation_sigma_per_rad", n.rotation_sigma_per_rad, 0.0, 1.0);
+      v.Double("translation_sigma_per_rad", n.translation_sigma_per_rad, 0.0, 1.0);
       v.Double("rotation_sigma_per_m", n.rotation_sigma_per_m, 0.0, 1.0);
+      v.Double("rotation_sigma_per_rad", n.rotation_sigma_per_rad, 0.0, 1.0);
+      v.Double("wheel_scale_sigma", n.wheel_scale_sigma, 0.0, 0.5);
+      v.Double("track_width_sigma", n.track_width_sigma, 0.0, 0.5);
     });
     v.Section("laser", [&] {
       LaserNoiseOptions& n = o.noise.laser;
       v.Double("range_sigma_m", n.range_sigma_m, 0.001, 1.0);
-      v.Double("bearing_sigma_deg", n.bearing_sigma_deg, 0.0, 5.0);
+      v.Double("wall_sigma_m", n.wall_sigma_m, 0.0, 1.0);
+      v.Double("line_rho_sigma_min_m", n.line_rho_sigma_min_m, 0.0, 1.0);
+      v.Double("line_alpha_sigma_min_deg", n.line_alpha_sigma_min_deg, 0.0, 30.0);
     });
   });
   v.Section("atlas", [&] {

@@ -62,16 +62,28 @@ struct SonarOptions {
   int queue_capacity = 32;
 };
 
-// Odometry error model: standard deviations that grow with the motion.
+// Odometry error model of the local maps (core/localmap OdometryNoiseOptions): each sigma is
+// the standard deviation after one unit of motion; variances grow linearly with the motion
+// (sigma with its square root). The calibration errors grow with the motion itself. Defaults:
+// the B21 of the mit-csail log (measured with atlas-replay, docs/atlas.md), a base whose
+// odometry turns a few degrees wrong in a second: generous for a well calibrated base.
 struct OdometryErrorConfig {
-  double translation_sigma_per_m = 0.05;  // metres of error per metre driven
-  double rotation_sigma_per_rad = 0.05;   // radians of error per radian turned
-  double rotation_sigma_per_m = 0.01;     // radians of heading error per metre driven
+  double wheel_sigma_per_m = 0.01;          // metres per metre rolled, each wheel
+  double translation_sigma_per_m = 0.0316;  // metres per metre driven, each of x and y
+  double translation_sigma_per_rad = 0.01;  // metres per radian turned
+  double rotation_sigma_per_m = 0.0707;     // radians of heading per metre driven
+  double rotation_sigma_per_rad = 0.173;    // radians of heading per radian turned
+  double wheel_scale_sigma = 0.0;           // relative wheel radius error
+  double track_width_sigma = 0.0;           // relative track width error
 };
 
 struct LaserNoiseOptions {
-  double range_sigma_m = 0.02;
-  double bearing_sigma_deg = 0.1;
+  double range_sigma_m = 0.01;
+  // Walls are not straight to the centimetre: extra noise normal to a line per point, and
+  // floors on a fitted line's (rho, alpha) standard deviations.
+  double wall_sigma_m = 0.03;
+  double line_rho_sigma_min_m = 0.03;
+  double line_alpha_sigma_min_deg = 1.15;
 };
 
 struct NoiseOptions {

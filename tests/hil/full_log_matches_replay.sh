@@ -48,7 +48,7 @@ sed -i 's/^max_range_m = 50.0/max_range_m = 8.0/; s/^republish_raw = true/republ
 "$ATLASD" --check-config "$WORK/atlasd.toml" >/dev/null 2>"$WORK/check.err" || fail "config: $(cat "$WORK/check.err")"
 
 # Replay first (it also gives the scan stamps), while nothing else runs.
-"$ATLAS_REPLAY" --out "$WORK/replay" --quiet "$DATASET" >"$WORK/replay.json" 2>"$WORK/replay.err" ||
+"$ATLAS_REPLAY" --config "$WORK/atlasd.toml" --out "$WORK/replay" --quiet "$DATASET" >"$WORK/replay.json" 2>"$WORK/replay.err" ||
   fail "atlas-replay failed: $(tail -n 3 "$WORK/replay.err")"
 
 LCM_DEFAULT_URL="${LCM_DEFAULT_URL}&recv_buf_size=16777216" lcm-logger --quiet --channel ATLAS_POSE \

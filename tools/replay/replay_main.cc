@@ -11,6 +11,8 @@
 #include <cstring>
 #include <string>
 
+#include "daemon/atlasd/daemon_setup.h"
+#include "daemon/config/config_loader.h"
 #include "drivers/carmen/reference_odometry.h"
 #include "tools/replay/replay_run.h"
 
@@ -51,6 +53,11 @@ Options:
     --line-period S      seconds per line for the line-order clock (default 0.05)
   --log-max-range M    ranges >= M metres in the log are no-return (aces-corrected: 50)
   --max-scans N        step only the first N scans (default: all)
+  --config FILE        atlasd's configuration file: the mapper ([atlas], [noise.*], laser
+                       max_range_m) and the step loop ([loop]) are taken from it, so that
+                       the replay maps as atlasd would (devices, LCM and state are ignored);
+                       the options below override it. Without it: the defaults shown below
+                       and core/localmap's noise models
   --max-range M        ranges beyond M metres are no-return for the maps (default 8)
   --map-capacity N     features per map-frame (default 10)
   --max-hypotheses N   live hypotheses (default 4)
@@ -58,7 +65,8 @@ Options:
   --quiet              no progress on stderr
   -h, --help           this text
 
-Exit status: 0 done, 1 the log could not be read or the output not written, 2 bad command line.
+Exit status: 0 done, 1 the log could not be read or the output not written, 2 bad command line,
+78 the --config file was rejected (each error with its key, line and column).
 )";
 
 int Usage(const std::string& what) {
@@ -90,6 +98,23 @@ int Main(int argc, char** argv) {
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
   bool quiet = false, corrected = false;
+  // --config first, so that the other options override what it sets.
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::string(argv[i]) != "--config") continue;
+    const ConfigResult config = LoadConfigFile(argv[i + 1]);
+    if (!config.ok()) {
+      std::fprintf(stderr, "atlas-replay: configuration rejected:\n");
+      for (const ConfigError& e : config.errors)
+        std::fprintf(stderr, "  %s\n", e.ToString().c_str());
+      return kExitConfigError;
+    }
+    if (std::string e = ValidateDerivedOptions(config.options); !e.empty()) {
+      std::fprintf(stderr, "atlas-replay: configuration rejected:\n%s", e.c_str());
+      return kExitConfigError;
+    }
+    options.mapper = ToMapperSettings(config.options);
+    options.loop = ToStepLoopOptions(config.options);
+  }
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](const char* name) -> const char* {
@@ -104,6 +129,8 @@ int Main(int argc, char** argv) {
       const char* v = value("--out");
       if (v == nullptr || *v == '\0') return Usage("--out needs a directory");
       out_dir = v;
+    } else if (a == "--config") {
+      if (value("--config") == nullptr) return Usage("--config needs a file");
     } else if (a == "--max-scans") {
       const char* v = value("--max-scans");
       long long n = 0;
