@@ -29,8 +29,8 @@ struct MapperSettings {
   // laser's range noise and line-fit floors. Defaults: core/localmap's.
   OdometryNoiseOptions odometry;
   double laser_range_sigma_m = 0.01;
-  double wall_sigma_m = 0.0;            // ExtractionOptions::model_sigma
-  double line_rho_sigma_min_m = 0.0;    // ExtractionOptions::min_rho_sigma
+  double wall_sigma_m = 0.0;              // ExtractionOptions::model_sigma
+  double line_rho_sigma_min_m = 0.0;      // ExtractionOptions::min_rho_sigma
   double line_alpha_sigma_min_rad = 0.0;  // ExtractionOptions::min_alpha_sigma
 };
 
