@@ -358,22 +358,9 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
     out.reason = MapMatchReason::kTooFewLines;
     return out;
   }
-  if (o.self_match) {
-    if (!self_a.complete || !self_b.complete) {
-      out.reason = MapMatchReason::kWorkBound;
-      return out;
-    }
-    for (const SelfMatch::Repetition& r : self_a.repetitions)
-      if (prior == nullptr || InsidePrior(Compose(r.transform, prior->mean), prior, o))
-        usable_a &= ~r.lines;
-    for (const SelfMatch::Repetition& r : self_b.repetitions)
-      if (prior == nullptr || InsidePrior(Compose(prior->mean, r.transform), prior, o))
-        usable_b &= ~r.lines;
-    if (std::popcount(usable_a) < o.min_support || std::popcount(usable_b) < o.min_support) {
-      out.result = MapMatchResult::kAmbiguous;
-      out.reason = MapMatchReason::kRepetitive;
-      return out;
-    }
+  if (o.self_match && (!self_a.complete || !self_b.complete)) {
+    out.reason = MapMatchReason::kWorkBound;
+    return out;
   }
   std::vector<Cluster> clusters;
   clusters.reserve(kMaxClusters);
@@ -408,6 +395,26 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
     out.reason = MapMatchReason::kRivalTransform;
     return out;
   }
+  // Condition 2 with the maps' own repetitions: a self-transform S of A (or S_b of B) makes
+  // S (+) T (or T (+) S_b) a rival placement of B. It matters when it lies inside the prior's
+  // gate and explains B (nearly) as well as T does, counted exactly.
+  if (o.self_match) {
+    int self_rival = 0;
+    auto consider = [&](const Pose2& rival) {
+      if (SameTransform(rival, best->t, o) || !InsidePrior(rival, prior, o)) return;
+      self_rival = std::max(self_rival, Verify(a, usable_a, b, usable_b, Rigid(rival), o).count);
+    };
+    for (const SelfMatch::Repetition& r : self_a.repetitions)
+      consider(Compose(r.transform, best->t));
+    for (const SelfMatch::Repetition& r : self_b.repetitions)
+      consider(Compose(best->t, r.transform));
+    if (self_rival > out.support - o.min_lead) {
+      out.rival_support = std::max(out.rival_support, self_rival);
+      out.result = MapMatchResult::kAmbiguous;
+      out.reason = MapMatchReason::kRepetitive;
+      return out;
+    }
+  }
 
   // t and its covariance from all matched lines (Gauss-Newton).
   Pose2 t = best->t;
@@ -436,6 +443,7 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
   }
   out.b_in_a.mean = t;
   out.b_in_a.cov = h.inverse();
+  if (o.unknown_line_correlation) out.b_in_a.cov *= static_cast<double>(best->support.count);
   out.b_in_a.cov = 0.5 * (out.b_in_a.cov + out.b_in_a.cov.transpose());
   out.result = MapMatchResult::kAccepted;
   out.reason = MapMatchReason::kMatched;
