@@ -19,6 +19,7 @@ bool DifferentLines(const Vec2& a, const Vec2& b, const SonarInitOptions& o) {
 SonarLineInitializer::SonarLineInitializer(const SonarInitOptions& init,
                                            const SonarModelOptions& model)
     : o_(init), m_(model), rng_(init.seed) {
+  if (!o_.edge_echoes) m_.edge_incidence = 0.0;
   vantage_.reserve(o_.max_vantage + 1);
   returns_.reserve(o_.max_returns + 1);
 }

@@ -13,7 +13,8 @@
 // least min_pair_baseline apart and takes the (at most two) lines tangent to both arcs with the
 // normal inside both cones (CommonTangentLines). Its consensus is the set of returns whose range
 // matches the distance to the line within inlier_sigmas (range noise plus the vantage pose's
-// uncertainty) with the line echoing (in the cone, or an edge echo). The best consensus is refined
+// uncertainty) with the line echoing (in the cone; edge echoes too only when
+// SonarInitOptions::edge_echoes). The best consensus is refined
 // by Gauss-Newton (weighted least squares over (rho, alpha) in the robot frame) and accepted only
 // when the decision is clear:
 //   - support >= min_support returns from >= min_vantage vantage points spanning >= min_baseline;

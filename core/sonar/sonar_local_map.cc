@@ -114,10 +114,12 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(max_rows, n);
   Eigen::VectorXd r(max_rows);
   std::vector<std::pair<int, Vec2>> extents;  // feature index, tangent point
+  std::vector<SonarPairing> pairings;
   std::vector<std::pair<SonarTransducer, double>> unexplained;
   int rows = 0;
   Eigen::RowVectorXd hk(n);
-  for (const SonarReturn& ret : reading.returns) {
+  for (int ri = 0; ri < out.returns; ++ri) {
+    const SonarReturn& ret = reading.returns[ri];
     if (ret.transducer < 0 || ret.transducer >= static_cast<int>(ring.size())) continue;
     SonarTransducer mount = ring[ret.transducer];
     const double range = ret.range;
@@ -133,6 +135,7 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
     double best_d2 = 0.0, second_d2 = -1.0, best_nu = 0.0;
     Eigen::RowVectorXd best_h(n);
     Vec2 best_foot = Vec2::Zero();
+    bool best_edge = false;
     bool near = false, behind = false;
     for (int k = 0; k < nf; ++k) {
       const int ik = 3 + 2 * k;
@@ -163,6 +166,7 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
         best_nu = innov;
         best_h = hk;
         best_foot = pr.foot;
+        best_edge = pr.edge_echo;
       } else if (second_d2 < 0.0 || d2 < second_d2) {
         second_d2 = d2;
       }
@@ -173,6 +177,7 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
       r(rows) = var;
       ++rows;
       extents.emplace_back(best, best_foot);
+      pairings.push_back(SonarPairing{ri, best, best_edge, best_nu});
     } else if (best >= 0) {
       ++out.ambiguous;
     } else if (!near &&
@@ -186,6 +191,7 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
     const Eigen::MatrixXd rm = r.head(rows).asDiagonal();
     if (ekf_.UpdateWithMeasurements(nu.head(rows), h.topRows(rows), rm)) {
       out.matched = rows;
+      out.pairings = std::move(pairings);
       for (const auto& [k, foot] : extents) ekf_.GrowFeatureExtent(k, foot, foot);
     }
   }

@@ -43,6 +43,14 @@
 
 namespace atlas {
 
+// One return applied to a feature by UpdateSonar.
+struct SonarPairing {
+  int return_index = -1;    // into the reading's returns
+  int feature = -1;         // feature index (state entries 3 + 2k, 4 + 2k)
+  bool edge_echo = false;   // paired as an edge-of-cone echo (SonarRangePrediction)
+  double innovation = 0.0;  // metres
+};
+
 struct SonarUpdate {
   int returns = 0;    // returns in the reading
   int usable = 0;     // with a range in [min_range, max_range_fraction * max_range)
@@ -53,6 +61,7 @@ struct SonarUpdate {
   int added = 0;      // features initialised
   GroupingOutcome grouping = GroupingOutcome::kInsufficient;
   std::vector<InitialisedLine> initialised;  // robot frame at this reading
+  std::vector<SonarPairing> pairings;        // the returns applied (when matched > 0)
 };
 
 class SonarLocalMap final : public LocalMap {

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -28,6 +29,7 @@
 #include "core/eval/error_stats.h"
 #include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
+#include "core/localmap/line_model.h"
 #include "core/sonar/sonar_local_map.h"
 #include "drivers/sim/building_generator.h"
 #include "drivers/sim/laser_model.h"
@@ -54,6 +56,8 @@ constexpr char kUsage[] =
     "                             [--laser 0|1 (1)] [--self-match 0|1 (1)] [--trace FILE]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
+    "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
+    "                             [--seed S=1] [--km K=0.15] [--capacity C=40] [--show N=10]\n"
     "\n"
     "mc:   simulated 20 m corridor, robot driving back and forth; on each seeded run a sonar-only\n"
     "      and a laser-only local map (same odometry). Prints the robot NEES (3 dof) against its\n"
@@ -70,6 +74,10 @@ constexpr char kUsage[] =
     "      next to dead reckoning. --trace FILE: one row per step and live hypothesis.\n"
     "      --self-match 0: map-matching without the self-match test of repetitive structure\n"
     "      (what Condition 2's refusals protect against).\n"
+    "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
+    "      to a feature is checked against the wall the simulator echoed it from (in-cone and\n"
+    "      edge-of-cone pairings: the true wall's line, another line, or no wall: multipath);\n"
+    "      the first N wrong pairings are listed; NEES every 10 s.\n"
     "fig9: the returns, vantage points and lines of the first K sonar feature initialisations\n"
     "      (map-frame, estimated poses) over the true walls, like the paper's Fig. 9.\n";
 
@@ -381,6 +389,23 @@ int RunFig9(const Args& args) {
   return 0;
 }
 
+// --world: atlas-sim's building (R rooms, layout from the seed) or the alcove loop.
+std::string SelectWorld(const std::string& name, double seed, double rooms,
+                        const sonar_eval::AlcoveLoopOptions& loop, sim::World* world) {
+  if (name == "building") {
+    sim::BuildingOptions bo;
+    bo.min_rooms = static_cast<int>(rooms);
+    *world = sim::GenerateBuilding(bo, static_cast<uint64_t>(seed));
+    return "";
+  }
+  if (name == "alcoves") {
+    if (std::string e = loop.Validate(); !e.empty()) return "alcove loop: " + e;
+    *world = sonar_eval::AlcoveLoopWorld(loop);
+    return "";
+  }
+  return "--world must be 'building' or 'alcoves', not '" + name + "'";
+}
+
 // ---- atlas mode: sonar-only and laser-only atlases on simulated runs ----
 
 // Mean over runs of the per-step NEES (steps where every run has a value), against the 95 %
@@ -529,20 +554,8 @@ int RunAtlasMode(const Args& args) {
   const std::string world_name =
       args.values.count("--world") ? args.values.at("--world") : "building";
   sim::World world;
-  if (world_name == "building") {
-    sim::BuildingOptions bo;
-    bo.min_rooms = static_cast<int>(rooms);
-    world = sim::GenerateBuilding(bo, static_cast<uint64_t>(seed));
-  } else if (world_name == "alcoves") {
-    if (std::string e = loop.Validate(); !e.empty()) {
-      std::fprintf(stderr, "atlas-sonar-eval atlas: alcove loop: %s\n", e.c_str());
-      return 2;
-    }
-    world = sonar_eval::AlcoveLoopWorld(loop);
-  } else {
-    std::fprintf(stderr,
-                 "atlas-sonar-eval atlas: --world must be 'building' or 'alcoves', not '%s'\n",
-                 world_name.c_str());
+  if (std::string e = SelectWorld(world_name, seed, rooms, loop, &world); !e.empty()) {
+    std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n", e.c_str());
     return 2;
   }
   std::FILE* trace = nullptr;
@@ -640,6 +653,144 @@ int RunAtlasMode(const Args& args) {
   return 0;
 }
 
+// ---- assoc mode: the sonar map's data association against the simulator's truth ----
+
+// The wall whose echo the transducer at `sensor` (world) reports, as the simulator decides it
+// (drivers/sim SonarModel::Fire: nearest ray of the cone meeting a wall within the critical
+// incidence), or -1 when no ray echoes (specular miss: no return, or a multipath one).
+int EchoingWall(const sim::RayCaster& caster, const sim::SonarOptions& so, const Pose2& sensor,
+                double beam_width, double max_range) {
+  const double critical_cos = std::cos(so.critical_incidence_deg * std::numbers::pi / 180.0);
+  double best = std::numeric_limits<double>::infinity();
+  int wall = -1;
+  const int n = so.rays_per_cone;
+  for (int k = 0; k < n; ++k) {
+    const double offset = n == 1 ? 0.0 : beam_width * (static_cast<double>(k) / (n - 1) - 0.5);
+    const Vec2 u(std::cos(sensor.theta + offset), std::sin(sensor.theta + offset));
+    const sim::RayHit hit = caster.Cast(Vec2(sensor.x, sensor.y), u, max_range);
+    if (!hit.hit()) continue;
+    const sim::Wall& w = caster.wall(hit.wall);
+    const Vec2 d = (w.b - w.a).normalized();
+    if (std::abs(u.x() * d.y() - u.y() * d.x()) >= critical_cos && hit.range < best) {
+      best = hit.range;
+      wall = hit.wall;
+    }
+  }
+  return wall;
+}
+
+// Canonical (rho, alpha) of the infinite line through a wall.
+Vec2 WallLine(const sim::Wall& w) {
+  const Vec2 d = (w.b - w.a).normalized();
+  double alpha = std::atan2(d.x(), -d.y());  // normal
+  double rho = w.a.x() * std::cos(alpha) + w.a.y() * std::sin(alpha);
+  CanonicalizeLine(rho, alpha);
+  return Vec2(rho, alpha);
+}
+
+int RunAssocMode(const Args& args) {
+  double ring = 24, seed = 1, km = 0.15, capacity = 40, show = 10;
+  sonar_eval::AlcoveLoopOptions loop;
+  std::string error;
+  if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
+      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
+      !GetNumberOption(args, "--km", 0.01, 100, km, error) ||
+      !GetNumberOption(args, "--capacity", 2, 200, capacity, error) ||
+      !GetNumberOption(args, "--show", 0, 1000, show, error)) {
+    std::fprintf(stderr, "atlas-sonar-eval assoc: %s\n", error.c_str());
+    return 2;
+  }
+  const std::string world_name =
+      args.values.count("--world") ? args.values.at("--world") : "alcoves";
+  sim::World world;
+  if (std::string e = SelectWorld(world_name, seed, 6, loop, &world); !e.empty()) {
+    std::fprintf(stderr, "atlas-sonar-eval assoc: %s\n", e.c_str());
+    return 2;
+  }
+  sim::SimulationOptions so;
+  so.length_m = km * 1000.0;
+  so.laser = false;
+  so.sonar = true;
+  so.sonar_options = CorridorRun::Sonar(static_cast<int>(ring));
+  so.seed = static_cast<uint64_t>(seed);
+  sonar_eval::SimRecording rec;
+  const sim::SimulationSummary sum = sim::Simulate(world, so, rec);
+  if (!sum.error.empty()) {
+    std::fprintf(stderr, "atlas-sonar-eval assoc: simulation failed: %s\n", sum.error.c_str());
+    return 1;
+  }
+  const sim::RayCaster caster(world.walls);
+  SonarLocalMap map(sonar_eval::SimulatedMapOptions(
+      RangeSensors::kSonar, static_cast<int>(capacity), so.odometry_options, so.sonar_options));
+  const auto& ring_mounts = so.sonar_options.ring;
+  bool first = true;
+  Pose2 last_odo, origin;
+  int counts[2][3] = {};  // [edge][correct, wrong line, no echo]
+  int shown = 0;
+  double next_print = 0.0;
+  for (const sonar_eval::SimRecording::Event& e : rec.Events()) {
+    if (!e.sonar) continue;
+    const Pose2 truth = rec.TruthAt(e.stamp);
+    if (first) {
+      origin = truth;
+      last_odo = e.odometry;
+      first = false;
+    }
+    map.Predict(Between(last_odo, e.odometry));
+    last_odo = e.odometry;
+    const Pose2 est_before = map.RobotPose().mean;
+    const Eigen::VectorXd x_before = map.Ekf().State();
+    const SonarUpdate up = map.UpdateSonar(e.reading, ring_mounts, true);
+    for (const SonarPairing& p : up.pairings) {
+      const SonarReturn& ret = e.reading.returns[p.return_index];
+      const SonarTransducer& m = ring_mounts[ret.transducer];
+      const int wall =
+          EchoingWall(caster, so.sonar_options, Compose(truth, m.pose), m.beam_width, m.max_range);
+      // Compared as seen from the robot: the feature from the estimated pose, the wall from the
+      // true one (both map and robot may be off together, which is not an association error).
+      const Pose2 at = Between(origin, truth);
+      const double rho = x_before(3 + 2 * p.feature), alpha = x_before(4 + 2 * p.feature);
+      const LinePrediction seen = PredictLine(est_before, rho, alpha);
+      Vec2 tw(0, 0);
+      int kind = 2;
+      if (wall >= 0) {
+        const Pose2 to_map = Inverse(origin);
+        const sim::Wall& w = caster.wall(wall);
+        tw = WallLine(sim::Wall{to_map.TransformPoint(w.a), to_map.TransformPoint(w.b)});
+        LinePrediction truth_seen = PredictLine(at, tw.x(), tw.y());
+        const Vec2 d = LineInnovation(seen.z, truth_seen);
+        kind = std::abs(d.y()) < 0.1 && std::abs(d.x()) < 0.15 ? 0 : 1;
+      }
+      ++counts[p.edge_echo][kind];
+      if (kind != 0 && shown < show) {
+        ++shown;
+        std::printf(
+            "t %.1f: transducer %d range %.2f paired %s with feature %d (seen at rho %.2f alpha "
+            "%.1f deg), innovation %.3f; true echo: %s (map frame rho %.2f alpha %.1f deg); "
+            "robot error %.3f m\n",
+            ToSeconds(e.stamp), ret.transducer, ret.range, p.edge_echo ? "as edge echo" : "in cone",
+            p.feature, seen.z.x(), seen.z.y() * 180 / std::numbers::pi, p.innovation,
+            wall < 0 ? "none (multipath)" : "another wall", tw.x(), tw.y() * 180 / std::numbers::pi,
+            (Vec2(est_before.x, est_before.y) -
+             Vec2(Between(origin, truth).x, Between(origin, truth).y))
+                .norm());
+      }
+    }
+    if (ToSeconds(e.stamp) >= next_print) {
+      next_print += 10.0;
+      std::printf("t %.0f s: NEES %.2f, %d lines\n", ToSeconds(e.stamp),
+                  sonar_eval::PoseNees(map.RobotPose(), Between(origin, truth)), map.Complexity());
+    }
+  }
+  for (int edge = 0; edge < 2; ++edge) {
+    std::printf(
+        "%s pairings: %d with the true wall's line, %d with another line, %d where no wall "
+        "echoes (multipath)\n",
+        edge ? "edge-echo" : "in-cone", counts[edge][0], counts[edge][1], counts[edge][2]);
+  }
+  return 0;
+}
+
 }  // namespace
 }  // namespace atlas
 
@@ -668,6 +819,15 @@ int main(int argc, char** argv) {
       return 2;
     }
     return atlas::RunAtlasMode(a);
+  }
+  if (cmd == "assoc") {
+    const atlas::Args a = atlas::eval::ParseToolOptions(
+        argc, argv, 2, {"--world", "--ring", "--seed", "--km", "--capacity", "--show"});
+    if (!a.error.empty()) {
+      std::fprintf(stderr, "atlas-sonar-eval assoc: %s\n%s", a.error.c_str(), atlas::kUsage);
+      return 2;
+    }
+    return atlas::RunAssocMode(a);
   }
   if (cmd == "fig9") {
     const atlas::Args a =
