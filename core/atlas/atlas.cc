@@ -388,6 +388,23 @@ void Atlas::Traverse(int d) {
   stats_.seeded += seeded;
 }
 
+bool Atlas::SelfMatchCached(FrameId f) const {
+  const int complexity = graph_.Frame(f).map->Complexity();
+  for (const CachedSelfMatch& c : self_cache_)
+    if (c.frame == f && c.complexity == complexity) return true;
+  return false;
+}
+
+bool Atlas::SpendSearchOnSelfMatch(FrameId a, FrameId b) {
+  for (FrameId f : {a, b}) {
+    if (SelfMatchCached(f)) continue;
+    SelfMatchOf(f);
+    ++stats_.self_matches;
+    return true;
+  }
+  return false;
+}
+
 const SelfMatch& Atlas::SelfMatchOf(FrameId f) {
   const int complexity = graph_.Frame(f).map->Complexity();
   for (CachedSelfMatch& c : self_cache_)
@@ -422,8 +439,9 @@ void Atlas::MatchMaps(int d) {
   if (candidates_.empty()) return;
   const int n = static_cast<int>(candidates_.size());
   const int budget = std::min(n, options_.match_candidates_per_step);
-  for (int tried = 0, start = static_cast<int>(match_cursor_ % n);
-       tried < n && stats_.candidates_matched < budget; ++tried) {
+  const int start = static_cast<int>(match_cursor_ % n);
+  int advance = 0;
+  for (int tried = 0; tried < n && Searches() < budget; ++tried) {
     const ProjectedFrame& e = p.entries[candidates_[(start + tried) % n]];
     const int ca = dom_map.Complexity();
     const int cb = graph_.Frame(e.frame).map->Complexity();
@@ -431,13 +449,19 @@ void Atlas::MatchMaps(int d) {
     for (const TriedPair& t : tried_)
       unchanged |=
           t.a == dom_frame && t.b == e.frame && t.complexity_a == ca && t.complexity_b == cb;
+    advance = tried + 1;
     if (unchanged) continue;
+    // A self-match not cached yet is this search; the pair is matched at a later step.
+    if (SpendSearchOnSelfMatch(dom_frame, e.frame)) {
+      advance = tried;
+      continue;
+    }
     tried_[tried_next_] = TriedPair{dom_frame, e.frame, ca, cb};
     tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
     ++stats_.candidates_matched;
     MatchPair(dom_frame, e.frame, &e.pose);
   }
-  match_cursor_ += budget;
+  match_cursor_ += static_cast<uint64_t>(advance);
 }
 
 void Atlas::MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior) {
@@ -485,6 +509,10 @@ void Atlas::MatchUnconnected(int d) {
     for (const TriedPair& t : tried_)
       unchanged |= t.a == dom_frame && t.b == f && t.complexity_a == ca && t.complexity_b == cb;
     if (unchanged) continue;
+    if (SpendSearchOnSelfMatch(dom_frame, f)) {
+      --resume_cursor_;  // this frame again at the next step
+      break;
+    }
     tried_[tried_next_] = TriedPair{dom_frame, f, ca, cb};
     tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
     ++matched;

@@ -29,7 +29,11 @@
 //     dominant frame that are not adjacent to it, whose origin lies within `match_radius` of
 //     the robot (plus 3 sigma of the projection), with enough lines. At most
 //     `match_candidates_per_step` are matched per step, round-robin over the candidates, so the
-//     search is spread over steps; a pair is not re-matched until one of its maps changed. The
+//     search is spread over steps; a pair is not re-matched until one of its maps changed. A
+//     self-match (map_match.h) that is not cached counts as one of those searches: it is
+//     computed in this step and the pair matched in a later one, so that a step does at most
+//     `match_candidates_per_step` bounded searches of either kind (each bounded by
+//     match.max_line_checks), never a self-match of each map and a cross-match at once. The
 //     projection (prior) only gates (Condition 2); t comes from the maps (map_match.h).
 //     After ResumeInNewFrame() the graph has unconnected parts; their frames are matched
 //     without a prior (at most `resume_candidates_per_step`, see ResumeInNewFrame).
@@ -84,7 +88,7 @@ struct AtlasOptions {
   int match_interval_steps = 1;
   int min_match_lines = 4;
   double match_radius = 10.0;  // metres
-  int self_match_cache = 16;   // frames whose self-match is kept
+  int self_match_cache = 32;   // frames whose self-match is kept (> the candidates of a step)
   int match_memory = 64;       // recently matched pairs remembered (not re-matched unchanged)
   int max_refinements_per_step = 1;
   int refine_interval_steps = 10;
@@ -102,6 +106,7 @@ struct StepStats {
   int hypotheses_alive = 0;
   int frames_examined = 0;  // projection entries settled this step
   int candidates_matched = 0;
+  int self_matches = 0;      // self-matches computed (each one bounded search, as a cross-match)
   int match_hypotheses = 0;  // transform hypotheses verified by map-matching
   int seeded = 0, matured = 0, deleted = 0, retired = 0, killed_by_w = 0;
   int bootstraps = 0;
@@ -204,6 +209,12 @@ class Atlas {
   AddEdgeResult AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, EdgeKind kind);
   void RefineEdges();
   const SelfMatch& SelfMatchOf(FrameId f);
+  bool SelfMatchCached(FrameId f) const;
+  // Computes the first of the two frames' self-matches that is not cached and returns true (the
+  // step's search was spent on it), or returns false when both are cached.
+  bool SpendSearchOnSelfMatch(FrameId a, FrameId b);
+  // Bounded searches done this step: cross-matches and self-matches.
+  int Searches() const { return stats_.candidates_matched + stats_.self_matches; }
 
   AtlasOptions options_;
   MapFactory factory_;

@@ -31,6 +31,10 @@ void CheckInvariants(const Atlas& atlas) {
   const StepStats& s = atlas.LastStats();
   EXPECT_LE(s.frames_examined, o.projection_max_frames);
   EXPECT_LE(s.candidates_matched, o.match_candidates_per_step);
+  // Self-matches are searches of the same budget: never a self-match of each map and a
+  // cross-match in one step.
+  EXPECT_LE(s.candidates_matched + s.match_unconnected + s.self_matches,
+            o.match_candidates_per_step + o.resume_candidates_per_step);
   EXPECT_LE(s.seeded, o.max_seeds_per_step);
   EXPECT_LE(s.refined, o.max_refinements_per_step);
   for (FrameId f = 0; f < atlas.Graph().FrameCount(); ++f)
@@ -302,7 +306,7 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
   AtlasOptions o = TestWorld::Options();
   Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
   Pose2 truth{};
-  int accepted = 0, matched_reason = 0;
+  int accepted = 0, matched_reason = 0, self_matches = 0;
   for (int i = 0; i < 200; ++i) {
     const Pose2 delta = SquareRouteDelta(i);
     if (i > 0) truth = Compose(truth, delta);
@@ -310,6 +314,7 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
     const StepStats& s = atlas.Step(delta, TestScan());
     CheckInvariants(atlas);
     accepted += s.match_accepted;
+    self_matches += s.self_matches;
     // Every map-matching outcome has exactly one reason; an accepted match has kMatched.
     int by_reason = 0;
     for (int n : s.match_reasons) by_reason += n;
@@ -320,6 +325,7 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
   }
   EXPECT_GE(accepted, 1);
   EXPECT_GE(matched_reason, accepted);
+  EXPECT_GE(self_matches, 2) << "self-matches are computed in steps of their own";
   const int loop_edges = CheckMapMatchEdges(atlas.Graph(), *frame_in_world);
   EXPECT_GE(loop_edges, 1) << "no edge closes the loop";
   std::printf("frames %d, map-match edges accepted %d, loop edges %d\n", atlas.Graph().FrameCount(),
