@@ -3,6 +3,7 @@
 #include "core/atlas/line_map_bootstrapper.h"
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/localmap_options.h"
+#include "core/sonar/sonar_local_map.h"
 
 namespace atlas {
 namespace {
@@ -35,19 +36,38 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
   return o;
 }
 
+SonarLocalMapOptions ToSonarMapOptions(const MapperSettings& s) {
+  SonarLocalMapOptions o;
+  o.sensors = s.sensors;
+  o.ring = s.sonar_ring;
+  o.line_map = ToLocalMapOptions(s);
+  return o;
+}
+
 }  // namespace
 
 std::string ValidateMapperSettings(const MapperSettings& s) {
   if (std::string e = ToLocalMapOptions(s).Validate(); !e.empty()) return "local map: " + e;
+  if (s.sensors != RangeSensors::kLaser) {
+    if (s.sonar_ring.empty()) return "sonar local map: the sonar ring has no transducer";
+    if (std::string e = ToSonarMapOptions(s).Validate(); !e.empty()) return "sonar local map: " + e;
+  }
   if (std::string e = ToAtlasOptions(s).Validate(); !e.empty()) return "atlas: " + e;
   return "";
 }
 
 std::unique_ptr<Atlas> MakeAtlas(const MapperSettings& s) {
   const LocalMapOptions map_options = ToLocalMapOptions(s);
+  if (s.sensors == RangeSensors::kLaser) {
+    return std::make_unique<Atlas>(
+        ToAtlasOptions(s), [map_options]() { return std::make_unique<LineEkfMap>(map_options); },
+        std::make_shared<LineMapBootstrapper>(map_options));
+  }
+  const SonarLocalMapOptions sonar = ToSonarMapOptions(s);
+  std::shared_ptr<const PoseBootstrapper> w;
+  if (s.sensors == RangeSensors::kBoth) w = std::make_shared<LineMapBootstrapper>(map_options);
   return std::make_unique<Atlas>(
-      ToAtlasOptions(s), [map_options]() { return std::make_unique<LineEkfMap>(map_options); },
-      std::make_shared<LineMapBootstrapper>(map_options));
+      ToAtlasOptions(s), [sonar]() { return std::make_unique<SonarLocalMap>(sonar); }, w);
 }
 
 Mat3 OdometryIncrementNoise(const Pose2& delta, const MapperSettings& s) {

@@ -1,6 +1,9 @@
 #pragma once
-// Builds the Atlas that atlasd steps: line-EKF local maps (core/localmap) behind the Atlas
-// framework (core/atlas), with w (eq. 12) bound by LineMapBootstrapper.
+// Builds the Atlas that atlasd steps: local maps behind the Atlas framework (core/atlas). With
+// the laser alone (MapperSettings::sensors) they are line-EKF maps (core/localmap), with w
+// (eq. 12) bound by LineMapBootstrapper; with the sonar ring alone or with both they are
+// SonarLocalMaps (core/sonar: the same EKF, fed by Atlas::Step with SonarReadings too), w from
+// the laser scans when there is a laser, none for sonar alone (juveniles judged on q).
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
 // daemon_setup.cc, so that the replay tools build the same mapper without the configuration
@@ -9,9 +12,11 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/atlas/atlas.h"
 #include "core/localmap/localmap_options.h"
+#include "core/sonar/sonar_options.h"
 
 namespace atlas {
 
@@ -32,6 +37,10 @@ struct MapperSettings {
   double wall_sigma_m = 0.0;              // ExtractionOptions::model_sigma
   double line_rho_sigma_min_m = 0.0;      // ExtractionOptions::min_rho_sigma
   double line_alpha_sigma_min_rad = 0.0;  // ExtractionOptions::min_alpha_sigma
+  // The range sensors the maps use, and the sonar ring's geometry (index = transducer) when
+  // they use the sonar; the sonar model keeps core/sonar's defaults.
+  RangeSensors sensors = RangeSensors::kLaser;
+  std::vector<SonarTransducer> sonar_ring;
 };
 
 // Empty when the settings give valid atlas and local-map options, else the first problem.

@@ -13,6 +13,10 @@ constexpr double kDegToRad = M_PI / 180.0;
 int ReaderPriority(const DaemonOptions& o) {
   return o.scheduling.policy == SchedPolicy::kOther ? 0 : o.scheduling.priority;
 }
+
+std::vector<SonarTransducer> SonarRingOf(const DaemonOptions& o) {
+  return o.sonar.ring == SonarRing::kB21_24 ? p2os::B21SonarRing() : p2os::P3dxSonarRing();
+}
 }  // namespace
 
 MapperSettings ToMapperSettings(const DaemonOptions& o) {
@@ -39,6 +43,18 @@ MapperSettings ToMapperSettings(const DaemonOptions& o) {
   s.wall_sigma_m = o.noise.laser.wall_sigma_m;
   s.line_rho_sigma_min_m = o.noise.laser.line_rho_sigma_min_m;
   s.line_alpha_sigma_min_rad = o.noise.laser.line_alpha_sigma_min_deg * kDegToRad;
+  switch (o.localmap.sensors) {
+    case LocalMapSensors::kLaser:
+      s.sensors = RangeSensors::kLaser;
+      break;
+    case LocalMapSensors::kSonar:
+      s.sensors = RangeSensors::kSonar;
+      break;
+    case LocalMapSensors::kBoth:
+      s.sensors = RangeSensors::kBoth;
+      break;
+  }
+  if (s.sensors != RangeSensors::kLaser) s.sonar_ring = SonarRingOf(o);
   return s;
 }
 
@@ -85,7 +101,7 @@ SonarReaderOptions ToSonarReaderOptions(const DaemonOptions& o) {
     if (std::find(s.probe_rates.begin(), s.probe_rates.end(), b) == s.probe_rates.end())
       s.probe_rates.push_back(b);
   s.sonar.range_factor_mm = o.sonar.range_factor_mm;
-  s.sonar.ring = o.sonar.ring == SonarRing::kB21_24 ? p2os::B21SonarRing() : p2os::P3dxSonarRing();
+  s.sonar.ring = SonarRingOf(o);
   s.queue_capacity = static_cast<size_t>(o.sonar.queue_capacity);
   s.reconnect.realtime_priority = ReaderPriority(o);
   return s;

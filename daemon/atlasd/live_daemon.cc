@@ -163,13 +163,17 @@ void LiveDaemon::Drain() {
     if (republish_raw_) publisher_->RawOdometry(o);
     loop_->AddOdometry(o);
   }
+  // localmap.sensors: the maps are stepped with the laser, the sonar, or both.
+  const LocalMapSensors maps_use = options_.localmap.sensors;
   SonarReading s;
-  while (sonar_ && sonar_->Pop(&s))
+  while (sonar_ && sonar_->Pop(&s)) {
     if (republish_raw_) publisher_->RawSonar(s);
+    if (maps_use != LocalMapSensors::kLaser) loop_->AddSonar(std::move(s));
+  }
   LaserScan scan;
   while (laser_ && laser_->Pop(&scan)) {
     if (republish_raw_) publisher_->RawLaser(scan);
-    loop_->AddScan(std::move(scan));
+    if (maps_use != LocalMapSensors::kSonar) loop_->AddScan(std::move(scan));
   }
 }
 

@@ -5,8 +5,10 @@
 // Threads:
 // - one reader thread per enabled device (drivers/device), each with its SPSC queue;
 // - the loop thread: drains the queues (odometry first, then sonar, then scans), republishes
-//   raw data when lcm.republish_raw, steps the atlas on the oldest pending scan (older ones
-//   beyond loop.max_pending_scans are dropped and counted), publishes the pose at every step,
+//   raw data when lcm.republish_raw, steps the atlas on the oldest pending scan, or sonar
+//   reading when localmap.sensors maps with the sonar (older ones beyond
+//   loop.max_pending_scans are dropped and counted; a sonar reading waits for the next wake-up,
+//   at most 10 ms, as the sonar reader does not wake the loop), publishes the pose at every step,
 //   the local map, graph and hypotheses at their periods, and health every
 //   lcm.health_period_s; when idle it sleeps until the laser reader queues a scan (at most
 //   10 ms, for dead reckoning and health), never polling and never blocking on a device. It runs

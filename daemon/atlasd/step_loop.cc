@@ -5,7 +5,23 @@
 namespace atlas {
 namespace {
 constexpr size_t kPeriodSample = 2048;
+
+// Appends to a fixed ring (head, size), dropping and counting the oldest when full; returns the
+// slot written.
+template <typename T>
+size_t PushDroppingOldest(std::vector<T>& ring, size_t& head, size_t& size, int64_t& dropped,
+                          T&& item) {
+  if (size == ring.size()) {
+    head = (head + 1) % ring.size();
+    --size;
+    ++dropped;
+  }
+  const size_t slot = (head + size) % ring.size();
+  ring[slot] = std::move(item);
+  ++size;
+  return slot;
 }
+}  // namespace
 
 std::string StepLoopOptions::Validate() const {
   if (step_budget <= Duration::zero()) return "step budget must be positive";
@@ -22,7 +38,9 @@ StepLoop::StepLoop(const StepLoopOptions& options, const MapperSettings& setting
       atlas_(atlas),
       track_(options.odometry_capacity),
       pending_(static_cast<size_t>(options.max_pending_scans)),
-      pending_odometry_(static_cast<size_t>(options.max_pending_scans)) {
+      pending_odometry_(static_cast<size_t>(options.max_pending_scans)),
+      sonar_(static_cast<size_t>(options.max_pending_scans)),
+      sonar_odometry_(static_cast<size_t>(options.max_pending_scans)) {
   period_us_.reserve(kPeriodSample);
   scratch_us_.reserve(kPeriodSample);
 }
@@ -34,34 +52,39 @@ void StepLoop::AddOdometry(const OdometrySample& sample) {
     last_scan_stamp_ = sample.stamp;
   }
   track_.Add(sample);
-  if (track_.Newest().stamp - last_scan_stamp_ > options_.laser_timeout && pending_size_ == 0)
+  if (track_.Newest().stamp - last_scan_stamp_ > options_.laser_timeout && Pending() == 0)
     laser_silent_ = true;
 }
 
 void StepLoop::AddScan(LaserScan&& scan) {
-  if (pending_size_ == pending_.size()) {
-    pending_head_ = (pending_head_ + 1) % pending_.size();
-    --pending_size_;
-    ++dropped_scans_;
-  }
-  const size_t slot = (pending_head_ + pending_size_) % pending_.size();
-  pending_[slot] = std::move(scan);
+  const size_t slot =
+      PushDroppingOldest(pending_, pending_head_, pending_size_, dropped_scans_, std::move(scan));
   pending_odometry_[slot] = track_.added();
-  ++pending_size_;
+}
+
+void StepLoop::AddSonar(SonarReading&& reading) {
+  const size_t slot =
+      PushDroppingOldest(sonar_, sonar_head_, sonar_size_, dropped_sonar_, std::move(reading));
+  sonar_odometry_[slot] = track_.added();
 }
 
 bool StepLoop::StepOne(StepSink* sink) {
-  if (pending_size_ == 0) {
+  if (pending_size_ == 0 && sonar_size_ == 0) {
     if (laser_silent_) DeadReckon(sink);
     return false;
   }
+  const bool sonar = sonar_size_ > 0 && (pending_size_ == 0 ||
+                                         sonar_[sonar_head_].stamp < pending_[pending_head_].stamp);
   LaserScan& scan = pending_[pending_head_];
-  const float max_range = static_cast<float>(options_.max_range_m);
-  for (float& r : scan.ranges)
-    if (!(r < max_range)) r = kNoReturn;
+  const Time stamp = sonar ? sonar_[sonar_head_].stamp : scan.stamp;
+  if (!sonar) {
+    const float max_range = static_cast<float>(options_.max_range_m);
+    for (float& r : scan.ranges)
+      if (!(r < max_range)) r = kNoReturn;
+  }
   Pose2 odometry;
-  const OdometryLookup lookup =
-      track_.PoseAt(scan.stamp, pending_odometry_[pending_head_], &odometry);
+  const OdometryLookup lookup = track_.PoseAt(
+      stamp, sonar ? sonar_odometry_[sonar_head_] : pending_odometry_[pending_head_], &odometry);
   if (lookup == OdometryLookup::kNoData) {
     ++scans_without_odometry_;
     odometry = have_previous_ ? previous_odometry_ : Pose2{};
@@ -70,15 +93,20 @@ bool StepLoop::StepOne(StepSink* sink) {
   if (!have_previous_) laser_silent_ = false;
 
   const auto t0 = std::chrono::steady_clock::now();
-  atlas_->Localize(delta, scan);
+  if (sonar) {
+    atlas_->Localize(delta, sonar_[sonar_head_]);
+    sonar_head_ = (sonar_head_ + 1) % sonar_.size();
+    --sonar_size_;
+  } else {
+    atlas_->Localize(delta, scan);
+    pending_head_ = (pending_head_ + 1) % pending_.size();
+    --pending_size_;
+  }
   have_previous_ = true;
   previous_odometry_ = odometry;
-  last_scan_stamp_ = scan.stamp;
+  last_scan_stamp_ = stamp;
   laser_silent_ = false;
   last_dominant_ = atlas_->Dominant();
-  const Time stamp = scan.stamp;
-  pending_head_ = (pending_head_ + 1) % pending_.size();
-  --pending_size_;
   sink->OnPose(stamp, last_dominant_, PoseSource::kScan);
   atlas_->MaintainGraph();
   const auto elapsed = std::chrono::steady_clock::now() - t0;

@@ -22,6 +22,12 @@
 //   last stepped scan, the laser is considered away: every `dead_reckoning_period` of odometry
 //   the sink gets the last dominant pose moved by the odometry since that scan, with covariance
 //   grown by the maps' odometry noise model, and laser_silent() is true until a scan is stepped.
+// - Sonar (localmap.sensors "sonar" or "both"): AddSonar() queues ring readings in a second
+//   ring of `max_pending_scans` (oldest dropped and counted, dropped_sonar); StepOne() steps
+//   the oldest pending item of either ring by stamp, a reading with Atlas::Localize(delta,
+//   reading), with the odometry increment taken as for a scan. A stepped reading counts as a
+//   range step for the laser-silence rule (with sonar alone there is no laser to wait for).
+//   The caller adds only the kinds its maps use.
 // - Deterministic: given the same calls in the same order, the same outputs (replay relies on
 //   it); only the measured step times differ.
 
@@ -71,8 +77,9 @@ class StepLoop {
 
   void AddOdometry(const OdometrySample& sample);
   void AddScan(LaserScan&& scan);
-  size_t Pending() const { return pending_size_; }
-  // Steps the oldest pending scan; false when none is pending.
+  void AddSonar(SonarReading&& reading);
+  size_t Pending() const { return pending_size_ + sonar_size_; }
+  // Steps the oldest pending scan or sonar reading; false when none is pending.
   bool StepOne(StepSink* sink);
   // Steps every pending scan.
   int StepAll(StepSink* sink);
@@ -89,6 +96,7 @@ class StepLoop {
   int64_t steps() const { return steps_; }
   int64_t overruns() const { return overruns_; }
   int64_t dropped_scans() const { return dropped_scans_; }
+  int64_t dropped_sonar() const { return dropped_sonar_; }
   int64_t scans_without_odometry() const { return scans_without_odometry_; }
   bool laser_silent() const { return laser_silent_; }
   Time last_scan_stamp() const { return last_scan_stamp_; }
@@ -105,6 +113,10 @@ class StepLoop {
   std::vector<LaserScan> pending_;          // ring
   std::vector<uint64_t> pending_odometry_;  // odometry samples known at each scan's arrival
   size_t pending_head_ = 0, pending_size_ = 0;
+  std::vector<SonarReading> sonar_;  // ring, like pending_
+  std::vector<uint64_t> sonar_odometry_;
+  size_t sonar_head_ = 0, sonar_size_ = 0;
+  int64_t dropped_sonar_ = 0;
   bool have_previous_ = false;
   Pose2 previous_odometry_;
   Time last_scan_stamp_{};

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <vector>
 
 #include "core/atlas/atlas_test_world.h"
+#include "core/sonar/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
@@ -136,6 +139,110 @@ TEST_F(StepLoopTest, PublishesOnOdometryAloneWhenNoScanEverCame) {
   ASSERT_FALSE(sink.poses.empty());
   EXPECT_FALSE(sink.poses.back().pose.valid);  // no frame yet
   EXPECT_NEAR(sink.poses.back().pose.pose.mean.x, 0.5, 1e-6);
+}
+
+SonarReading SonarAt(double t) {
+  SonarReading r;
+  r.stamp = FromSeconds(t);
+  r.returns.push_back(SonarReturn{0, 1.0f});
+  return r;
+}
+
+// localmap.sensors "both": scans and sonar readings are stepped in stamp order, each once.
+TEST_F(StepLoopTest, StepsScansAndSonarReadingsInStampOrder) {
+  StepLoopOptions o;
+  o.max_pending_scans = 4;
+  StepLoop loop(o, settings_, &atlas_);
+  RecordingSink sink;
+  loop.AddOdometry({FromSeconds(0.0), Pose2{}});
+  loop.AddOdometry({FromSeconds(0.2), Pose2{0.2, 0, 0}});
+  loop.AddScan(ScanAt(0.0));
+  loop.AddScan(ScanAt(0.1));
+  loop.AddSonar(SonarAt(0.05));
+  loop.AddSonar(SonarAt(0.15));
+  EXPECT_EQ(loop.Pending(), 4u);
+  EXPECT_EQ(loop.StepAll(&sink), 4);
+  ASSERT_EQ(sink.poses.size(), 4u);
+  const double order[] = {0.0, 0.05, 0.1, 0.15};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(sink.poses[i].stamp, FromSeconds(order[i]));
+    EXPECT_EQ(sink.poses[i].source, PoseSource::kScan);
+  }
+  // The fake maps follow the odometry, interpolated to each item's stamp.
+  EXPECT_NEAR(sink.poses[3].pose.pose.mean.x - sink.poses[0].pose.pose.mean.x, 0.15, 1e-6);
+  EXPECT_EQ(atlas_.StepCount(), 4);
+  // The sonar ring has its own bound: the oldest readings are dropped and counted.
+  for (int i = 0; i < 6; ++i) loop.AddSonar(SonarAt(0.2 + 0.01 * i));
+  EXPECT_EQ(loop.dropped_sonar(), 2);
+  EXPECT_EQ(loop.dropped_scans(), 0);
+}
+
+// localmap.sensors "sonar": MakeAtlas builds sonar-only maps, and a robot driving down a
+// corridor with a 24-transducer ring (the tangent model, core/sonar fake_sonar_ring.h) maps its
+// walls and is localised by sonar steps alone; no laser, and no dead reckoning.
+TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
+  MapperSettings s;
+  s.sensors = RangeSensors::kSonar;
+  s.sonar_ring = FakeSonarRing24();
+  ASSERT_EQ(ValidateMapperSettings(s), "");
+  MapperSettings no_ring = s;
+  no_ring.sonar_ring.clear();
+  EXPECT_NE(ValidateMapperSettings(no_ring), "");
+  std::unique_ptr<Atlas> atlas = MakeAtlas(s);
+  StepLoop loop(StepLoopOptions{}, s, atlas.get());
+  RecordingSink sink;
+  const std::vector<FakeSonarWall> walls = {{Vec2(-5, 1.2), Vec2(30, 1.2)},
+                                            {Vec2(-5, -1.2), Vec2(30, -1.2)}};
+  std::mt19937_64 rng(5);
+  // 12 s at 0.5 m/s along the corridor; odometry at 50 Hz, the ring at 10 Hz.
+  int readings = 0;
+  for (int i = 0; i <= 600; ++i) {
+    const double t = 0.02 * i;
+    const Pose2 robot{0.5 * t, 0.0, 0.0};
+    loop.AddOdometry({FromSeconds(t), robot});
+    if (i % 5 == 0) {
+      SonarReading r = FireFakeSonarRing(walls, s.sonar_ring, robot, 0.01, rng);
+      r.stamp = FromSeconds(t);
+      loop.AddSonar(std::move(r));
+      ++readings;
+    }
+    loop.StepAll(&sink);
+  }
+  EXPECT_EQ(loop.steps(), readings);
+  EXPECT_FALSE(loop.laser_silent());
+  ASSERT_FALSE(sink.poses.empty());
+  for (const Recorded& r : sink.poses) EXPECT_EQ(r.source, PoseSource::kScan);
+  const DominantOutput d = atlas->Dominant();
+  ASSERT_TRUE(d.valid);
+  const LocalMap& map = *atlas->Graph().Frame(d.frame).map;
+  // Both walls mapped: lines at y = +-1.2 in the start frame (frame 0: the robot did not leave
+  // it in 6 m).
+  EXPECT_EQ(d.frame, 0);
+  int walls_found = 0;
+  for (const MapLine& l : map.Lines()) {
+    walls_found +=
+        std::abs(std::abs(l.rho) - 1.2) < 0.1 && std::abs(std::abs(std::sin(l.alpha)) - 1.0) < 0.01;
+  }
+  EXPECT_GE(walls_found, 2);
+  EXPECT_NEAR(d.pose.mean.y, 0.0, 0.1);
+  EXPECT_NEAR(d.pose.mean.theta, 0.0, 0.03);
+  EXPECT_NEAR(d.pose.mean.x, 6.0, 0.3);
+}
+
+// A saved atlas of laser maps is not read as one of sonar maps (start moves it aside).
+TEST(StepLoopSonar, AtlasImageOfTheOtherMapKindIsRefused) {
+  MapperSettings laser;
+  std::unique_ptr<Atlas> a = MakeAtlas(laser);
+  a->Step(Pose2{}, TestScan());
+  MapperSettings sonar;
+  sonar.sensors = RangeSensors::kSonar;
+  sonar.sonar_ring = FakeSonarRing24();
+  EXPECT_FALSE(MakeAtlas(sonar)->Deserialize(a->Serialize()));
+  EXPECT_TRUE(MakeAtlas(laser)->Deserialize(a->Serialize()));
+  std::unique_ptr<Atlas> b = MakeAtlas(sonar);
+  b->Step(Pose2{}, SonarAt(0.0));
+  EXPECT_FALSE(MakeAtlas(laser)->Deserialize(b->Serialize()));
+  EXPECT_TRUE(MakeAtlas(sonar)->Deserialize(b->Serialize()));
 }
 
 }  // namespace

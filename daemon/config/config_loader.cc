@@ -424,6 +424,12 @@ void CrossCheck(const DaemonOptions& o,
   if (o.sonar.enabled && o.laser.enabled && o.sonar.device == o.laser.device) {
     report("sonar.device", "is the same device as laser.device");
   }
+  if (o.localmap.sensors != LocalMapSensors::kLaser && !o.sonar.enabled) {
+    report("localmap.sensors", "maps with the sonar: needs sonar.enabled = true");
+  }
+  if (o.localmap.sensors == LocalMapSensors::kBoth && !o.laser.enabled) {
+    report("localmap.sensors", "\"both\" maps with the laser too: needs laser.enabled = true");
+  }
   const bool realtime = o.scheduling.policy != SchedPolicy::kOther;
   if (realtime && o.scheduling.priority < 1) {
     report("scheduling.priority", "must be 1..99 with policy \"fifo\" or \"rr\"");

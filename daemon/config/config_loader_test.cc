@@ -9,7 +9,6 @@
 #include <map>
 #include <sstream>
 
-
 namespace atlas {
 namespace {
 
@@ -182,6 +181,34 @@ TEST(ConfigLoader, CrossFieldRulesNameKeyAndLine) {
                  "lcm.channels.raw_laser", 2, "same channel as lcm.channels.pose");
 }
 
+// localmap.sensors: the local maps run on the laser, the sonar or both (issue 7).
+TEST(ConfigLoader, LocalMapSensorsChoosesLaserSonarOrBoth) {
+  const ConfigResult sonar =
+      LoadConfigString("[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\n", "test.toml");
+  ASSERT_TRUE(sonar.ok()) << sonar.errors[0].ToString();
+  EXPECT_EQ(sonar.options.localmap.sensors, LocalMapSensors::kSonar);
+  const ConfigResult both =
+      LoadConfigString("[sonar]\nenabled = true\n[localmap]\nsensors = \"both\"\n", "test.toml");
+  ASSERT_TRUE(both.ok()) << both.errors[0].ToString();
+  EXPECT_EQ(both.options.localmap.sensors, LocalMapSensors::kBoth);
+  EXPECT_EQ(DaemonOptions{}.localmap.sensors, LocalMapSensors::kLaser);
+  // An unknown value is rejected with the key, the line and the accepted values.
+  ExpectOneError(LoadConfigString("\n[localmap]\nsensors = \"radar\"\n", "test.toml"),
+                 "localmap.sensors", 3, "must be one of \"laser\", \"sonar\", \"both\"");
+  // Mapping with a sensor that is not enabled.
+  ExpectOneError(LoadConfigString("[localmap]\nsensors = \"sonar\"\n", "test.toml"),
+                 "localmap.sensors", 2, "needs sonar.enabled = true");
+  ExpectOneError(LoadConfigString("[laser]\nenabled = false\n[sonar]\nenabled = true\n"
+                                  "[localmap]\nsensors = \"both\"\n",
+                                  "test.toml"),
+                 "localmap.sensors", 6, "needs laser.enabled = true");
+  // A change needs a restart (the maps are of another kind).
+  DaemonOptions running, loaded;
+  loaded.sonar.enabled = true;
+  loaded.localmap.sensors = LocalMapSensors::kSonar;
+  EXPECT_THAT(DiffForReload(running, loaded).needs_restart, testing::Contains("localmap.sensors"));
+}
+
 TEST(ConfigLoader, CollectsEveryError) {
   const ConfigResult r = LoadConfigString(R"([laser]
 baud = 1
@@ -233,7 +260,7 @@ TEST(ConfigLoader, FlattenOptionsWritesFileSyntax) {
   EXPECT_EQ(flat.at("lcm.channels.pose"), "\"ATLAS_POSE\"");
   EXPECT_EQ(flat.at("scheduling.cpu_affinity"), "[0, 1]");
   EXPECT_EQ(flat.at("sonar.enabled"), "false");
-  EXPECT_EQ(flat.size(), 64u) << "a key was added or removed: update config/atlasd.toml";
+  EXPECT_EQ(flat.size(), 65u) << "a key was added or removed: update config/atlasd.toml";
 }
 
 TEST(ConfigLoader, DiffForReloadSeparatesWhatNeedsARestart) {

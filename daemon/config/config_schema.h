@@ -33,6 +33,10 @@ inline constexpr EnumNames<LaserUnit, 2> kLaserUnitNames{
     {{"cm", LaserUnit::kCentimetre}, {"mm", LaserUnit::kMillimetre}}};
 inline constexpr EnumNames<SonarRing, 2> kSonarRingNames{
     {{"p3dx16", SonarRing::kP3dx16}, {"b21_24", SonarRing::kB21_24}}};
+inline constexpr EnumNames<LocalMapSensors, 3> kLocalMapSensorsNames{
+    {{"laser", LocalMapSensors::kLaser},
+     {"sonar", LocalMapSensors::kSonar},
+     {"both", LocalMapSensors::kBoth}}};
 inline constexpr EnumNames<SchedPolicy, 3> kSchedPolicyNames{{{"other", SchedPolicy::kOther},
                                                               {"fifo", SchedPolicy::kFifo},
                                                               {"rr", SchedPolicy::kRoundRobin}}};
@@ -101,6 +105,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
       v.Double("line_alpha_sigma_min_deg", n.line_alpha_sigma_min_deg, 0.0, 30.0);
     });
   });
+  v.Section("localmap", [&] { v.Enum("sensors", o.localmap.sensors, kLocalMapSensorsNames); });
   v.Section("atlas", [&] {
     AtlasParameters& a = o.atlas;
     v.Int("map_capacity", a.map_capacity, 1, 1000);

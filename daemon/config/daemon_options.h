@@ -62,6 +62,15 @@ struct SonarOptions {
   int queue_capacity = 32;
 };
 
+// Which range sensors the local maps use (core/sonar RangeSensors): the laser alone (line
+// EKF, core/localmap), the sonar ring alone, or both in one EKF (core/sonar SonarLocalMap).
+// "sonar" and "both" need sonar.enabled, "both" also laser.enabled.
+enum class LocalMapSensors { kLaser, kSonar, kBoth };
+
+struct LocalMapConfig {
+  LocalMapSensors sensors = LocalMapSensors::kLaser;
+};
+
 // Odometry error model of the local maps (core/localmap OdometryNoiseOptions): each sigma is
 // the standard deviation after one unit of motion; variances grow linearly with the motion
 // (sigma with its square root). The calibration errors grow with the motion itself. Defaults:
@@ -152,6 +161,7 @@ struct DaemonOptions {
   OdometryOptions odometry;
   SonarOptions sonar;
   NoiseOptions noise;
+  LocalMapConfig localmap;
   AtlasParameters atlas;
   LcmOptions lcm;
   LoopOptions loop;
