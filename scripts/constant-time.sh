@@ -12,7 +12,11 @@
 # Environment: ATLAS_BIN (directory of atlas-sim, atlas-replay, atlas-render; default
 # <repo>/build/release/bin, built if missing), ROOMS (default 2400), KM (default 25), SEED (1),
 # PNG_PREFIX (default OUT/constant-time: writes PREFIX-time.png and PREFIX-frames.png),
-# KEEP_SIM=1 to reuse OUT/sim if it is there.
+# KEEP_SIM=1 to reuse OUT/sim if it is there; REPEAT (default 2): replays of the same run. The
+# atlas is deterministic, so a step's own cost is the same in every replay, while the machine
+# (a shared virtual machine: preemption and steal are counted in a thread's CPU time) adds
+# spikes at different steps each time: the maximum over steps of the minimum over the replays
+# is the step cost that belongs to the atlas, and is what is held against the budget.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-/tmp/atlas-constant-time}
@@ -37,6 +41,11 @@ fi
 echo "== replaying" >&2
 /usr/bin/time -v -o "$OUT/time-v.txt" "$BIN/atlas-replay" --out "$OUT/replay" "$OUT/sim" \
   | tee "$OUT/replay.txt"
+REPEAT=${REPEAT:-2}
+for ((r = 2; r <= REPEAT; ++r)); do
+  echo "== replaying again ($r of $REPEAT), for the per-step minimum" >&2
+  "$BIN/atlas-replay" --quiet --out "$OUT/replay-$r" "$OUT/sim" >/dev/null
+done
 
 python3 - "$OUT" <<'PY'
 import json, math, os, sys
@@ -80,6 +89,20 @@ for label, v in (("wall", wall), ("CPU", cpu)):
         label, max(v) / 1e6, s["step_budget_ms"],
         "under" if max(v) / 1e6 < s["step_budget_ms"] else "OVER",
         sum(1 for x in v if x > s["step_budget_ms"] * 1e6)))
+repeats = [os.path.join(out, d, "step_cpu.tsv") for d in sorted(os.listdir(out))
+           if d.startswith("replay-")]
+if cpu and repeats:
+    least = list(cpu)
+    for path in repeats:
+        other = [int(l.split()[1]) for l in open(path) if not l.startswith("#")]
+        if len(other) == len(least):
+            least = [min(x, y) for x, y in zip(least, other)]
+    worst = max(range(len(least)), key=lambda i: least[i])
+    print("  CPU  max over steps of the least of %d replays: %.2f ms at step %d (budget %.1f ms: %s);"
+          " %d steps over budget in every replay" % (
+              len(repeats) + 1, least[worst] / 1e6, worst + 1, s["step_budget_ms"],
+              "under" if least[worst] / 1e6 < s["step_budget_ms"] else "OVER",
+              sum(1 for x in least if x > s["step_budget_ms"] * 1e6)))
 print("  speed                   %.0fx real time (wall)" % (s["data_seconds"] / s["wall_seconds"]))
 atlas_kb = s["rss_kb_after_steps"] - s["rss_kb_before_steps"]
 print("  memory                  max RSS %d kB (getrusage; /usr/bin/time -v %d kB; the whole log "

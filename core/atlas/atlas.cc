@@ -19,6 +19,7 @@ std::string AtlasOptions::Validate() const {
   if (max_seeds_per_step < 0) return "max_seeds_per_step must be non-negative";
   if (seed_cooldown_steps < 0) return "seed_cooldown_steps must be non-negative";
   if (traversal_max_hops < 1) return "traversal_max_hops must be at least 1";
+  if (!(traversal_reach > 0)) return "traversal_reach must be positive";
   if (projection_max_frames < 2) return "projection_max_frames must be at least 2";
   if (!(projection_max_rho > 0)) return "projection_max_rho must be positive";
   if (match_candidates_per_step < 0) return "match_candidates_per_step must be non-negative";
@@ -372,6 +373,10 @@ void Atlas::Traverse(int d) {
     if (f.seed_cooldown_until > step_ || HasHypothesis(e.frame)) continue;
     // eq. 10-11: x_i* = T_i^d (+) x_d, T_i^d the pose of the dominant frame in frame i.
     const UncertainPose seed = Compose(Inverse(e.pose), x_d);
+    if (!WithinReach(*f.map, seed)) {
+      ++stats_.seeds_out_of_reach;
+      continue;
+    }
     Hypothesis h;
     h.id = next_hypothesis_id_++;
     h.frame = e.frame;
@@ -401,6 +406,20 @@ bool Atlas::SpendSearchOnSelfMatch(FrameId a, FrameId b) {
     SelfMatchOf(f);
     ++stats_.self_matches;
     return true;
+  }
+  return false;
+}
+
+bool Atlas::WithinReach(const LocalMap& map, const UncertainPose& seed) const {
+  const Vec2 p(seed.mean.x, seed.mean.y);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(seed.cov.topLeftCorner<2, 2>());
+  const double reach =
+      options_.traversal_reach + 3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
+  for (const MapLine& l : map.Lines()) {
+    const Vec2 d = l.endpoint_b - l.endpoint_a;
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - l.endpoint_a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    if ((l.endpoint_a + t * d - p).norm() <= reach) return true;
   }
   return false;
 }
@@ -628,10 +647,16 @@ std::string Atlas::Serialize() const {
     w.Put<int32_t>(h.steps);
     w.Put(h.q);
     w.Put<int32_t>(h.failing_steps);
-    w.Put<int32_t>(static_cast<int32_t>(h.window.Ring().size()));
+    // The ring is allocated at the first Add(): a hypothesis that has not seen an observation
+    // yet (just made by Genesis, or only sonar steps without echoes) writes an empty ring of
+    // its capacity, so that every image can be read back.
+    const std::vector<QualityWindow::Entry>& ring = h.window.Ring();
+    w.Put<int32_t>(h.window.Capacity());
     w.Put<int32_t>(h.window.Head());
     w.Put<int32_t>(h.window.Size());
-    for (const QualityWindow::Entry& e : h.window.Ring()) {
+    for (int k = 0; k < h.window.Capacity(); ++k) {
+      const QualityWindow::Entry e =
+          k < static_cast<int>(ring.size()) ? ring[k] : QualityWindow::Entry{};
       w.Put<int32_t>(e.observations);
       w.Put<int32_t>(e.matched);
     }

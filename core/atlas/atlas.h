@@ -17,7 +17,8 @@
 //     probation first: a known place must win over a new frame when the robot returns).
 //  4. Traversal (III-E, eq. 10-11): when the dominant q is below q_traverse, juveniles are
 //     seeded in frames near the dominant frame (bounded Dijkstra projection, at most
-//     `traversal_max_hops` edges away, nearest in rho first) that carry no hypothesis:
+//     `traversal_max_hops` edges away, nearest in rho first) that carry no hypothesis and
+//     have a line within `traversal_reach` of the seed:
 //     x_i* = T_i^d (+) x_d with T_i^d the pose of the dominant frame in frame i composed along
 //     the projection tree (one edge for adjacent frames, exactly eq. 10-11).
 //  5. Genesis at capacity (III-C): the dominant map is full, its q is below q_traverse, it
@@ -81,6 +82,11 @@ struct AtlasOptions {
   int max_seeds_per_step = 1;
   int seed_cooldown_steps = 20;
   int traversal_max_hops = 2;
+  // Traversal seeds a frame only when the seeded position lies within this distance (plus 3
+  // sigma of the seed) of one of the frame's line segments: a map whose lines are all farther
+  // than the sensor reaches cannot explain the scans, and its juvenile would only take a
+  // hypothesis slot and the step's seed. Metres; default the laser range the maps use.
+  double traversal_reach = 8.0;
   // Bounded Dijkstra projection used by traversal and map-matching.
   int projection_max_frames = 24;
   double projection_max_rho = std::numeric_limits<double>::infinity();
@@ -109,6 +115,7 @@ struct StepStats {
   int self_matches = 0;      // self-matches computed (each one bounded search, as a cross-match)
   int match_hypotheses = 0;  // transform hypotheses verified by map-matching
   int seeded = 0, matured = 0, deleted = 0, retired = 0, killed_by_w = 0;
+  int seeds_out_of_reach = 0;  // traversal candidates skipped: no line within traversal_reach
   int bootstraps = 0;
   int genesis = 0;
   int genesis_refused = 0;  // the dominant frame's degree was full
@@ -210,6 +217,7 @@ class Atlas {
   void RefineEdges();
   const SelfMatch& SelfMatchOf(FrameId f);
   bool SelfMatchCached(FrameId f) const;
+  bool WithinReach(const LocalMap& map, const UncertainPose& seed) const;
   // Computes the first of the two frames' self-matches that is not cached and returns true (the
   // step's search was spent on it), or returns false when both are cached.
   bool SpendSearchOnSelfMatch(FrameId a, FrameId b);

@@ -437,6 +437,24 @@ TEST(Atlas, ResumeAfterDeserializeKeepsTheSavedAtlas) {
 
 // Sonar steps: a map without a sonar path gets no evidence from them, so q does not move, and
 // the robot still moves with the odometry.
+// A hypothesis that has not seen an observation yet (its window's ring is allocated at the
+// first one: here the first step is a sonar reading without echoes; also a hypothesis just made
+// by Genesis) is saved and read back: every image the atlas writes can be read.
+TEST(Atlas, ImageWithAHypothesisThatSawNothingYetRoundTrips) {
+  TestWorld w;
+  Atlas a(TestWorld::Options(), w.Factory(), nullptr);
+  SonarReading r;
+  r.returns.resize(16);
+  a.Step(Pose2{}, r);
+  ASSERT_EQ(a.Hypotheses().size(), 1u);
+  ASSERT_EQ(a.Hypotheses()[0].window.Size(), 0);
+  Atlas b(TestWorld::Options(), w.Factory(), nullptr);
+  ASSERT_TRUE(b.Deserialize(a.Serialize()));
+  EXPECT_TRUE(b.Serialize() == a.Serialize());
+  b.Step(Pose2{0.1, 0.0, 0.0}, TestScan());
+  EXPECT_EQ(b.Hypotheses()[0].window.Size(), 1);
+}
+
 TEST(Atlas, SonarStepOnAMapWithoutSonarOnlyPredicts) {
   TestWorld w;
   Atlas a(TestWorld::Options(), w.Factory(), nullptr);

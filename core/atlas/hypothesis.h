@@ -62,6 +62,7 @@ class QualityWindow {
   int Observations() const { return observations_; }
   int Matched() const { return matched_; }
   int Size() const { return size_; }
+  int Capacity() const { return capacity_; }
   // eta_a / ||Z^k||, or `empty` when the window holds no observation.
   double Explanation(double empty) const;
   struct Entry {
