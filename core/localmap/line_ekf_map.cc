@@ -55,6 +55,7 @@ void Symmetrize(Eigen::MatrixXd& p) {
 // Per-thread buffers of UpdateWithLines: no heap allocation per scan once warm.
 struct UpdateScratch {
   std::vector<CandidatePair> cands;
+  std::vector<CandidatePair> wide;  // candidates between the gate and the recovery gate
   std::vector<PairJacobian> jac;
   std::vector<char> near_feature;
   std::vector<int> used;
@@ -210,16 +211,21 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
   out.observations = m;
   last_observations_ = observed;
   last_association_.assign(m, -1);
+  last_recovered_ = false;
   const Pose2 robot = Robot();
   const AssociationOptions& ao = options_.association;
   const double gate = ChiSquareQuantile(ao.individual_gate, 2);
   const double loose_gate = ChiSquareQuantile(ao.new_feature_gate, 2);
+  const bool recovery = ao.recovery_gate > 0.0;
+  const double wide_gate = recovery ? ChiSquareQuantile(ao.recovery_gate, 2) : gate;
 
   thread_local UpdateScratch scratch;
-  std::vector<CandidatePair>& cands = scratch.cands;
+  std::vector<CandidatePair>& strict = scratch.cands;
+  std::vector<CandidatePair>& wide = scratch.wide;
   std::vector<PairJacobian>& jac = scratch.jac;
   std::vector<char>& near_feature = scratch.near_feature;
-  cands.clear();
+  strict.clear();
+  wide.clear();
   jac.clear();
   near_feature.assign(m, 0);
   const Mat3 prr = P_.topLeftCorner<3, 3>();
@@ -242,7 +248,7 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
       if (!(det > 0.0)) continue;
       const double d2 = nu.dot(s_sym.inverse() * nu);
       if (d2 < loose_gate) near_feature[j] = 1;
-      if (!(d2 < gate)) continue;
+      if (!(d2 < wide_gate)) continue;
       // Segment-extent check along the feature's line.
       const double alpha = x_(ik + 1);
       const double t0 = ProjectedPosition(alpha, ea), t1 = ProjectedPosition(alpha, eb);
@@ -251,7 +257,12 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
       const double gap =
           std::max(std::min(s0, s1) - std::max(t0, t1), std::min(t0, t1) - std::max(s0, s1));
       if (gap > ao.max_extent_gap) continue;
-      cands.push_back(CandidatePair{j, k, nu, s_sym, d2, static_cast<int>(jac.size())});
+      const CandidatePair pair{j, k, nu, s_sym, d2, static_cast<int>(jac.size())};
+      if (d2 < gate) {
+        strict.push_back(pair);
+      } else {
+        wide.push_back(pair);  // the recovery pass adds the strict ones
+      }
       jac.push_back(PairJacobian{pred.d_pose, pred.d_line, k, g});
     }
   }
@@ -262,7 +273,16 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
   jo.allow_shared_features = ao.allow_shared_features;
   jo.ambiguity_margin = ao.ambiguity_margin;
   EkfJointCovariance cross(P_, jac);
-  const JcbbResult assoc = Jcbb(m, cands, cross, jo);
+  JcbbResult assoc = Jcbb(m, strict, cross, jo);
+  const std::vector<CandidatePair>* active = &strict;
+  if (recovery && assoc.pairings == 0 && !wide.empty()) {
+    wide.insert(wide.end(), strict.begin(), strict.end());
+    jo.joint_gate = ao.recovery_gate;
+    assoc = Jcbb(m, wide, cross, jo);
+    active = &wide;
+    last_recovered_ = assoc.pairings > 0;
+  }
+  const std::vector<CandidatePair>& cands = *active;
   out.ambiguous = assoc.status != AssociationStatus::kUnique;
 
   std::vector<int>& used = scratch.used;  // candidate indices applied
@@ -285,7 +305,7 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
     pht.resize(n, 2 * q);
     for (int a = 0; a < q; ++a) {
       const CandidatePair& ca = cands[used[a]];
-      const PairJacobian& ja = jac[used[a]];
+      const PairJacobian& ja = jac[ca.tag];
       nu.segment<2>(2 * a) = ca.innovation;
       s.block<2, 2>(2 * a, 2 * a) = ca.S;
       for (int b = a + 1; b < q; ++b) {

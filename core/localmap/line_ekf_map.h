@@ -15,7 +15,9 @@
 // - Update(scan): lines are extracted (line_extraction.h) and moved to the robot frame, paired
 //   with features by JCBB (jcbb.h) after a chi-square gate and a segment-extent check, and all
 //   unambiguous pairings are applied in one batch update (z = PredictLine, line_model.h).
-//   Ambiguous observations are neither used nor turned into features.
+//   Ambiguous observations are neither used nor turned into features. If nothing paired, the
+//   association runs again with the looser recovery_gate (a rare 3.5-4 sigma odometry error
+//   would otherwise reject every pairing, and the pose would never be corrected again).
 // - New features: an unpaired observation that is not compatible with any feature even at the
 //   looser new_feature_gate (no duplicate lines), long enough, becomes a feature with the
 //   inverse model (LineToParent) and its cross covariances, if the caller allows it (mature
@@ -76,6 +78,9 @@ class LineEkfMap final : public LocalMap {
   const std::vector<int>& LastAssociation() const { return last_association_; }
   // The lines of the last update (robot frame).
   const std::vector<ObservedLine>& LastObservations() const { return last_observations_; }
+  // Whether the last update paired observations only in the recovery pass
+  // (AssociationOptions::recovery_gate).
+  bool LastUpdateRecovered() const { return last_recovered_; }
 
   // The full joint state and covariance; feature k occupies entries 3 + 2k, 4 + 2k (its rho may
   // be negative in the state: Lines() reports canonical lines).
@@ -121,6 +126,7 @@ class LineEkfMap final : public LocalMap {
   RecentObservations recent_;
   std::vector<int> last_association_;
   std::vector<ObservedLine> last_observations_;
+  bool last_recovered_ = false;
   // Distances each wheel rolled and turn since the last corrected pose (not serialised).
   double calib_left_ = 0.0, calib_right_ = 0.0, calib_turn_ = 0.0;
 };

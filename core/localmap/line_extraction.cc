@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "core/localmap/jcbb.h"
 
 namespace atlas {
 namespace {
+
+// 4 sigma of the noise of the spacing of two points along a line, sqrt(2) sigma_r |sin|.
+constexpr double kSpacingMargin = 4.0 * std::numbers::sqrt2;
 
 struct Segment {
   int begin;  // index into points, inclusive
@@ -16,6 +20,7 @@ struct Segment {
 struct Scratch {
   std::vector<Vec2> pts;
   std::vector<double> var;
+  std::vector<double> range;  // of each point
   std::vector<int> beam_of;
   std::vector<Segment> clusters, segments, stack, merged;
 };
@@ -65,6 +70,10 @@ double MaxResidualTls(const std::vector<Vec2>& p, int begin, int end) {
   return worst;
 }
 
+// The fit of FitLine with each point's range given (|p_i|, the beam's range).
+bool FitLineRanged(std::span<const Vec2> points, const double* ranges,
+                   std::span<const double> range_var, double model_var, ObservedLine& line);
+
 }  // namespace
 
 bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_var,
@@ -76,69 +85,81 @@ bool FitLine(const std::vector<Vec2>& points, const std::vector<double>& range_v
 
 bool FitLine(std::span<const Vec2> points, std::span<const double> range_var, double model_var,
              ObservedLine& line) {
+  if (range_var.size() != points.size()) return false;
+  std::vector<double> ranges(points.size());
+  for (size_t i = 0; i < points.size(); ++i) ranges[i] = points[i].norm();
+  return FitLineRanged(points, ranges.data(), range_var, model_var, line);
+}
+
+namespace {
+
+bool FitLineRanged(std::span<const Vec2> points, const double* ranges,
+                   std::span<const double> range_var, double model_var, ObservedLine& line) {
   const int n = static_cast<int>(points.size());
   if (n < 2) return false;
-  // Unweighted fit, then reweighted twice with the fitted angle: the normal variance of point i
-  // is range_var_i (u_i . normal)^2 + model_var, u_i the unit bearing of the point.
-  double alpha = 0.0, rho = 0.0;
-  double w_buf[512];
-  std::vector<double> w_heap;
-  double* w = w_buf;
-  if (n > 512) {
-    w_heap.resize(n);
-    w = w_heap.data();
-  }
-  for (int i = 0; i < n; ++i) w[i] = 1.0;
-  // The normal (ca, sa) = (cos alpha, sin alpha) from the double angle, without trigonometry.
-  double ca = 1.0, sa = 0.0;
-  for (int iter = 0; iter < 3; ++iter) {
-    if (iter > 0) {
-      for (int i = 0; i < n; ++i) {
-        const double r2 = points[i].squaredNorm();
-        const double c = points[i].x() * ca + points[i].y() * sa;  // r cos(phi - alpha)
-        w[i] = 1.0 / std::max(r2 > 0.0 ? range_var[i] * c * c / r2 + model_var : model_var, 1e-12);
-      }
-    }
-    double sw = 0.0, cx = 0.0, cy = 0.0;
-    for (int i = 0; i < n; ++i) {
-      sw += w[i];
-      cx += w[i] * points[i].x();
-      cy += w[i] * points[i].y();
-    }
-    cx /= sw;
-    cy /= sw;
-    double sxx = 0.0, syy = 0.0, sxy = 0.0;
-    for (int i = 0; i < n; ++i) {
-      const double dx = points[i].x() - cx, dy = points[i].y() - cy;
-      sxx += w[i] * dx * dx;
-      syy += w[i] * dy * dy;
-      sxy += w[i] * dx * dy;
-    }
-    // Normal angle minimising sum w (n . (p - c))^2: 2 alpha = atan2(-2 sxy, syy - sxx).
-    const double c2 = syy - sxx, s2 = -2.0 * sxy;
-    const double h = std::sqrt(c2 * c2 + s2 * s2);
-    if (!(h > 0.0) || !std::isfinite(h)) return false;
-    ca = std::sqrt(std::max(0.0, 0.5 * (1.0 + c2 / h)));
-    sa = std::copysign(std::sqrt(std::max(0.0, 0.5 * (1.0 - c2 / h))), s2);
-    rho = cx * ca + cy * sa;
-    if (rho < 0.0) {
-      rho = -rho;
-      ca = -ca;
-      sa = -sa;
-    }
-  }
-  alpha = std::atan2(sa, ca);
-  double i00 = 0.0, i01 = 0.0, i11 = 0.0;
+  // Start: the unweighted total-least-squares line through the centroid.
+  double cx = 0.0, cy = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double j1 = -points[i].x() * sa + points[i].y() * ca;
-    i00 += w[i];
-    i01 -= w[i] * j1;
-    i11 += w[i] * j1 * j1;
+    cx += points[i].x();
+    cy += points[i].y();
+  }
+  cx /= n;
+  cy /= n;
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double dx = points[i].x() - cx, dy = points[i].y() - cy;
+    sxx += dx * dx;
+    syy += dy * dy;
+    sxy += dx * dy;
+  }
+  // Normal angle minimising sum (n . (p - c))^2: 2 alpha = atan2(-2 sxy, syy - sxx); the normal
+  // (ca, sa) = (cos alpha, sin alpha) from the double angle, without trigonometry.
+  const double c2 = syy - sxx, s2 = -2.0 * sxy;
+  const double h = std::sqrt(c2 * c2 + s2 * s2);
+  if (!(h > 0.0) || !std::isfinite(h)) return false;
+  double ca = std::sqrt(std::max(0.0, 0.5 * (1.0 + c2 / h)));
+  double sa = std::copysign(std::sqrt(std::max(0.0, 0.5 * (1.0 - c2 / h))), s2);
+  double rho = cx * ca + cy * sa;
+  if (rho < 0.0) {
+    rho = -rho;
+    ca = -ca;
+    sa = -sa;
+  }
+  // A total-least-squares fit (weighted or not) is biased when the noise is along the beams:
+  // its normal equations use the noisy along-line coordinate of each point, which correlates
+  // with the point's normal residual (errors in variables; at grazing incidence the bias
+  // reaches a tenth of a sigma per fit, and a feature seen in thousands of scans accumulates
+  // it). A Gauss-Newton step on the ranges themselves, r_i = rho / cos(phi_i - alpha) with
+  // exact bearings and variance range_var_i + model_var / cos^2, has an unbiased estimating
+  // equation; its information is the covariance. One step suffices: the start is within a few
+  // sigma, and the model's curvature moves the result by a small fraction of one.
+  double i00 = 0.0, i01 = 0.0, i11 = 0.0, b0 = 0.0, b1 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double r = ranges[i];
+    if (!(r > 0.0)) continue;
+    const double c = (points[i].x() * ca + points[i].y() * sa) / r;   // cos(phi_i - alpha)
+    const double sn = (points[i].y() * ca - points[i].x() * sa) / r;  // sin(phi_i - alpha)
+    if (c < 1e-3) return false;  // a beam (nearly) parallel to the line: no range model
+    const double ic = 1.0 / c;
+    const double v = range_var[i] + model_var * ic * ic;  // range variance
+    const double wi = 1.0 / std::max(v, 1e-12);
+    const double e = r - rho * ic;
+    const double j0 = ic, j1 = -rho * sn * ic * ic;  // d(rho / c) / d(rho, alpha)
+    i00 += wi * j0 * j0;
+    i01 += wi * j0 * j1;
+    i11 += wi * j1 * j1;
+    b0 += wi * j0 * e;
+    b1 += wi * j1 * e;
   }
   const double det = i00 * i11 - i01 * i01;
   if (!(det > 1e-300) || !std::isfinite(det)) return false;
+  rho += (i11 * b0 - i01 * b1) / det;
+  const double alpha = std::atan2(sa, ca) + (i00 * b1 - i01 * b0) / det;
+  if (rho < 0.0) return false;
+  ca = std::cos(alpha);
+  sa = std::sin(alpha);
   line.rho = rho;
-  line.alpha = alpha;
+  line.alpha = WrapAngle(alpha);
   line.cov << i11 / det, -i01 / det, -i01 / det, i00 / det;
   const double ta = -points.front().x() * sa + points.front().y() * ca;
   const double tb = -points.back().x() * sa + points.back().y() * ca;
@@ -147,6 +168,8 @@ bool FitLine(std::span<const Vec2> points, std::span<const double> range_var, do
   line.num_points = n;
   return true;
 }
+
+}  // namespace
 
 std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
                                        const LineExtractionOptions& options) {
@@ -157,10 +180,12 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
   thread_local Scratch scratch;
   std::vector<Vec2>& pts = scratch.pts;
   std::vector<double>& var = scratch.var;
+  std::vector<double>& range = scratch.range;
   std::vector<int>& beam_of = scratch.beam_of;
   std::vector<Segment>& clusters = scratch.clusters;
   pts.clear();
   var.clear();
+  range.clear();
   beam_of.clear();
   clusters.clear();
   const double max_range = scan.max_range > 0.0f ? scan.max_range : 1e30;
@@ -185,6 +210,7 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
     const double sigma = options.range_sigma + options.range_sigma_per_m * r;
     pts.push_back(p);
     var.push_back(sigma * sigma);
+    range.push_back(r);
     beam_of.push_back(i);
   }
   if (!pts.empty()) clusters.push_back({cluster_begin, static_cast<int>(pts.size())});
@@ -226,6 +252,11 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
       }
     }
     segments.resize(first_of_cluster);
+    for (Segment& m : merged) {
+      if (m.begin != cl.begin) m.begin += options.corner_points;
+      if (m.end != cl.end) m.end -= options.corner_points;
+      m.end = std::max(m.end, m.begin);
+    }
     segments.insert(segments.end(), merged.begin(), merged.end());
   }
 
@@ -243,8 +274,8 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
     ObservedLine line;
     bool ok = false;
     for (int round = 0; round < 6; ++round) {
-      ok = FitLine(std::span<const Vec2>(pts.data() + b, e - b),
-                   std::span<const double>(var.data() + b, e - b), model_var, line);
+      ok = FitLineRanged(std::span<const Vec2>(pts.data() + b, e - b), range.data() + b,
+                         std::span<const double>(var.data() + b, e - b), model_var, line);
       if (!ok) break;
       const double ca = std::cos(line.alpha), sa = std::sin(line.alpha);
       // Squared normal residual of point i over its normal variance.
@@ -254,7 +285,26 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
         const double c2 = proj * proj / std::max(pts[i].squaredNorm(), 1e-12);
         return d * d / std::max(var[i] * c2 + model_var, 1e-12);
       };
+      // Where the beams' spacing along the line nears max_gap, whether the gap test cut the
+      // cluster depends on the range noise: the points kept there are a biased selection
+      // (short ranges). End points whose spacing, rho dphi / cos^2(phi - alpha) from the fit
+      // and the exact bearing, comes within 4 sigma of the spacing's noise (the range noise
+      // along the line, sqrt(2) sigma_r |sin(phi - alpha)|) of max_gap are trimmed, so that
+      // the cut is the fit's.
+      const auto too_sparse = [&](int i) {
+        const double inv_r = 1.0 / std::max(range[i], 1e-12);
+        const double c = (pts[i].x() * ca + pts[i].y() * sa) * inv_r;
+        const double sn = (pts[i].y() * ca - pts[i].x() * sa) * inv_r;
+        const double margin = kSpacingMargin * std::sqrt(var[i]) * std::abs(sn);
+        return c <= 0.0 || line.rho * std::abs(inc) > (options.max_gap - margin) * c * c;
+      };
       const int b0 = b, e0 = e;
+      while (e - b >= options.min_points && too_sparse(b)) ++b;
+      while (e - b >= options.min_points && too_sparse(e - 1)) --e;
+      if (e - b < options.min_points) {
+        ok = false;
+        break;
+      }
       while (e - b > options.min_points && normalized(b) > 9.0) ++b;
       while (e - b > options.min_points && normalized(e - 1) > 9.0) --e;
       if (b != b0 || e != e0) {
@@ -269,8 +319,9 @@ std::vector<ObservedLine> ExtractLines(const LaserScan& scan,
         for (const int i : {b, e - 1}) {
           const int ob = i == b ? b + 1 : b, oe = i == b ? e : e - 1;
           ObservedLine others;
-          if (!FitLine(std::span<const Vec2>(pts.data() + ob, oe - ob),
-                       std::span<const double>(var.data() + ob, oe - ob), model_var, others)) {
+          if (!FitLineRanged(std::span<const Vec2>(pts.data() + ob, oe - ob), range.data() + ob,
+                             std::span<const double>(var.data() + ob, oe - ob), model_var,
+                             others)) {
             continue;
           }
           const double co = std::cos(others.alpha), so = std::sin(others.alpha);

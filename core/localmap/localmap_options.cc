@@ -21,6 +21,8 @@ std::string LineExtractionOptions::Validate() const {
   if (!In(split_distance, 1e-4, 10.0)) return "extraction.split_distance must be in [1e-4, 10] m";
   if (!In(max_gap, 1e-3, 100.0)) return "extraction.max_gap must be in [1e-3, 100] m";
   if (min_points < 3 || min_points > 10000) return "extraction.min_points must be in [3, 10000]";
+  if (corner_points < 0 || corner_points > 100)
+    return "extraction.corner_points must be in [0, 100]";
   if (!In(min_length, 0.0, 100.0)) return "extraction.min_length must be in [0, 100] m";
   if (!In(min_range, 0.0, 100.0)) return "extraction.min_range must be in [0, 100] m";
   if (!(fit_gate > 0.0 && fit_gate <= 1.0)) return "extraction.fit_gate must be in (0, 1]";
@@ -46,6 +48,10 @@ std::string AssociationOptions::Validate() const {
   if (!Probability(new_feature_gate)) return "association.new_feature_gate must be in (0, 1)";
   if (new_feature_gate < individual_gate)
     return "association.new_feature_gate must be >= association.individual_gate";
+  if (recovery_gate != 0.0 && (!Probability(recovery_gate) || recovery_gate < individual_gate ||
+                               recovery_gate < joint_gate))
+    return "association.recovery_gate must be 0 (off) or in (0, 1) and >= the individual and "
+           "joint gates";
   if (!In(max_extent_gap, 0.0, 1e6)) return "association.max_extent_gap must be >= 0 m";
   if (node_budget < 1 || node_budget > 1000000)
     return "association.node_budget must be in [1, 1000000]";

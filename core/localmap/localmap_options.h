@@ -23,6 +23,10 @@ struct LineExtractionOptions {
   // Consecutive points farther apart than this never share a segment (metres).
   double max_gap = 0.3;
   int min_points = 8;
+  // Points dropped at each end of a segment that meets another segment of its cluster (a
+  // corner): the points next to a corner fit both walls within their noise, and those that
+  // stay in a fit pull it towards the other wall. Cluster ends (gaps) keep their points.
+  int corner_points = 2;
   double min_length = 0.5;  // metres, between the projected endpoints
   // Ranges outside [min_range, max_range) of the scan are ignored (like no-return beams).
   double min_range = 0.05;
@@ -70,6 +74,11 @@ struct AssociationOptions {
   // An unmatched observation becomes a new feature only if it is not compatible with any
   // feature at this looser chi-square probability either (avoids duplicates).
   double new_feature_gate = 0.9999;
+  // Recovery: when no observation paired at individual_gate / joint_gate, the association is
+  // run again with this chi-square probability for both gates. A heading error of 3.5-4 sigma
+  // (a rare odometry excursion, or a turn the noise model under-states) otherwise rejects every
+  // pairing, the pose is never corrected and the map is lost. 0 = off.
+  double recovery_gate = 0.9999;
   double new_feature_min_length = 1.0;  // metres
   // Nor if, in the map-frame at the estimated pose, it is parallel to a feature's line within
   // duplicate_alpha and its middle lies within duplicate_rho of that line: a second feature for

@@ -248,11 +248,16 @@ int RunMonteCarlo(const Args& args) {
   const int r_count = static_cast<int>(runs);
   std::vector<std::vector<StepNees>> all;
   double mean_features = 0.0;
+  std::vector<std::pair<double, int>> run_mean;  // (mean robot NEES over the run, seed)
   for (int r = 0; r < r_count; ++r) {
     int features = 0;
     all.push_back(RunOnce(static_cast<uint64_t>(seed) + r, minutes, static_cast<int>(capacity),
                           walls, caster, features));
     mean_features += features;
+    double run_nees = 0.0;
+    for (const StepNees& n : all.back()) run_nees += n.robot;
+    run_mean.push_back(
+        {run_nees / std::max<size_t>(1, all.back().size()), static_cast<int>(seed) + r});
     std::fprintf(stderr, "\rrun %d/%d done (%zu steps, %d features)   ", r + 1, r_count,
                  all.back().size(), features);
   }
@@ -300,6 +305,14 @@ int RunMonteCarlo(const Args& args) {
       "last step [%.3f, %.3f] (%d dof per run); mean %.3f; steps inside %d/%d = %.1f%%\n",
       flo, fhi, fd, feat_steps ? feat_mean / feat_steps : 0.0, feat_in, feat_steps,
       feat_steps ? 100.0 * feat_in / feat_steps : 0.0);
+  // Errors that enter the unobservable directions (the map-frame's heading and position, fixed
+  // by the first scans) stay for the whole run: a few runs set the average of every step.
+  std::sort(run_mean.rbegin(), run_mean.rend());
+  std::printf("runs with the largest mean robot NEES (seed: mean):");
+  for (size_t i = 0; i < std::min<size_t>(5, run_mean.size()); ++i) {
+    std::printf(" %d: %.2f", run_mean[i].second, run_mean[i].first);
+  }
+  std::printf("\n");
   // A coarse profile over time.
   std::printf("time profile (step: robot NEES avg, feature NEES/dof avg):\n");
   for (size_t k = 0; k < steps; k += std::max<size_t>(1, steps / 12)) {
@@ -357,6 +370,12 @@ std::string ApplyOverrides(const std::string& spec, LocalMapOptions& o) {
       {"max_extent_gap", &o.association.max_extent_gap},
       {"ambiguity_margin", &o.association.ambiguity_margin},
       {"new_feature_min_length", &o.association.new_feature_min_length},
+      {"new_feature_gate", &o.association.new_feature_gate},
+      {"recovery_gate", &o.association.recovery_gate},
+  };
+  const std::map<std::string, int*> int_table = {
+      {"min_points", &o.extraction.min_points},
+      {"corner_points", &o.extraction.corner_points},
   };
   size_t pos = 0;
   while (pos < spec.size()) {
@@ -365,13 +384,21 @@ std::string ApplyOverrides(const std::string& spec, LocalMapOptions& o) {
     const std::string item = spec.substr(pos, end - pos);
     const size_t eq = item.find('=');
     double v = 0.0;
-    if (eq == std::string::npos || !table.count(item.substr(0, eq)) ||
-        !eval::ParseArgumentNumber(item.substr(eq + 1).c_str(), v)) {
+    const std::string name = eq == std::string::npos ? item : item.substr(0, eq);
+    const bool is_int = int_table.count(name) > 0;
+    if (eq == std::string::npos || (!table.count(name) && !is_int) ||
+        !eval::ParseArgumentNumber(item.substr(eq + 1).c_str(), v) ||
+        (is_int && (v != std::floor(v) || std::abs(v) > 1e6))) {
       std::string names;
       for (const auto& [n, p] : table) names += " " + n;
+      for (const auto& [n, p] : int_table) names += " " + n + " (integer)";
       return "--set: bad item '" + item + "' (want name=number; names:" + names + ")";
     }
-    *table.at(item.substr(0, eq)) = v;
+    if (is_int) {
+      *int_table.at(name) = static_cast<int>(v);
+    } else {
+      *table.at(name) = v;
+    }
     pos = end + 1;
   }
   return o.Validate();
@@ -432,7 +459,7 @@ int RunReal(const Args& args) {
   double travelled = 0.0;
   Pose2 last_odo;
   bool have_odo = false;
-  int updates = 0, matched = 0, observed = 0, ambiguous = 0;
+  int updates = 0, matched = 0, observed = 0, ambiguous = 0, recovered = 0;
   for (const carmen::CarmenEvent& ev : read.log.events) {
     const LaserScan* scan = std::get_if<LaserScan>(&ev.event);
     if (scan == nullptr || !ev.odometry_pose) continue;
@@ -454,8 +481,22 @@ int RunReal(const Args& args) {
     have_odo = true;
     LaserScan mounted = *scan;
     mounted.sensor_pose = Compose(Pose2{laser_x, 0.0, 0.0}, scan->sensor_pose);
+    const UncertainPose prior = map->RobotPose();
     const ScanUpdate up = map->Update(mounted, true);
+    if (std::getenv("LOCALMAP_DEBUG")) {
+      const double turn = WrapAngle(map->RobotPose().mean.theta - prior.mean.theta);
+      if (std::abs(turn) > 0.05) {
+        std::fprintf(
+            stderr,
+            "scan t %.2f stretch %d: heading corrected %.1f deg (prior sd %.1f deg, odometry "
+            "step %.1f deg), %d lines, %d matched%s, %d features\n",
+            ToSeconds(scan->stamp.time_since_epoch()), stretch, turn * 180 / M_PI,
+            std::sqrt(prior.cov(2, 2)) * 180 / M_PI, delta.theta * 180 / M_PI, up.observations,
+            up.matched, map->LastUpdateRecovered() ? " (recovery)" : "", map->Complexity());
+      }
+    }
     ++updates;
+    recovered += map->LastUpdateRecovered() ? 1 : 0;
     matched += up.matched;
     observed += up.observations;
     ambiguous += up.ambiguous ? 1 : 0;
@@ -465,9 +506,9 @@ int RunReal(const Args& args) {
   if (map && stretch == static_cast<int>(draw_stretch)) drawn = std::move(map);
   std::fprintf(stderr,
                "%d scans, %d stretches of %.0f m; %d lines observed, %d matched (%.1f%%), "
-               "%d scans with an ambiguous association\n",
+               "%d scans with an ambiguous association, %d paired only by the recovery pass\n",
                updates, stretch + 1, stretch_m, observed, matched,
-               100.0 * matched / std::max(1, observed), ambiguous);
+               100.0 * matched / std::max(1, observed), ambiguous, recovered);
 
   // Relations with both poses in one stretch.
   auto find = [&](Time t) -> const ScanRecord* {
@@ -501,9 +542,13 @@ int RunReal(const Args& args) {
     const eval::RelationError e = eval::RelationErrorOf(rel, Between(a->estimate, b->estimate));
     const eval::RelationError d = eval::RelationErrorOf(rel, Between(a->odometry, b->odometry));
     if (std::getenv("LOCALMAP_DEBUG")) {
-      std::fprintf(stderr, "rel stretch %d dt %.2f move %.3f %.3f: ekf %.4f %.3f dr %.4f %.3f\n",
-                   a->stretch, ToSeconds(rel.t2 - rel.t1), rel.delta.x, rel.delta.theta,
-                   e.translation_m, e.rotation_deg, d.translation_m, d.rotation_deg);
+      std::fprintf(stderr,
+                   "rel stretch %d t %.2f dt %.2f move %.3f %.3f: ekf %.4f %.3f dr %.4f %.3f "
+                   "(odometry turn %.3f, ekf turn %.3f)\n",
+                   a->stretch, ToSeconds(rel.t1.time_since_epoch()), ToSeconds(rel.t2 - rel.t1),
+                   rel.delta.x, rel.delta.theta, e.translation_m, e.rotation_deg, d.translation_m,
+                   d.rotation_deg, Between(a->odometry, b->odometry).theta,
+                   Between(a->estimate, b->estimate).theta);
     }
     est_t.push_back(e.translation_m);
     est_r.push_back(e.rotation_deg);
