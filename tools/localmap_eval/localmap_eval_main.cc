@@ -483,6 +483,19 @@ int RunReal(const Args& args) {
     mounted.sensor_pose = Compose(Pose2{laser_x, 0.0, 0.0}, scan->sensor_pose);
     const UncertainPose prior = map->RobotPose();
     const ScanUpdate up = map->Update(mounted, true);
+    if (std::getenv("LOCALMAP_DEBUG") && up.added > 0) {
+      const UncertainPose rp = map->RobotPose();
+      for (const MapLine& l : map->Lines()) {
+        if (l.id < map->Lines().back().id - up.added + 1) continue;
+        std::fprintf(stderr,
+                     "scan t %.2f stretch %d: new feature %d (%.3f m, %.2f deg) length %.2f m, "
+                     "robot sd %.3f m %.1f deg, %d features\n",
+                     ToSeconds(scan->stamp.time_since_epoch()), stretch, l.id, l.rho,
+                     l.alpha * 180 / M_PI, (l.endpoint_b - l.endpoint_a).norm(),
+                     std::sqrt(rp.cov(0, 0) + rp.cov(1, 1)), std::sqrt(rp.cov(2, 2)) * 180 / M_PI,
+                     map->Complexity());
+      }
+    }
     if (std::getenv("LOCALMAP_DEBUG")) {
       const double turn = WrapAngle(map->RobotPose().mean.theta - prior.mean.theta);
       if (std::abs(turn) > 0.05) {
