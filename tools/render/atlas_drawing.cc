@@ -185,7 +185,10 @@ void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const 
                                   {"other edges", kOtherEdgeColor},
                                   {"source frame", kSourceColor, true}};
   if (options.ellipses && !options.refined) legend.push_back({"frame uncertainty", kEllipseColor});
-  if (options.trajectory) legend.push_back({"robot trajectory", kTrajectoryColor});
+  // Only when there is one to draw (an exported store has no trajectory: atlasd publishes the
+  // poses, it does not save them).
+  if (options.trajectory && !(options.refined ? run.refined : run.global).empty())
+    legend.push_back({"robot trajectory", kTrajectoryColor});
   canvas.Legend(Vec2(kMarginPx, 46), legend);
   canvas.ScaleBar();
 }

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "core/atlas/dijkstra_projection.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/render/atlas_drawing.h"
 #include "tools/render/canvas.h"
@@ -136,6 +137,22 @@ int RenderAtlas(AtlasRequest req) {
   }
   replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
   if (!g.error.empty()) return Fail(req.dir + "/graph.tsv: " + g.error);
+  // The trajectory's rows composed with their frames' poses (as global.tsv and
+  // global_refined.tsv hold them): for directories without those files, such as an atlas
+  // exported from atlasd's store with the poses it published (scripts/demo.sh).
+  const auto place = [&run](const std::vector<std::optional<Pose2>>& frame_pose,
+                            std::vector<replay::StampedPose>* out) {
+    for (const replay::StampedFramePose& t : run.trajectory)
+      if (t.frame >= 0 && t.frame < static_cast<int>(frame_pose.size()) && frame_pose[t.frame])
+        out->push_back({t.stamp_s, Compose(*frame_pose[t.frame], t.pose)});
+  };
+  if (req.draw.trajectory && run.global.empty() && !run.trajectory.empty() &&
+      g.graph.FrameCount() > 0) {
+    std::vector<std::optional<Pose2>> projected(static_cast<size_t>(g.graph.FrameCount()));
+    for (const atlas::ProjectedFrame& f : atlas::DijkstraProjection(g.graph, 0).entries)
+      projected[static_cast<size_t>(f.frame)] = f.pose.mean;
+    place(projected, &run.global);
+  }
   std::vector<std::optional<Pose2>> refined;
   if (req.draw.refined) {
     const refine::RefineResult r = refine::RefineGlobal(g.graph, refine::RefineOptions{});
@@ -143,12 +160,7 @@ int RenderAtlas(AtlasRequest req) {
       return Fail("global refinement: " + std::string(refine::ToString(r.status)) + " " +
                   r.message);
     refined = r.refined;
-    if (req.draw.trajectory && run.refined.empty()) {
-      // Place the trajectory with the refined frames (as global_refined.tsv would).
-      for (const replay::StampedFramePose& t : run.trajectory)
-        if (t.frame >= 0 && t.frame < static_cast<int>(refined.size()) && refined[t.frame])
-          run.refined.push_back({t.stamp_s, Compose(*refined[t.frame], t.pose)});
-    }
+    if (req.draw.trajectory && run.refined.empty()) place(refined, &run.refined);
   }
   req.draw.title = req.title;
   AtlasLayout layout;
