@@ -15,6 +15,8 @@ namespace atlas {
 std::string MapMatchOptions::Validate() const {
   if (max_lines < 2 || max_lines > 64) return "map_match.max_lines must lie in [2, 64]";
   if (min_support < 2) return "map_match.min_support must be at least 2";
+  if (self_min_support < min_support)
+    return "map_match.self_min_support must be at least min_support";
   if (min_lead < 1) return "map_match.min_lead must be at least 1";
   if (!(parallel_tolerance > 0 && parallel_tolerance < std::numbers::pi / 2))
     return "map_match.parallel_tolerance must lie in (0, pi/2)";
@@ -358,9 +360,26 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
     out.reason = MapMatchReason::kTooFewLines;
     return out;
   }
-  if (o.self_match && (!self_a.complete || !self_b.complete)) {
-    out.reason = MapMatchReason::kWorkBound;
-    return out;
+  if (o.self_match) {
+    if (!self_a.complete || !self_b.complete) {
+      out.reason = MapMatchReason::kWorkBound;
+      return out;
+    }
+    // Structure that repeats within a map, where the prior cannot tell the repetition apart,
+    // is not used (III-D).
+    for (const SelfMatch::Repetition& r : self_a.repetitions)
+      if (r.support >= o.self_min_support &&
+          (prior == nullptr || InsidePrior(Compose(r.transform, prior->mean), prior, o)))
+        usable_a &= ~r.lines;
+    for (const SelfMatch::Repetition& r : self_b.repetitions)
+      if (r.support >= o.self_min_support &&
+          (prior == nullptr || InsidePrior(Compose(prior->mean, r.transform), prior, o)))
+        usable_b &= ~r.lines;
+    if (std::popcount(usable_a) < o.min_support || std::popcount(usable_b) < o.min_support) {
+      out.result = MapMatchResult::kAmbiguous;
+      out.reason = MapMatchReason::kRepetitive;
+      return out;
+    }
   }
   std::vector<Cluster> clusters;
   clusters.reserve(kMaxClusters);

@@ -13,23 +13,24 @@
 //   A match needs `min_support` lines and a support that leads every distinct rival transform
 //   by `min_lead` lines: a unique best.
 // - Self-match (III-D: "only structure elements that match uniquely within a map"): each map is
-//   matched with itself; a non-identity self-transform S with at least `min_support` lines is
-//   repetitive structure. A repetition of A makes S (+) T a rival placement of B (and one of B,
-//   T (+) S_b). Condition 2: a repetition only matters when the prior (the Dijkstra projection
-//   of B in A) cannot tell the rival from T, i.e. when the rival lies inside the prior's gate;
-//   without a prior every repetition matters. Each such rival is verified exactly (the lines of
-//   B it explains), and when it explains B within `min_lead` lines as well as T does, the
-//   result is kAmbiguous (kRepetitive). (An earlier version excluded every line taking part in
-//   any repetition: in buildings of parallel and perpendicular walls nearly every three lines
-//   repeat somewhere, so nearly every match was refused, whether or not the repetition could
-//   place B elsewhere.) The same gate filters cross-match rivals: two distinct transforms inside
-//   it, equally supported, are kAmbiguous (kRivalTransform).
+//   matched with itself; a non-identity self-transform S with at least `self_min_support` lines
+//   is repetitive structure, and its lines are excluded. Condition 2: a repetition only matters
+//   when the prior (the Dijkstra projection of B in A) cannot tell S (+) T from T, i.e. when
+//   S (+) T lies inside the prior's gate; without a prior every repetition matters. The same
+//   gate filters cross-match rivals. When exclusion leaves too little structure, or two
+//   distinct transforms inside the gate are equally supported, the result is kAmbiguous.
+//   After that, each remaining repetition's rival placement S (+) T (or T (+) S_b) inside the
+//   gate is verified on the usable lines, and one that explains B within `min_lead` lines as
+//   well as T does also makes the result kAmbiguous (kRepetitive). (Tried on 2026-11-23: using
+//   only these verified rivals, without the exclusion, closes many more loops on the corrected
+//   logs but accepts a wrong period in a repetitive corridor when the shifted placement
+//   overlaps more of B than the true one: core/sonar/sonar_condition2_test.cc.)
 // - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
 //   pairs, H = sum H^T S^-1 H. The lines of one local map are correlated (they share the robot's
 //   errors when they were seen) and MapLine carries only each line's marginal, so by default
 //   Sigma = n H^-1 for n pairs: covariance intersection with equal weights (eq. 16 with
 //   omega = 1/n), consistent whatever the correlation (on the six corrected logs it cut the
-//   edges that disagree with the reference beyond 3 sigma from 11 of 31 to 2 of 75). Matched
+//   edges that disagree with the reference beyond 3 sigma from 11 of 31 to 2 of 57). Matched
 //   lines that are all parallel leave a singular information matrix: kRejected (degenerate),
 //   never a guess.
 // Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each
@@ -59,10 +60,12 @@ struct MapMatchOptions {
   double sigma_alpha_floor = 0.01;     // rad
   double overlap_slack = 0.5;          // metres of allowed gap between matched segments
   int min_support = 3;                 // lines
-  int min_lead = 1;                    // lines the best must lead any distinct rival by
-  double distinct_translation = 0.5;   // metres: transforms closer than this are the same
-  double distinct_rotation = 0.1;      // rad
-  double prior_gate_chi2 = 16.27;      // 3 dof, 99.9 %
+  // A self-repetition excludes its lines only with at least this support (see above).
+  int self_min_support = 3;
+  int min_lead = 1;                   // lines the best must lead any distinct rival by
+  double distinct_translation = 0.5;  // metres: transforms closer than this are the same
+  double distinct_rotation = 0.1;     // rad
+  double prior_gate_chi2 = 16.27;     // 3 dof, 99.9 %
   bool self_match = true;
   int64_t max_line_checks = 200000;  // work bound of one match or self-match (see above)
   int gauss_newton_iterations = 4;

@@ -136,30 +136,6 @@ TEST(MapMatch, TightPriorDisambiguatesRepetition) {
   EXPECT_NEAR(m.b_in_a.mean.y, truth.y, 0.02);
 }
 
-// A repetition that cannot place B anywhere else as well does not refuse the match: A holds the
-// irregular room and, 20 m away, a copy of three of its walls (a self-transform with support
-// 3). B sees the whole room (6 lines); the rival placement on the copy explains only 3 of them.
-TEST(MapMatch, RepetitionThatExplainsLessThanTheMatchDoesNotRefuseIt) {
-  MapMatchOptions o;
-  auto segs = Room();
-  for (int k = 0; k < 3; ++k)
-    segs.push_back({segs[k].first + Vec2(20, 0), segs[k].second + Vec2(20, 0)});
-  const auto a = InA(segs);
-  const SelfMatch self_a = SelfMatchMap(a, o);
-  bool shift20 = false;
-  for (const auto& r : self_a.repetitions)
-    shift20 |= std::abs(std::abs(r.transform.x) - 20.0) < 0.1 && std::abs(r.transform.y) < 0.1;
-  ASSERT_TRUE(shift20) << "the copy is not found as a repetition: the test shows nothing";
-  const Pose2 truth{1.5, -0.7, 0.4};
-  const auto b = SeenFrom(Room(), truth);
-  const MapMatch m = MatchMaps(a, self_a, b, SelfMatchMap(b, o), nullptr, o);
-  ASSERT_EQ(m.result, MapMatchResult::kAccepted) << MapMatchReasonName(m.reason);
-  EXPECT_EQ(m.support, 6);
-  EXPECT_NEAR(m.b_in_a.mean.x, truth.x, 0.02);
-  EXPECT_NEAR(m.b_in_a.mean.y, truth.y, 0.02);
-  EXPECT_NEAR(m.b_in_a.mean.theta, truth.theta, 0.005);
-}
-
 // Lines of one map are correlated and MapLine has only their marginals: by default t's
 // covariance is n times the independent-lines one (covariance intersection, equal weights).
 TEST(MapMatch, CovarianceAllowsForUnknownCorrelationBetweenTheLines) {
