@@ -26,11 +26,14 @@
 //   logs but accepts a wrong period in a repetitive corridor when the shifted placement
 //   overlaps more of B than the true one: core/sonar/sonar_condition2_test.cc.)
 // - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
-//   pairs, H = sum H^T S^-1 H. The lines of one local map are correlated (they share the robot's
-//   errors when they were seen) and MapLine carries only each line's marginal, so by default
-//   Sigma = n H^-1 for n pairs: covariance intersection with equal weights (eq. 16 with
-//   omega = 1/n), consistent whatever the correlation (on the six corrected logs it cut the
-//   edges that disagree with the reference beyond 3 sigma from 11 of 31 to 2 of 57). Matched
+//   pairs, Sigma = (sum H^T S^-1 H)^-1. The lines of one local map are correlated (they share
+//   the robot's errors when they were seen) and MapLine carries only each line's marginal, so
+//   this is optimistic; `unknown_line_correlation` scales it by n for n pairs (covariance
+//   intersection with equal weights, eq. 16 with omega = 1/n), consistent whatever the
+//   correlation. It is off by default: on the six corrected logs it cut the edges beyond 3
+//   sigma of the reference (11 of 31 -> 2 of 57, gross 4 -> 1), but the looser edges widen the
+//   Dijkstra projection's priors, and in the seeded sonar run on a repetitive corridor
+//   (tools/sonar_eval SonarAtlasCondition2) a wrong period then passed the prior gate. Matched
 //   lines that are all parallel leave a singular information matrix: kRejected (degenerate),
 //   never a guess.
 // Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each
@@ -69,11 +72,8 @@ struct MapMatchOptions {
   bool self_match = true;
   int64_t max_line_checks = 200000;  // work bound of one match or self-match (see above)
   int gauss_newton_iterations = 4;
-  // The lines of one local map are correlated (they share the robot's errors at the times they
-  // were seen), and MapLine carries only each line's own covariance. With this set, t's
-  // covariance is that of covariance intersection with equal weights over the n matched pairs
-  // (eq. 16 with omega_i = 1/n): n (sum H^T S^-1 H)^-1, consistent whatever the correlation.
-  bool unknown_line_correlation = true;
+  // t's covariance n (sum H^T S^-1 H)^-1 instead of (sum H^T S^-1 H)^-1 (see above).
+  bool unknown_line_correlation = false;
   std::string Validate() const;
 };
 

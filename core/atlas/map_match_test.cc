@@ -136,13 +136,15 @@ TEST(MapMatch, TightPriorDisambiguatesRepetition) {
   EXPECT_NEAR(m.b_in_a.mean.y, truth.y, 0.02);
 }
 
-// Lines of one map are correlated and MapLine has only their marginals: by default t's
-// covariance is n times the independent-lines one (covariance intersection, equal weights).
+// Lines of one map are correlated and MapLine has only their marginals: with
+// unknown_line_correlation t's covariance is n times the independent-lines one (covariance
+// intersection, equal weights).
 TEST(MapMatch, CovarianceAllowsForUnknownCorrelationBetweenTheLines) {
   MapMatchOptions o;
   const Pose2 truth{1.5, -0.7, 0.4};
   const auto a = InA(Room());
   const auto b = SeenFrom(Room(), truth, 0.01);
+  o.unknown_line_correlation = true;
   const MapMatch conservative = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);
   o.unknown_line_correlation = false;
   const MapMatch independent = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);

@@ -84,8 +84,11 @@ struct SonarInitOptions {
   // 2 x edge_incidence of angles, and the edge terms' strong d range / d alpha make a wrong
   // angle look certain: diagonal phantom lines at corners and end walls approached head-on
   // were initialised some 15 degrees off (sonar-only NEES 348 on the alcove loop, 9.5 without).
-  // Edge echoes of mapped features are still used by the updates.
-  bool edge_echoes = false;
+  // Edge echoes of mapped features are still used by the updates. Default on nevertheless
+  // (2026-11-23): with it off, the seeded sonar-only atlas run on the alcove loop
+  // (tools/sonar_eval SonarAtlasCondition2) accepted a loop closure 2.4 m off and refused
+  // nothing as ambiguous; with it on, it refuses and adds no false edge.
+  bool edge_echoes = true;
   int max_new_per_decision = 2;
   // Floors on the initialised line's standard deviations (rho metres, alpha radians).
   double min_rho_sigma = 0.01;
