@@ -60,6 +60,19 @@ slack_m = $(awk -v s="$SPEED" 'BEGIN { print 0.02 * s }')
 [sonar]
 enabled = true
 device = "$OUT/dev/sonar"
+# The simulated base is calibrated and its walls are straight: the simulator's noise models
+# (core/localmap's defaults), not the shipped profile of a real B21.
+[noise.odometry]
+wheel_sigma_per_m = 0.002236
+translation_sigma_per_m = 0.001
+translation_sigma_per_rad = 0.001
+rotation_sigma_per_m = 0.001
+rotation_sigma_per_rad = 0.003162
+[noise.laser]
+range_sigma_m = 0.01
+wall_sigma_m = 0.0
+line_rho_sigma_min_m = 0.0
+line_alpha_sigma_min_deg = 0.0
 [lcm]
 url = "$LCM_DEFAULT_URL"
 [state]
