@@ -393,16 +393,29 @@ void Atlas::Traverse(int d) {
   stats_.seeded += seeded;
 }
 
-bool Atlas::SelfMatchCached(FrameId f) const {
+const SelfMatch* Atlas::CachedSelfMatchOf(FrameId f) const {
   const int complexity = graph_.Frame(f).map->Complexity();
   for (const CachedSelfMatch& c : self_cache_)
-    if (c.frame == f && c.complexity == complexity) return true;
+    if (c.frame == f && c.complexity == complexity) return &c.self;
+  return nullptr;
+}
+
+bool Atlas::TriedUnchanged(FrameId a, FrameId b) const {
+  const int ca = graph_.Frame(a).map->Complexity(), cb = graph_.Frame(b).map->Complexity();
+  for (const TriedPair& t : tried_)
+    if (t.a == a && t.b == b && t.complexity_a == ca && t.complexity_b == cb) return true;
   return false;
+}
+
+void Atlas::RememberTried(FrameId a, FrameId b) {
+  tried_[tried_next_] =
+      TriedPair{a, b, graph_.Frame(a).map->Complexity(), graph_.Frame(b).map->Complexity()};
+  tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
 }
 
 bool Atlas::SpendSearchOnSelfMatch(FrameId a, FrameId b) {
   for (FrameId f : {a, b}) {
-    if (SelfMatchCached(f)) continue;
+    if (CachedSelfMatchOf(f) != nullptr) continue;
     SelfMatchOf(f);
     ++stats_.self_matches;
     return true;
@@ -425,9 +438,8 @@ bool Atlas::WithinReach(const LocalMap& map, const UncertainPose& seed) const {
 }
 
 const SelfMatch& Atlas::SelfMatchOf(FrameId f) {
+  if (const SelfMatch* cached = CachedSelfMatchOf(f)) return *cached;
   const int complexity = graph_.Frame(f).map->Complexity();
-  for (CachedSelfMatch& c : self_cache_)
-    if (c.frame == f && c.complexity == complexity) return c.self;
   CachedSelfMatch& slot = self_cache_[self_cache_next_];
   self_cache_next_ = (self_cache_next_ + 1) % static_cast<int>(self_cache_.size());
   slot.frame = f;
@@ -462,21 +474,14 @@ void Atlas::MatchMaps(int d) {
   int advance = 0;
   for (int tried = 0; tried < n && Searches() < budget; ++tried) {
     const ProjectedFrame& e = p.entries[candidates_[(start + tried) % n]];
-    const int ca = dom_map.Complexity();
-    const int cb = graph_.Frame(e.frame).map->Complexity();
-    bool unchanged = false;
-    for (const TriedPair& t : tried_)
-      unchanged |=
-          t.a == dom_frame && t.b == e.frame && t.complexity_a == ca && t.complexity_b == cb;
     advance = tried + 1;
-    if (unchanged) continue;
+    if (TriedUnchanged(dom_frame, e.frame)) continue;
     // A self-match not cached yet is this search; the pair is matched at a later step.
     if (SpendSearchOnSelfMatch(dom_frame, e.frame)) {
       advance = tried;
       continue;
     }
-    tried_[tried_next_] = TriedPair{dom_frame, e.frame, ca, cb};
-    tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
+    RememberTried(dom_frame, e.frame);
     ++stats_.candidates_matched;
     MatchPair(dom_frame, e.frame, &e.pose);
   }
@@ -513,27 +518,20 @@ void Atlas::MatchUnconnected(int d) {
   if (d < 0 || options_.resume_candidates_per_step == 0) return;
   const FrameId dom_frame = hypotheses_[d].frame;
   if (components_.Size(dom_frame) == n) return;  // connected: the projection reaches every frame
-  const LocalMap& dom_map = *graph_.Frame(dom_frame).map;
-  if (dom_map.Complexity() < options_.min_match_lines) return;
+  if (graph_.Frame(dom_frame).map->Complexity() < options_.min_match_lines) return;
   int matched = 0;
   for (int looked = 0;
        looked < options_.resume_scan_per_step && matched < options_.resume_candidates_per_step;
        ++looked) {
     const FrameId f = static_cast<FrameId>(resume_cursor_++ % static_cast<uint64_t>(n));
     if (components_.Connected(f, dom_frame)) continue;
-    const int ca = dom_map.Complexity();
-    const int cb = graph_.Frame(f).map->Complexity();
-    if (cb < options_.min_match_lines) continue;
-    bool unchanged = false;
-    for (const TriedPair& t : tried_)
-      unchanged |= t.a == dom_frame && t.b == f && t.complexity_a == ca && t.complexity_b == cb;
-    if (unchanged) continue;
+    if (graph_.Frame(f).map->Complexity() < options_.min_match_lines) continue;
+    if (TriedUnchanged(dom_frame, f)) continue;
     if (SpendSearchOnSelfMatch(dom_frame, f)) {
       --resume_cursor_;  // this frame again at the next step
       break;
     }
-    tried_[tried_next_] = TriedPair{dom_frame, f, ca, cb};
-    tried_next_ = (tried_next_ + 1) % static_cast<int>(tried_.size());
+    RememberTried(dom_frame, f);
     ++matched;
     ++stats_.match_unconnected;
     MatchPair(dom_frame, f, nullptr);

@@ -216,7 +216,12 @@ class Atlas {
   AddEdgeResult AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, EdgeKind kind);
   void RefineEdges();
   const SelfMatch& SelfMatchOf(FrameId f);
-  bool SelfMatchCached(FrameId f) const;
+  // The cached self-match of `f` at its current complexity, or nullptr.
+  const SelfMatch* CachedSelfMatchOf(FrameId f) const;
+  // Whether the pair was matched at the maps' current complexities (a recent pair is not
+  // re-matched until one of its maps changed), and remembering that it was.
+  bool TriedUnchanged(FrameId a, FrameId b) const;
+  void RememberTried(FrameId a, FrameId b);
   bool WithinReach(const LocalMap& map, const UncertainPose& seed) const;
   // Computes the first of the two frames' self-matches that is not cached and returns true (the
   // step's search was spent on it), or returns false when both are cached.
