@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/atlas/dijkstra_projection.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/render/atlas_drawing.h"
 #include "tools/render/canvas.h"
@@ -137,22 +136,10 @@ int RenderAtlas(AtlasRequest req) {
   }
   replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
   if (!g.error.empty()) return Fail(req.dir + "/graph.tsv: " + g.error);
-  // The trajectory's rows composed with their frames' poses (as global.tsv and
-  // global_refined.tsv hold them): for directories without those files, such as an atlas
-  // exported from atlasd's store with the poses it published (scripts/demo.sh).
-  const auto place = [&run](const std::vector<std::optional<Pose2>>& frame_pose,
-                            std::vector<replay::StampedPose>* out) {
-    for (const replay::StampedFramePose& t : run.trajectory)
-      if (t.frame >= 0 && t.frame < static_cast<int>(frame_pose.size()) && frame_pose[t.frame])
-        out->push_back({t.stamp_s, Compose(*frame_pose[t.frame], t.pose)});
-  };
-  if (req.draw.trajectory && run.global.empty() && !run.trajectory.empty() &&
-      g.graph.FrameCount() > 0) {
-    std::vector<std::optional<Pose2>> projected(static_cast<size_t>(g.graph.FrameCount()));
-    for (const atlas::ProjectedFrame& f : atlas::DijkstraProjection(g.graph, 0).entries)
-      projected[static_cast<size_t>(f.frame)] = f.pose.mean;
-    place(projected, &run.global);
-  }
+  // Without global.tsv (an atlas exported from atlasd's store, with the poses it published:
+  // scripts/demo.sh) the trajectory is placed as atlas-replay places it there.
+  if (req.draw.trajectory && run.global.empty())
+    run.global = replay::PlaceTrajectory(run.trajectory, replay::FramePosesFromFrameZero(g.graph));
   std::vector<std::optional<Pose2>> refined;
   if (req.draw.refined) {
     const refine::RefineResult r = refine::RefineGlobal(g.graph, refine::RefineOptions{});
@@ -160,7 +147,8 @@ int RenderAtlas(AtlasRequest req) {
       return Fail("global refinement: " + std::string(refine::ToString(r.status)) + " " +
                   r.message);
     refined = r.refined;
-    if (req.draw.trajectory && run.refined.empty()) place(refined, &run.refined);
+    if (req.draw.trajectory && run.refined.empty())
+      run.refined = replay::PlaceTrajectory(run.trajectory, refined);
   }
   req.draw.title = req.title;
   AtlasLayout layout;

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <functional>
 
+#include "core/atlas/dijkstra_projection.h"
+
 namespace atlas::replay {
 namespace {
 
@@ -256,24 +258,40 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
   return "";
 }
 
-std::string FormatGlobalTrajectory(const std::vector<StampedFramePose>& trajectory,
-                                   const std::vector<std::optional<Pose2>>& frame_pose,
-                                   const std::string& comment, int* rows_written) {
-  std::string text = "# " + comment + "\n";
-  text.reserve(trajectory.size() * 48);
-  int rows = 0;
-  char buf[160];
+std::vector<std::optional<Pose2>> FramePosesFromFrameZero(const AtlasGraph& graph) {
+  std::vector<std::optional<Pose2>> pose(static_cast<size_t>(graph.FrameCount()));
+  if (graph.FrameCount() > 0)
+    for (const ProjectedFrame& f : DijkstraProjection(graph, 0).entries)
+      pose[static_cast<size_t>(f.frame)] = f.pose.mean;
+  return pose;
+}
+
+std::vector<StampedPose> PlaceTrajectory(const std::vector<StampedFramePose>& trajectory,
+                                         const std::vector<std::optional<Pose2>>& frame_pose) {
+  std::vector<StampedPose> out;
+  out.reserve(trajectory.size());
   for (const StampedFramePose& r : trajectory) {
     if (r.frame < 0 || static_cast<size_t>(r.frame) >= frame_pose.size() ||
         !frame_pose[static_cast<size_t>(r.frame)])
       continue;
-    const Pose2 g = Compose(*frame_pose[static_cast<size_t>(r.frame)], r.pose);
-    const int n =
-        std::snprintf(buf, sizeof buf, "%.6f\t%.6f\t%.6f\t%.6f\n", r.stamp_s, g.x, g.y, g.theta);
-    text.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
-    ++rows;
+    out.push_back({r.stamp_s, Compose(*frame_pose[static_cast<size_t>(r.frame)], r.pose)});
   }
-  if (rows_written != nullptr) *rows_written = rows;
+  return out;
+}
+
+std::string FormatGlobalTrajectory(const std::vector<StampedFramePose>& trajectory,
+                                   const std::vector<std::optional<Pose2>>& frame_pose,
+                                   const std::string& comment, int* rows_written) {
+  const std::vector<StampedPose> rows = PlaceTrajectory(trajectory, frame_pose);
+  std::string text = "# " + comment + "\n";
+  text.reserve(rows.size() * 48);
+  char buf[160];
+  for (const StampedPose& r : rows) {
+    const int n = std::snprintf(buf, sizeof buf, "%.6f\t%.6f\t%.6f\t%.6f\n", r.stamp_s, r.pose.x,
+                                r.pose.y, r.pose.theta);
+    text.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
+  }
+  if (rows_written != nullptr) *rows_written = static_cast<int>(rows.size());
   return text;
 }
 

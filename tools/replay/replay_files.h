@@ -98,9 +98,17 @@ struct GraphFromEdges {
 };
 GraphFromEdges BuildGraph(const std::vector<EdgeRecord>& edges, int frame_count);
 
-// The text of global.tsv / global_refined.tsv: a "# comment" line, then each trajectory row
-// composed with its frame's global pose, "timestamp x y theta" (6 decimals); rows whose frame has
-// no global pose are left out. `rows_written` (optional) counts the rows.
+// Each frame's pose in frame 0, by the Dijkstra projection from frame 0 (paper, Section III-A);
+// nullopt for frames it does not reach. Empty for a graph without frames.
+std::vector<std::optional<Pose2>> FramePosesFromFrameZero(const AtlasGraph& graph);
+
+// Each trajectory row composed with its frame's global pose; rows whose frame has no global
+// pose are left out.
+std::vector<StampedPose> PlaceTrajectory(const std::vector<StampedFramePose>& trajectory,
+                                         const std::vector<std::optional<Pose2>>& frame_pose);
+
+// The text of global.tsv / global_refined.tsv: a "# comment" line, then the rows of
+// PlaceTrajectory(), "timestamp x y theta" (6 decimals). `rows_written` (optional) counts them.
 std::string FormatGlobalTrajectory(const std::vector<StampedFramePose>& trajectory,
                                    const std::vector<std::optional<Pose2>>& frame_pose,
                                    const std::string& comment, int* rows_written = nullptr);

@@ -11,7 +11,6 @@
 #include <cstring>
 #include <memory>
 
-#include "core/atlas/dijkstra_projection.h"
 #include "daemon/atlasd/atlas_export.h"
 #include "tools/replay/replay_files.h"
 
@@ -273,12 +272,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     return result;
   }
 
-  std::vector<std::optional<Pose2>> projected(static_cast<size_t>(sum.frames));
-  if (sum.frames > 0) {
-    for (const ProjectedFrame& f : DijkstraProjection(graph, 0).entries)
-      projected[static_cast<size_t>(f.frame)] = f.pose.mean;
-  }
-  text = FormatGlobalTrajectory(sink.trajectory, projected,
+  text = FormatGlobalTrajectory(sink.trajectory, FramePosesFromFrameZero(graph),
                                 "atlas-replay global: timestamp x y theta (Dijkstra projection "
                                 "from frame 0)",
                                 &sum.global_rows);
