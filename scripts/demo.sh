@@ -60,25 +60,15 @@ slack_m = $(awk -v s="$SPEED" 'BEGIN { print 0.02 * s }')
 [sonar]
 enabled = true
 device = "$OUT/dev/sonar"
-# The simulated base is calibrated and its walls are straight: the simulator's noise models
-# (core/localmap's defaults), not the shipped profile of a real B21.
-[noise.odometry]
-wheel_sigma_per_m = 0.002236
-translation_sigma_per_m = 0.001
-translation_sigma_per_rad = 0.001
-rotation_sigma_per_m = 0.001
-rotation_sigma_per_rad = 0.003162
-[noise.laser]
-range_sigma_m = 0.01
-wall_sigma_m = 0.0
-line_rho_sigma_min_m = 0.0
-line_alpha_sigma_min_deg = 0.0
 [lcm]
 url = "$LCM_DEFAULT_URL"
 [state]
 directory = "$OUT/state"
 save_period_s = 1.0
 TOML
+# The simulated base is calibrated and its walls are straight: the simulator's noise models,
+# not the shipped profile of a real B21.
+cat "$ROOT/config/noise-simulator.toml" >>"$OUT/atlasd.toml"
 
 echo "== atlasd on fake devices playing the run at ${SPEED}x real time"
 lcm-logger --quiet --channel 'ATLAS_POSE|ATLAS_HEALTH' "$OUT/session.lcm" >"$OUT/logger.err" 2>&1 &

@@ -38,19 +38,16 @@ need_multicast
 need_dataset
 [ -f "$RELATIONS" ] || { echo "SKIP: $RELATIONS absent" >&2; exit 77; }
 SPEED=4
-# The noise models are core/localmap's defaults (those of this test before the [noise.*] keys
-# reached the maps), not the shipped B21 profile: with the B21 profile one run scored replay
+# The noise models are config/noise-simulator.toml's (core/localmap's defaults, those of this
+# test before the [noise.*] keys reached the maps), not the shipped B21 profile: with the B21 profile one run scored replay
 # 1.37 m / 2.1 deg against live 2.66 m / 6.2 deg (2026-11-23, loaded machine), beyond the
 # tolerance below; see docs/atlasd.md.
 write_config "$WORK/atlasd.toml" "$SPEED" \
   "[atlas]" "map_capacity = 10" "max_hypotheses = 4" "probation_steps = 8" \
   "max_sigma_x = 0.5" "max_sigma_y = 0.5" "max_sigma_theta = 0.2" \
   "frames_examined_per_step = 24" "match_candidates_per_step = 1" "quality_alpha = 0.5" \
-  "[noise.odometry]" "wheel_sigma_per_m = 0.002236" "translation_sigma_per_m = 0.001" \
-  "translation_sigma_per_rad = 0.001" "rotation_sigma_per_m = 0.001" \
-  "rotation_sigma_per_rad = 0.003162" \
-  "[noise.laser]" "range_sigma_m = 0.01" "wall_sigma_m = 0.0" "line_rho_sigma_min_m = 0.0" \
-  "line_alpha_sigma_min_deg = 0.0" "[loop]" "max_pending_scans = 64"
+  "[loop]" "max_pending_scans = 64"
+cat "$(dirname "$0")/../../config/noise-simulator.toml" >>"$WORK/atlasd.toml"
 sed -i 's/^max_range_m = 50.0/max_range_m = 8.0/; s/^republish_raw = true/republish_raw = false/' \
   "$WORK/atlasd.toml"
 "$ATLASD" --check-config "$WORK/atlasd.toml" >/dev/null 2>"$WORK/check.err" || fail "config: $(cat "$WORK/check.err")"
