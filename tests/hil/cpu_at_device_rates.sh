@@ -28,8 +28,9 @@ write_config "$WORK/atlasd.toml" 1
 # write_config's laser section is for the recorded logs; the simulated laser reaches 30 m.
 sed -i 's/^max_range_m = 50.0/max_range_m = 30.0\nangular_resolution_deg = 1.0/; /^republish_raw = true/d; /^health_period_s = 0.5/d' "$WORK/atlasd.toml"
 if [ -n "${RT_PRIORITY:-}" ]; then
-  sed -i "s/^policy = .*/policy = \"fifo\"/; s/^priority = .*/priority = $RT_PRIORITY/; s/^mlockall = .*/mlockall = true/" "$WORK/atlasd.toml"
-  grep -q '^policy = "fifo"' "$WORK/atlasd.toml" || printf '\n[scheduling]\npolicy = "fifo"\npriority = %d\nmlockall = true\n' "$RT_PRIORITY" >>"$WORK/atlasd.toml"
+  # write_config writes no [scheduling] section.
+  printf '\n[scheduling]\npolicy = "fifo"\npriority = %d\nmlockall = true\n' "$RT_PRIORITY" \
+    >>"$WORK/atlasd.toml"
   POSE_LATENCY_CMD=(chrt -f "$RT_PRIORITY" "$POSE_LATENCY")
 else
   POSE_LATENCY_CMD=("$POSE_LATENCY")
