@@ -144,6 +144,7 @@ void SonarReader::HandlePacket(const p2os::PacketView& p, Time stamp) {
   p2os::ToSonarReading(sip_, stamp, options_.sonar, &reading_);
   if (reading_.returns.empty()) return;
   queue_.Push(std::move(reading_));
+  if (options_.on_reading) options_.on_reading();
   health_.samples.fetch_add(1, std::memory_order_relaxed);
   reading_ = SonarReading{};
 }

@@ -9,6 +9,7 @@
 // arrival. Bad checksums, bad counts, garbage and truncated packets are counted; EOF/EIO ends the
 // session and the line is reopened with capped backoff (handshake again).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ struct SonarReaderOptions {
   Duration reply_timeout = std::chrono::milliseconds(300);
   Duration truncation_gap = std::chrono::milliseconds(100);  // see LaserReaderOptions
   size_t queue_capacity = 64;
+  // Called by the reader thread right after each reading is queued (as LaserReaderOptions::
+  // on_scan), so that a consumer can block until there is one (atlasd's loop when the local
+  // maps use the sonar). Must be quick; may be empty.
+  std::function<void()> on_reading;
   ReconnectOptions reconnect;
   std::string Validate() const;
 };

@@ -9,6 +9,7 @@
 #include "drivers/agilex/wheel_odometry.h"
 #include "drivers/can/can_transport.h"
 #include "drivers/device/laser_reader.h"
+#include "drivers/device/sonar_reader.h"
 #include "drivers/fake/fake_agilex_base.h"
 #include "drivers/fake/fake_can_bus.h"
 #include "drivers/fake/fake_lms.h"
@@ -182,6 +183,46 @@ TEST(FakeLmsTest, BaudSwitchIsFollowed) {
   EXPECT_EQ(lms.commands_answered(), 4u);  // status, baud, variant, continuous
   reader.Stop();
   lms.Stop();
+  std::filesystem::remove_all(dir);
+}
+
+// The sonar reader calls on_reading right after queueing each reading (atlasd's loop sleeps
+// until then when its maps use the sonar): every reading sent arrives and was signalled.
+TEST(FakeP2osTest, SonarReaderSignalsEveryQueuedReading) {
+  const std::string dir = TempDir();
+  auto rec = TinyRecording();
+  auto clock = std::make_shared<PlaybackClock>(rec->begin, 10.0);
+  FakeP2osOptions fo;
+  fo.link = dir + "/sonar";
+  FakeP2os p2os(fo, rec, clock);
+  std::string err;
+  ASSERT_TRUE(p2os.Open(&err)) << err;
+  p2os.Start();
+  std::atomic<int> signalled{0};
+  SonarReaderOptions so;
+  so.device = fo.link;
+  so.sonar = fo.sonar;
+  so.on_reading = [&signalled] { signalled.fetch_add(1); };
+  SonarReader reader(so);
+  reader.Start();
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (!p2os.is_open() && Now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(p2os.is_open()) << reader.Health().last_error;
+  clock->Start();
+  SonarReading r;
+  int got = 0;
+  while (!p2os.finished() && Now() < deadline + std::chrono::seconds(5)) {
+    while (reader.Pop(&r)) ++got;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  reader.Stop();
+  while (reader.Pop(&r)) ++got;
+  EXPECT_GT(got, 10);
+  EXPECT_EQ(got, static_cast<int>(p2os.SentIntact().size()));
+  EXPECT_EQ(signalled.load(), got);
+  p2os.Stop();
   std::filesystem::remove_all(dir);
 }
 
