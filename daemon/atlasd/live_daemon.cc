@@ -71,14 +71,29 @@ struct Shared {
   std::string status;  // one-line summary, under mutex
   bool reload_pending = false;
   DaemonOptions reloaded;  // under mutex
-  // Scans queued by the laser reader: the loop thread sleeps on `scan_arrived` until a scan
-  // comes (or kIdleWait passes, for dead reckoning and health), never polling.
-  std::mutex scan_mutex;
-  std::condition_variable scan_arrived;
-  uint64_t scans_queued = 0;  // under scan_mutex
+  // Range data queued by the laser reader, and by the sonar reader when the local maps use the
+  // sonar: the loop thread sleeps on `range_arrived` until a scan or a reading comes (or
+  // kIdleWait passes, for dead reckoning and health), never polling.
+  std::mutex range_mutex;
+  std::condition_variable range_arrived;
+  uint64_t range_queued = 0;  // under range_mutex
+  void SignalRange() {
+    {
+      std::lock_guard<std::mutex> lock(range_mutex);
+      ++range_queued;
+    }
+    range_arrived.notify_one();
+  }
 };
 
-// The longest the loop sleeps without a scan: dead-reckoning output (20 Hz), health periods and
+// The loop takes every stamp at the resolution of the raw channels (whole microseconds, utime),
+// so that `atlasd --replay` of the republished channels feeds the StepLoop exactly what it had.
+template <typename T>
+void ToRawResolution(T* item) {
+  item->stamp = FromUtime(ToUtime(item->stamp));
+}
+
+// The longest the loop sleeps without range data: dead-reckoning output (20 Hz), health periods and
 // the heartbeat are checked at least this often.
 constexpr auto kIdleWait = std::chrono::milliseconds(10);
 
@@ -132,6 +147,8 @@ class LiveDaemon {
   std::unique_ptr<LaserReader> laser_;
   std::unique_ptr<OdometryReader> odometry_;
   std::unique_ptr<SonarReader> sonar_;
+  std::vector<SonarReading> drained_sonar_;  // one drain, capacity reserved at start
+  std::vector<LaserScan> drained_scans_;
   AtlasStore store_;
   std::unique_ptr<AtlasStoreWriter> writer_;  // null when the store could not be opened
   CheckpointBuilder checkpoints_;
@@ -160,21 +177,37 @@ std::vector<DriverEntry> LiveDaemon::Drivers() const {
 void LiveDaemon::Drain() {
   OdometrySample o;
   while (odometry_ && odometry_->Pop(&o)) {
+    ToRawResolution(&o);
     if (republish_raw_) publisher_->RawOdometry(o);
     loop_->AddOdometry(o);
   }
-  // localmap.sensors: the maps are stepped with the laser, the sonar, or both.
-  const LocalMapSensors maps_use = options_.localmap.sensors;
+  // The readings and scans drained together go to the loop (and are republished) in stamp
+  // order; the loop steps in the order they are added, so a recording of the raw channels
+  // holds the step order (step_loop.h). At most one queue's capacity of each per drain.
+  drained_sonar_.clear();
+  drained_scans_.clear();
   SonarReading s;
-  while (sonar_ && sonar_->Pop(&s)) {
-    if (republish_raw_) publisher_->RawSonar(s);
-    if (maps_use != LocalMapSensors::kLaser) loop_->AddSonar(std::move(s));
+  while (sonar_ && drained_sonar_.size() < drained_sonar_.capacity() && sonar_->Pop(&s)) {
+    ToRawResolution(&s);
+    drained_sonar_.push_back(std::move(s));
   }
   LaserScan scan;
-  while (laser_ && laser_->Pop(&scan)) {
-    if (republish_raw_) publisher_->RawLaser(scan);
-    if (maps_use != LocalMapSensors::kSonar) loop_->AddScan(std::move(scan));
+  while (laser_ && drained_scans_.size() < drained_scans_.capacity() && laser_->Pop(&scan)) {
+    ToRawResolution(&scan);
+    drained_scans_.push_back(std::move(scan));
   }
+  // localmap.sensors: the maps are stepped with the laser, the sonar, or both.
+  const LocalMapSensors maps_use = options_.localmap.sensors;
+  InStampOrder(
+      drained_sonar_, drained_scans_,
+      [&](SonarReading& r) {
+        if (republish_raw_) publisher_->RawSonar(r);
+        if (maps_use != LocalMapSensors::kLaser) loop_->AddSonar(std::move(r));
+      },
+      [&](LaserScan& l) {
+        if (republish_raw_) publisher_->RawLaser(l);
+        if (maps_use != LocalMapSensors::kSonar) loop_->AddScan(std::move(l));
+      });
 }
 
 void LiveDaemon::PublishHealth(Time now) {
@@ -309,10 +342,10 @@ void LiveDaemon::LoopThread() {
         ApplyReload(loaded);
       }
     }
-    uint64_t scans_seen;
+    uint64_t range_seen;
     {
-      std::lock_guard<std::mutex> lock(shared_.scan_mutex);
-      scans_seen = shared_.scans_queued;
+      std::lock_guard<std::mutex> lock(shared_.range_mutex);
+      range_seen = shared_.range_queued;
     }
     Drain();
     const bool stepped = loop_->StepOne(sink_.get());
@@ -325,9 +358,9 @@ void LiveDaemon::LoopThread() {
       PublishHealth(now);
     }
     if (!stepped) {
-      std::unique_lock<std::mutex> lock(shared_.scan_mutex);
-      shared_.scan_arrived.wait_for(lock, kIdleWait, [&] {
-        return shared_.scans_queued != scans_seen || shared_.stop.load(std::memory_order_acquire);
+      std::unique_lock<std::mutex> lock(shared_.range_mutex);
+      shared_.range_arrived.wait_for(lock, kIdleWait, [&] {
+        return shared_.range_queued != range_seen || shared_.stop.load(std::memory_order_acquire);
       });
     }
   }
@@ -374,18 +407,18 @@ int LiveDaemon::Run() {
   odometry_->Start();
   if (options_.laser.enabled) {
     LaserReaderOptions lo = ToLaserReaderOptions(options_);
-    lo.on_scan = [this] {
-      {
-        std::lock_guard<std::mutex> lock(shared_.scan_mutex);
-        ++shared_.scans_queued;
-      }
-      shared_.scan_arrived.notify_one();
-    };
+    lo.on_scan = [this] { shared_.SignalRange(); };
     laser_ = std::make_unique<LaserReader>(lo);
+    drained_scans_.reserve(laser_->queue().capacity());
     laser_->Start();
   }
   if (options_.sonar.enabled) {
-    sonar_ = std::make_unique<SonarReader>(ToSonarReaderOptions(options_));
+    SonarReaderOptions so = ToSonarReaderOptions(options_);
+    // Readings the maps do not use are drained with the scans (republished when asked).
+    if (options_.localmap.sensors != LocalMapSensors::kLaser)
+      so.on_reading = [this] { shared_.SignalRange(); };
+    sonar_ = std::make_unique<SonarReader>(so);
+    drained_sonar_.reserve(sonar_->queue().capacity());
     sonar_->Start();
   }
   std::thread loop_thread([this] { LoopThread(); });
@@ -459,10 +492,10 @@ int LiveDaemon::Run() {
   notifier_.Stopping();
   std::fprintf(stderr, "atlasd: stopping\n");
   {
-    std::lock_guard<std::mutex> lock(shared_.scan_mutex);
+    std::lock_guard<std::mutex> lock(shared_.range_mutex);
     shared_.stop.store(true, std::memory_order_release);
   }
-  shared_.scan_arrived.notify_all();
+  shared_.range_arrived.notify_all();
   loop_thread.join();
   if (laser_) laser_->Stop();
   if (odometry_) odometry_->Stop();

@@ -39,8 +39,10 @@ StepLoop::StepLoop(const StepLoopOptions& options, const MapperSettings& setting
       track_(options.odometry_capacity),
       pending_(static_cast<size_t>(options.max_pending_scans)),
       pending_odometry_(static_cast<size_t>(options.max_pending_scans)),
+      pending_order_(static_cast<size_t>(options.max_pending_scans)),
       sonar_(static_cast<size_t>(options.max_pending_scans)),
-      sonar_odometry_(static_cast<size_t>(options.max_pending_scans)) {
+      sonar_odometry_(static_cast<size_t>(options.max_pending_scans)),
+      sonar_order_(static_cast<size_t>(options.max_pending_scans)) {
   period_us_.reserve(kPeriodSample);
   scratch_us_.reserve(kPeriodSample);
 }
@@ -60,12 +62,14 @@ void StepLoop::AddScan(LaserScan&& scan) {
   const size_t slot =
       PushDroppingOldest(pending_, pending_head_, pending_size_, dropped_scans_, std::move(scan));
   pending_odometry_[slot] = track_.added();
+  pending_order_[slot] = added_++;
 }
 
 void StepLoop::AddSonar(SonarReading&& reading) {
   const size_t slot =
       PushDroppingOldest(sonar_, sonar_head_, sonar_size_, dropped_sonar_, std::move(reading));
   sonar_odometry_[slot] = track_.added();
+  sonar_order_[slot] = added_++;
 }
 
 bool StepLoop::StepOne(StepSink* sink) {
@@ -74,7 +78,7 @@ bool StepLoop::StepOne(StepSink* sink) {
     return false;
   }
   const bool sonar = sonar_size_ > 0 && (pending_size_ == 0 ||
-                                         sonar_[sonar_head_].stamp < pending_[pending_head_].stamp);
+                                         sonar_order_[sonar_head_] < pending_order_[pending_head_]);
   LaserScan& scan = pending_[pending_head_];
   const Time stamp = sonar ? sonar_[sonar_head_].stamp : scan.stamp;
   if (!sonar) {

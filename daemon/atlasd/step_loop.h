@@ -24,12 +24,19 @@
 //   grown by the maps' odometry noise model, and laser_silent() is true until a scan is stepped.
 // - Sonar (localmap.sensors "sonar" or "both"): AddSonar() queues ring readings in a second
 //   ring of `max_pending_scans` (oldest dropped and counted, dropped_sonar); StepOne() steps
-//   the oldest pending item of either ring by stamp, a reading with Atlas::Localize(delta,
-//   reading), with the odometry increment taken as for a scan. A stepped reading counts as a
-//   range step for the laser-silence rule (with sonar alone there is no laser to wait for).
-//   The caller adds only the kinds its maps use.
+//   the pending item of either ring that was ADDED first, a reading with Atlas::Localize(delta,
+//   reading), with the odometry increment taken as for a scan (backwards when it is older than
+//   the item stepped before it). A stepped reading counts as a range step for the
+//   laser-silence rule (with sonar alone there is no laser to wait for). The caller adds only
+//   the kinds its maps use, in stamp order as far as it knows them (the live loop merges each
+//   drain of the two queues by stamp). The order of the Add calls, not the stamps, is the step
+//   order, so that a replay adding the items in the order a recording holds them steps them
+//   as live did, however the live steps fell between arrivals (a scan whose reader was
+//   preempted between its arrival stamp and its push comes after a newer reading; live and
+//   replay both step it after the reading).
 // - Deterministic: given the same calls in the same order, the same outputs (replay relies on
-//   it); only the measured step times differ.
+//   it; when the steps are made does not matter, only the order of the calls); only the
+//   measured step times differ.
 
 #include <cstdint>
 #include <functional>
@@ -79,7 +86,7 @@ class StepLoop {
   void AddScan(LaserScan&& scan);
   void AddSonar(SonarReading&& reading);
   size_t Pending() const { return pending_size_ + sonar_size_; }
-  // Steps the oldest pending scan or sonar reading; false when none is pending.
+  // Steps the pending scan or sonar reading added first; false when none is pending.
   bool StepOne(StepSink* sink);
   // Steps every pending scan.
   int StepAll(StepSink* sink);
@@ -112,9 +119,11 @@ class StepLoop {
   OdometryTrack track_;
   std::vector<LaserScan> pending_;          // ring
   std::vector<uint64_t> pending_odometry_;  // odometry samples known at each scan's arrival
+  std::vector<uint64_t> pending_order_;     // the Add call's number, for the step order
   size_t pending_head_ = 0, pending_size_ = 0;
   std::vector<SonarReading> sonar_;  // ring, like pending_
-  std::vector<uint64_t> sonar_odometry_;
+  std::vector<uint64_t> sonar_odometry_, sonar_order_;
+  uint64_t added_ = 0;  // scans and readings added
   size_t sonar_head_ = 0, sonar_size_ = 0;
   int64_t dropped_sonar_ = 0;
   bool have_previous_ = false;
@@ -128,5 +137,21 @@ class StepLoop {
   size_t period_count_ = 0;
   float period_min_ = 0, period_max_ = 0;
 };
+
+// The readings and scans drained together, in stamp order (a scan before a reading of the same
+// stamp): calls on_reading(SonarReading&) and on_scan(LaserScan&) one item at a time, so that
+// the caller adds (and republishes) them in that order. Each vector must be in stamp order.
+template <typename OnReading, typename OnScan>
+void InStampOrder(std::vector<SonarReading>& readings, std::vector<LaserScan>& scans,
+                  OnReading&& on_reading, OnScan&& on_scan) {
+  size_t i = 0, j = 0;
+  while (i < readings.size() || j < scans.size()) {
+    if (j == scans.size() || (i < readings.size() && readings[i].stamp < scans[j].stamp)) {
+      on_reading(readings[i++]);
+    } else {
+      on_scan(scans[j++]);
+    }
+  }
+}
 
 }  // namespace atlas

@@ -8,31 +8,10 @@
 
 #include "core/atlas/atlas_test_world.h"
 #include "core/sonar/fake_sonar_ring.h"
+#include "daemon/atlasd/fake_step_sink.h"
 
 namespace atlas {
 namespace {
-
-struct Recorded {
-  Time stamp;
-  DominantOutput pose;
-  PoseSource source;
-};
-
-class RecordingSink : public StepSink {
- public:
-  void OnPose(Time stamp, const DominantOutput& pose, PoseSource source) override {
-    poses.push_back({stamp, pose, source});
-  }
-  void OnStep(Time, const Atlas& atlas) override { last_steps = atlas.StepCount(); }
-  std::vector<Recorded> poses;
-  int64_t last_steps = 0;
-};
-
-LaserScan ScanAt(double t) {
-  LaserScan s = TestScan();
-  s.stamp = FromSeconds(t);
-  return s;
-}
 
 class StepLoopTest : public ::testing::Test {
  protected:
@@ -45,7 +24,7 @@ class StepLoopTest : public ::testing::Test {
 TEST_F(StepLoopTest, OdometryIsInterpolatedToTheScanStamp) {
   StepLoopOptions o;
   StepLoop loop(o, settings_, &atlas_);
-  RecordingSink sink;
+  FakeStepSink sink;
   loop.AddOdometry({FromSeconds(10.0), Pose2{0, 0, 0}});
   loop.AddOdometry({FromSeconds(10.1), Pose2{1.0, 0, 0}});
   loop.AddScan(ScanAt(10.0));
@@ -65,7 +44,7 @@ TEST_F(StepLoopTest, DropsTheOldestScansWhenBehind) {
   StepLoopOptions o;
   o.max_pending_scans = 2;
   StepLoop loop(o, settings_, &atlas_);
-  RecordingSink sink;
+  FakeStepSink sink;
   loop.AddOdometry({FromSeconds(0.0), Pose2{}});
   for (int i = 0; i < 5; ++i) loop.AddScan(ScanAt(0.01 * i));
   EXPECT_EQ(loop.dropped_scans(), 3);
@@ -80,7 +59,7 @@ TEST_F(StepLoopTest, CountsOverrunsAgainstTheBudget) {
   StepLoopOptions o;
   o.step_budget = Duration(1);  // 1 ns: every step overruns
   StepLoop loop(o, settings_, &atlas_);
-  RecordingSink sink;
+  FakeStepSink sink;
   loop.AddOdometry({FromSeconds(0.0), Pose2{}});
   loop.AddScan(ScanAt(0.0));
   loop.StepAll(&sink);
@@ -99,7 +78,7 @@ TEST_F(StepLoopTest, DeadReckonsWhileTheLaserIsAwayAndRecovers) {
   o.laser_timeout = std::chrono::milliseconds(500);
   o.dead_reckoning_period = std::chrono::milliseconds(100);
   StepLoop loop(o, settings_, &atlas_);
-  RecordingSink sink;
+  FakeStepSink sink;
   loop.AddOdometry({FromSeconds(0.0), Pose2{}});
   loop.AddScan(ScanAt(0.0));
   loop.StepAll(&sink);
@@ -113,7 +92,7 @@ TEST_F(StepLoopTest, DeadReckonsWhileTheLaserIsAwayAndRecovers) {
   EXPECT_TRUE(loop.laser_silent());
   ASSERT_GE(sink.poses.size(), 10u);  // ~1.5 s of silence at 10 Hz
   EXPECT_LE(sink.poses.size(), 16u);
-  const Recorded& last = sink.poses.back();
+  const RecordedPose& last = sink.poses.back();
   EXPECT_EQ(last.source, PoseSource::kOdometryOnly);
   EXPECT_EQ(last.pose.frame, at_scan.frame);
   // Moved by the odometry since the scan, up to the newest sample it was published at.
@@ -130,7 +109,7 @@ TEST_F(StepLoopTest, DeadReckonsWhileTheLaserIsAwayAndRecovers) {
 TEST_F(StepLoopTest, PublishesOnOdometryAloneWhenNoScanEverCame) {
   StepLoopOptions o;
   StepLoop loop(o, settings_, &atlas_);
-  RecordingSink sink;
+  FakeStepSink sink;
   for (int i = 0; i <= 50; ++i) {
     loop.AddOdometry({FromSeconds(5.0 + 0.02 * i), Pose2{0.01 * i, 0, 0}});
     loop.StepOne(&sink);
@@ -141,38 +120,44 @@ TEST_F(StepLoopTest, PublishesOnOdometryAloneWhenNoScanEverCame) {
   EXPECT_NEAR(sink.poses.back().pose.pose.mean.x, 0.5, 1e-6);
 }
 
-SonarReading SonarAt(double t) {
-  SonarReading r;
-  r.stamp = FromSeconds(t);
-  r.returns.push_back(SonarReturn{0, 1.0f});
-  return r;
-}
-
-// localmap.sensors "both": scans and sonar readings are stepped in stamp order, each once.
-TEST_F(StepLoopTest, StepsScansAndSonarReadingsInStampOrder) {
+// localmap.sensors "both": scans and sonar readings are stepped in the order added, each once;
+// InStampOrder gives a drain's items in stamp order. An item added after a newer one (a
+// reader preempted between its arrival stamp and its push) is stepped after it, with the
+// odometry increment going backwards: live and replay (which adds in log order) agree.
+TEST_F(StepLoopTest, StepsScansAndSonarReadingsInTheOrderAdded) {
   StepLoopOptions o;
   o.max_pending_scans = 4;
   StepLoop loop(o, settings_, &atlas_);
-  RecordingSink sink;
+  FakeStepSink sink;
   loop.AddOdometry({FromSeconds(0.0), Pose2{}});
-  loop.AddOdometry({FromSeconds(0.2), Pose2{0.2, 0, 0}});
-  loop.AddScan(ScanAt(0.0));
-  loop.AddScan(ScanAt(0.1));
-  loop.AddSonar(SonarAt(0.05));
-  loop.AddSonar(SonarAt(0.15));
-  EXPECT_EQ(loop.Pending(), 4u);
-  EXPECT_EQ(loop.StepAll(&sink), 4);
-  ASSERT_EQ(sink.poses.size(), 4u);
-  const double order[] = {0.0, 0.05, 0.1, 0.15};
-  for (int i = 0; i < 4; ++i) {
+  loop.AddOdometry({FromSeconds(0.4), Pose2{0.4, 0, 0}});
+  std::vector<SonarReading> readings;
+  readings.push_back(SonarAt(0.05));
+  readings.push_back(SonarAt(0.15));
+  std::vector<LaserScan> scans;
+  scans.push_back(ScanAt(0.0));
+  scans.push_back(ScanAt(0.1));
+  scans.push_back(ScanAt(0.2));
+  InStampOrder(
+      readings, scans, [&](SonarReading& r) { loop.AddSonar(std::move(r)); },
+      [&](LaserScan& s) { loop.AddScan(std::move(s)); });
+  EXPECT_EQ(loop.Pending(), 5u);
+  EXPECT_EQ(loop.StepAll(&sink), 5);
+  loop.AddSonar(SonarAt(0.3));
+  loop.AddScan(ScanAt(0.25));  // late
+  EXPECT_EQ(loop.StepAll(&sink), 2);
+  ASSERT_EQ(sink.poses.size(), 7u);
+  const double order[] = {0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.25};
+  for (int i = 0; i < 7; ++i) {
     EXPECT_EQ(sink.poses[i].stamp, FromSeconds(order[i]));
     EXPECT_EQ(sink.poses[i].source, PoseSource::kScan);
   }
-  // The fake maps follow the odometry, interpolated to each item's stamp.
+  // The fake maps follow the odometry, interpolated to each item's stamp (backwards last).
   EXPECT_NEAR(sink.poses[3].pose.pose.mean.x - sink.poses[0].pose.pose.mean.x, 0.15, 1e-6);
-  EXPECT_EQ(atlas_.StepCount(), 4);
+  EXPECT_NEAR(sink.poses[6].pose.pose.mean.x - sink.poses[5].pose.pose.mean.x, -0.05, 1e-6);
+  EXPECT_EQ(atlas_.StepCount(), 7);
   // The sonar ring has its own bound: the oldest readings are dropped and counted.
-  for (int i = 0; i < 6; ++i) loop.AddSonar(SonarAt(0.2 + 0.01 * i));
+  for (int i = 0; i < 6; ++i) loop.AddSonar(SonarAt(0.4 + 0.01 * i));
   EXPECT_EQ(loop.dropped_sonar(), 2);
   EXPECT_EQ(loop.dropped_scans(), 0);
 }
@@ -190,7 +175,7 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
   EXPECT_NE(ValidateMapperSettings(no_ring), "");
   std::unique_ptr<Atlas> atlas = MakeAtlas(s);
   StepLoop loop(StepLoopOptions{}, s, atlas.get());
-  RecordingSink sink;
+  FakeStepSink sink;
   const std::vector<FakeSonarWall> walls = {{Vec2(-5, 1.2), Vec2(30, 1.2)},
                                             {Vec2(-5, -1.2), Vec2(30, -1.2)}};
   std::mt19937_64 rng(5);
@@ -211,7 +196,7 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
   EXPECT_EQ(loop.steps(), readings);
   EXPECT_FALSE(loop.laser_silent());
   ASSERT_FALSE(sink.poses.empty());
-  for (const Recorded& r : sink.poses) EXPECT_EQ(r.source, PoseSource::kScan);
+  for (const RecordedPose& r : sink.poses) EXPECT_EQ(r.source, PoseSource::kScan);
   const DominantOutput d = atlas->Dominant();
   ASSERT_TRUE(d.valid);
   const LocalMap& map = *atlas->Graph().Frame(d.frame).map;
