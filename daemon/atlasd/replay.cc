@@ -56,45 +56,57 @@ int RunReplay(const DaemonOptions& options, const std::string& log_path,
   const MapperSettings settings = ToMapperSettings(options);
   std::unique_ptr<Atlas> atlas = MakeAtlas(settings);
   StepLoopOptions loop_options = ToStepLoopOptions(options);
-  loop_options.max_pending_scans = 64;  // offline: nothing is dropped (scans are stepped at once)
+  loop_options.max_pending_scans = 64;  // offline: nothing is dropped (items are stepped at once)
   StepLoop loop(loop_options, settings, atlas.get());
   PoseFileSink sink(poses);
+  const LocalMapSensors maps_use = options.localmap.sensors;
   const LcmChannels& ch = options.lcm.channels;
-  int64_t events = 0, bad = 0, scans = 0;
+  int64_t events = 0, bad = 0, scans = 0, sonar = 0, used = 0;
+  // Decodes the event as M; counts it as undecodable when it is not one.
+  auto decode = [&bad](const lcm::LogEvent& e, auto* m) {
+    if (m->decode(e.data, 0, e.datalen) >= 0) return true;
+    ++bad;
+    return false;
+  };
+  auto step = [&] {
+    loop.StepAll(&sink);
+    if (++used % 2000 == 0)
+      std::fprintf(stderr, "atlasd: replay: %lld scans and readings\n",
+                   static_cast<long long>(used));
+  };
   while (const lcm::LogEvent* e = log.readNextEvent()) {
     ++events;
-    if (e->channel == ch.raw_odometry) {
-      atlas::odometry_t m;
-      if (m.decode(e->data, 0, e->datalen) < 0) {
-        ++bad;
-        continue;
-      }
+    if (atlas::odometry_t m; e->channel == ch.raw_odometry && decode(*e, &m)) {
       loop.AddOdometry(FromOdometryMessage(m));
-    } else if (e->channel == ch.raw_laser) {
-      atlas::laser_scan_t m;
-      if (m.decode(e->data, 0, e->datalen) < 0) {
-        ++bad;
-        continue;
-      }
-      loop.AddScan(FromLaserMessage(m));
+    } else if (atlas::laser_scan_t m; e->channel == ch.raw_laser && decode(*e, &m)) {
       ++scans;
-      loop.StepAll(&sink);
-      if (scans % 2000 == 0)
-        std::fprintf(stderr, "atlasd: replay: %lld scans\n", static_cast<long long>(scans));
+      if (maps_use == LocalMapSensors::kSonar) continue;
+      loop.AddScan(FromLaserMessage(m));
+      step();
+    } else if (atlas::sonar_t m; e->channel == ch.raw_sonar && decode(*e, &m)) {
+      ++sonar;
+      if (maps_use == LocalMapSensors::kLaser) continue;
+      loop.AddSonar(FromSonarMessage(m));
+      step();
     }
   }
   std::fclose(poses);
   const std::string summary_path = out_dir + "/summary.txt";
   if (FILE* s = std::fopen(summary_path.c_str(), "w")) {
-    std::fprintf(s, "events %lld\nundecodable %lld\nscans %lld\nsteps %lld\nframes %d\nedges %d\n",
+    std::fprintf(s,
+                 "events %lld\nundecodable %lld\nscans %lld\nsonar_readings %lld\nsteps %lld\n"
+                 "frames %d\nedges %d\n",
                  static_cast<long long>(events), static_cast<long long>(bad),
-                 static_cast<long long>(scans), static_cast<long long>(loop.steps()),
-                 atlas->Graph().FrameCount(), atlas->Graph().EdgeCount());
+                 static_cast<long long>(scans), static_cast<long long>(sonar),
+                 static_cast<long long>(loop.steps()), atlas->Graph().FrameCount(),
+                 atlas->Graph().EdgeCount());
     std::fclose(s);
   }
-  std::fprintf(stderr, "atlasd: replay: %lld scans stepped, %d frames; %s\n",
-               static_cast<long long>(loop.steps()), atlas->Graph().FrameCount(),
-               poses_path.c_str());
+  std::fprintf(stderr,
+               "atlasd: replay: %lld steps (%lld scans, %lld sonar readings in the log; "
+               "localmap.sensors decides which are stepped), %d frames; %s\n",
+               static_cast<long long>(loop.steps()), static_cast<long long>(scans),
+               static_cast<long long>(sonar), atlas->Graph().FrameCount(), poses_path.c_str());
   return 0;
 }
 
