@@ -236,12 +236,17 @@ void Atlas::JudgeJuveniles() {
 
 void Atlas::HandleFailures() {
   int failing = 0, healthy = 0, juveniles = 0;
-  for (Hypothesis& h : hypotheses_) {
+  const int dominant = DominantIndex(hypotheses_);
+  const double dominant_q = dominant >= 0 ? hypotheses_[dominant].q : 0.0;
+  for (int i = 0; i < static_cast<int>(hypotheses_.size()); ++i) {
+    Hypothesis& h = hypotheses_[i];
     if (h.state == HypothesisState::kJuvenile) {
       ++juveniles;
       continue;
     }
-    if (UpdateFailing(&h, options_.lifecycle))
+    const bool below = UpdateFailing(&h, options_.lifecycle);
+    const bool lagging = UpdateLagging(&h, i == dominant, dominant_q, options_.lifecycle);
+    if (below || lagging)
       ++failing;
     else
       ++healthy;
@@ -255,7 +260,8 @@ void Atlas::HandleFailures() {
   }
   for (size_t i = 0; i < hypotheses_.size();) {
     Hypothesis& h = hypotheses_[i];
-    if (h.state == HypothesisState::kMature && h.failing_steps >= options_.lifecycle.fail_steps) {
+    if (h.state == HypothesisState::kMature && (h.failing_steps >= options_.lifecycle.fail_steps ||
+                                                h.lagging_steps >= options_.lifecycle.lag_steps)) {
       MapFrame& f = graph_.MutableFrame(h.frame);
       ++f.retirements;
       f.seed_cooldown_until = step_ + options_.seed_cooldown_steps;
@@ -645,6 +651,7 @@ std::string Atlas::Serialize() const {
     w.Put<int32_t>(h.steps);
     w.Put(h.q);
     w.Put<int32_t>(h.failing_steps);
+    w.Put<int32_t>(h.lagging_steps);
     // The ring is allocated at the first Add(): a hypothesis that has not seen an observation
     // yet (just made by Genesis, or only sonar steps without echoes) writes an empty ring of
     // its capacity, so that every image can be read back.
@@ -677,9 +684,9 @@ bool Atlas::Deserialize(const std::string& bytes) {
   uint32_t magic = 0, version = 0, frames = 0, edges = 0, hyps = 0;
   int64_t step = 0, next_id = 0, last_genesis = 0;
   uint64_t cursor = 0;
-  if (!r.Get(&magic) || magic != kMagic || !r.Get(&version) || version != kImageVersion ||
-      !r.Get(&step) || !r.Get(&next_id) || !r.Get(&last_genesis) || !r.Get(&cursor) ||
-      !r.Get(&frames) || frames > (1u << 24))
+  if (!r.Get(&magic) || magic != kMagic || !r.Get(&version) || version < 1 ||
+      version > kImageVersion || !r.Get(&step) || !r.Get(&next_id) || !r.Get(&last_genesis) ||
+      !r.Get(&cursor) || !r.Get(&frames) || frames > (1u << 24))
     return false;
   AtlasGraph graph(options_.max_degree);
   for (uint32_t i = 0; i < frames; ++i) {
@@ -717,12 +724,13 @@ bool Atlas::Deserialize(const std::string& bytes) {
   for (uint32_t i = 0; i < hyps; ++i) {
     Hypothesis h;
     uint8_t dominant = 0, bootstrapped = 0, has_trial = 0;
-    int32_t steps = 0, failing = 0, cap = 0, head = 0, size = 0;
+    int32_t steps = 0, failing = 0, lagging = 0, cap = 0, head = 0, size = 0;
     uint32_t nz = 0;
     if (!r.Get(&h.id) || !r.Get(&h.frame) || !graph.HasFrame(h.frame) || !r.Get(&h.state) ||
         static_cast<uint8_t>(h.state) > 1 || !r.Get(&dominant) || !r.Get(&h.born_step) ||
-        !r.Get(&steps) || !r.Get(&h.q) || !r.Get(&failing) || !r.Get(&cap) || !r.Get(&head) ||
-        !r.Get(&size) || cap < 1 || cap > 1000 || head < 0 || head >= cap || size < 0 || size > cap)
+        !r.Get(&steps) || !r.Get(&h.q) || !r.Get(&failing) || (version >= 2 && !r.Get(&lagging)) ||
+        !r.Get(&cap) || !r.Get(&head) || !r.Get(&size) || cap < 1 || cap > 1000 || head < 0 ||
+        head >= cap || size < 0 || size > cap)
       return false;
     std::vector<QualityWindow::Entry> ring(cap);
     for (QualityWindow::Entry& e : ring)
@@ -732,6 +740,7 @@ bool Atlas::Deserialize(const std::string& bytes) {
     h.dominant = dominant != 0;
     h.steps = steps;
     h.failing_steps = failing;
+    h.lagging_steps = lagging;
     h.bootstrapped = bootstrapped != 0;
     if ((h.state == HypothesisState::kJuvenile) != (has_trial != 0)) return false;
     if (has_trial) {

@@ -11,10 +11,12 @@
 //     pose is replaced by w's solution, or the juvenile is killed if w fails.
 //  2. Juveniles at the end of probation mature (q beats every mature hypothesis) or are deleted
 //     (Fig. 4). The frame of a deleted juvenile is not reseeded for `seed_cooldown_steps`.
-//  3. Failing mature hypotheses (q < q_fail for fail_steps scans) are retired if another mature
-//     hypothesis is healthy. If none is, Genesis (III-C) starts a new frame from the dominant
-//     one and the failing ones retire, unless juveniles are still on probation (they get their
-//     probation first: a known place must win over a new frame when the robot returns).
+//  3. Failing mature hypotheses (q < q_fail for fail_steps scans, or, other than the dominant
+//     one, q more than retire_margin below the dominant's for lag_steps scans: hypothesis.h) are
+//     retired if another mature hypothesis is healthy. If none is, Genesis (III-C) starts a new
+//     frame from the dominant one and the failing ones retire, unless juveniles are still on
+//     probation (they get their probation first: a known place must win over a new frame when the
+//     robot returns).
 //  4. Traversal (III-E, eq. 10-11): when the dominant q is below q_traverse, juveniles are
 //     seeded in frames near the dominant frame (bounded Dijkstra projection, at most
 //     `traversal_max_hops` edges away, nearest in rho first) that carry no hypothesis and
@@ -185,7 +187,8 @@ class Atlas {
   // A versioned byte image of the whole atlas (graph, maps, hypotheses, bookkeeping).
   // Deserialize uses this atlas's factory to make maps; on bytes that are not a valid image it
   // returns false and leaves the atlas unchanged.
-  static constexpr uint32_t kImageVersion = 1;
+  // Version 2 added Hypothesis::lagging_steps; version 1 images are read with it zero.
+  static constexpr uint32_t kImageVersion = 2;
   std::string Serialize() const;
   bool Deserialize(const std::string& bytes);
 

@@ -84,6 +84,9 @@ std::string LifecycleOptions::Validate() const {
     return "lifecycle.probation_scans must exceed bootstrap_scans";
   if (!(q_fail >= 0.0 && q_fail <= 1.0)) return "lifecycle.q_fail must lie in [0, 1]";
   if (fail_steps < 1) return "lifecycle.fail_steps must be at least 1";
+  if (!(retire_margin >= 0.0 && retire_margin <= 1.0))
+    return "lifecycle.retire_margin must lie in [0, 1]";
+  if (lag_steps < 1) return "lifecycle.lag_steps must be at least 1";
   return "";
 }
 
@@ -100,6 +103,14 @@ bool UpdateFailing(Hypothesis* h, const LifecycleOptions& o) {
   if (h->state != HypothesisState::kMature) return false;
   h->failing_steps = h->q < o.q_fail ? h->failing_steps + 1 : 0;
   return h->failing_steps >= o.fail_steps;
+}
+
+bool UpdateLagging(Hypothesis* h, bool h_is_dominant, double dominant_q,
+                   const LifecycleOptions& o) {
+  if (h->state != HypothesisState::kMature) return false;
+  const bool lagging = !h_is_dominant && h->q < dominant_q - o.retire_margin;
+  h->lagging_steps = lagging ? h->lagging_steps + 1 : 0;
+  return h->lagging_steps >= o.lag_steps;
 }
 
 int DominantIndex(const std::vector<Hypothesis>& hypotheses) {

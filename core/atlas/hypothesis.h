@@ -17,7 +17,16 @@
 //   juvenile -> mature     at the end of probation its q beats every mature hypothesis (or no
 //                          mature hypothesis exists);
 //   mature   -> retired    q stayed below q_fail for fail_steps consecutive steps while another
-//                          mature hypothesis exists (if it is the only one, Genesis first).
+//                          mature hypothesis exists (if it is the only one, Genesis first);
+//                          or, not being the dominant one, its q stayed more than retire_margin
+//                          below the dominant's q for lag_steps consecutive steps.
+// Why the second rule: eq. 5's first term stays near 1 while the robot's pose in a frame is
+// well known, so a hypothesis whose map explains none of the scans keeps q near alpha (0.5 by
+// default) and never falls below an absolute q_fail that healthy sonar maps (which explain a
+// small share of their echoes) must stay above. The paper retires mature hypotheses "that fail
+// to perform well"; measured against the dominant one, a frame the robot has left fails: its
+// hypothesis stops running (drifting along corridors, pairing returns with the wrong wall) and
+// the frame is reached again by traversal (a juvenile, w, probation) when the robot returns.
 //
 // Quality metric q, eq. 5:
 //   q = alpha (1 - det(Sigma_x) / det(Sigma_*)) + (1 - alpha) eta_a / ||Z^k||,
@@ -115,6 +124,7 @@ struct Hypothesis {
   int steps = 0;          // scans processed
   double q = 0.0;         // eq. 5 after the latest scan
   int failing_steps = 0;  // consecutive steps with q < q_fail
+  int lagging_steps = 0;  // consecutive steps with q < dominant q - retire_margin
   QualityWindow window;
   ScanUpdate last_update;
   // Juvenile only: private copy of the frame's map, and the bootstrap state.
@@ -133,6 +143,12 @@ struct LifecycleOptions {
   int bootstrap_scans = 4;
   double q_fail = 0.35;  // a mature hypothesis below this is failing
   int fail_steps = 3;    // ... for this many consecutive scans
+  // A mature hypothesis other than the dominant one whose q is more than retire_margin below
+  // the dominant's for lag_steps consecutive scans is retired (see the transitions above).
+  // 0.2 and 15 scans (3 s at 5 scans/s): measured on the simulator's sonar atlases (alcove
+  // corridor loop and building, docs/atlas.md), neutral on the laser logs.
+  double retire_margin = 0.2;
+  int lag_steps = 15;
   std::string Validate() const;
 };
 
@@ -145,6 +161,11 @@ JuvenileVerdict JudgeJuvenile(const Hypothesis& h, double best_mature_q, bool bo
 
 // Updates h.failing_steps from h.q and returns true when a mature hypothesis is failing.
 bool UpdateFailing(Hypothesis* h, const LifecycleOptions& options);
+// Updates h.lagging_steps from h.q and the dominant hypothesis's q (`h_is_dominant`: h is the
+// dominant one, which never lags) and returns true when a mature hypothesis has lagged for
+// lag_steps scans.
+bool UpdateLagging(Hypothesis* h, bool h_is_dominant, double dominant_q,
+                   const LifecycleOptions& options);
 
 // The index of the dominant hypothesis (best q among mature ones; ties to the older), or -1.
 int DominantIndex(const std::vector<Hypothesis>& hypotheses);

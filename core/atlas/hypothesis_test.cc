@@ -93,6 +93,36 @@ TEST(HypothesisStateMachine, MatureFailsAfterConsecutiveBadSteps) {
   for (int i = 0; i < 5; ++i) EXPECT_FALSE(UpdateFailing(&j, o));
 }
 
+TEST(HypothesisStateMachine, MatureLaggingFarBehindTheDominantFails) {
+  LifecycleOptions o;
+  o.retire_margin = 0.2;
+  o.lag_steps = 3;
+  Hypothesis h;
+  h.state = HypothesisState::kMature;
+  h.q = 0.5;  // above q_fail: the absolute rule never fires
+  EXPECT_FALSE(UpdateLagging(&h, false, 0.75, o));
+  EXPECT_FALSE(UpdateLagging(&h, false, 0.75, o));
+  EXPECT_FALSE(UpdateLagging(&h, false, 0.65, o));  // within the margin: the count restarts
+  EXPECT_EQ(h.lagging_steps, 0);
+  EXPECT_FALSE(UpdateLagging(&h, false, 0.75, o));
+  EXPECT_FALSE(UpdateLagging(&h, false, 0.75, o));
+  EXPECT_TRUE(UpdateLagging(&h, false, 0.75, o));
+  EXPECT_FALSE(UpdateFailing(&h, o));
+  Hypothesis d;  // the dominant one never lags
+  d.state = HypothesisState::kMature;
+  d.q = 0.1;
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(UpdateLagging(&d, true, 0.9, o));
+  Hypothesis j;  // nor do juveniles
+  j.q = 0.0;
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(UpdateLagging(&j, false, 0.9, o));
+  LifecycleOptions bad = o;
+  bad.lag_steps = 0;
+  EXPECT_NE(bad.Validate(), "");
+  bad = o;
+  bad.retire_margin = -0.1;
+  EXPECT_NE(bad.Validate(), "");
+}
+
 TEST(HypothesisStateMachine, DominantIsBestMature) {
   std::vector<Hypothesis> hs(4);
   hs[0].state = HypothesisState::kMature;
