@@ -11,6 +11,8 @@ namespace {
 // at the loop's priority, and at normal priority otherwise.
 TEST(DaemonSetup, DriverThreadsFollowTheLoopsRealTimePriority) {
   DaemonOptions o;
+  o.scheduling.policy = SchedPolicy::kOther;
+  o.scheduling.priority = 0;
   EXPECT_EQ(ToLaserReaderOptions(o).reconnect.realtime_priority, 0);
   EXPECT_EQ(ToOdometryReaderOptions(o).reconnect.realtime_priority, 0);
   EXPECT_EQ(ToSonarReaderOptions(o).reconnect.realtime_priority, 0);

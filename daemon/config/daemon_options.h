@@ -150,8 +150,10 @@ struct StateOptions {
 enum class SchedPolicy { kOther, kFifo, kRoundRobin };
 
 struct SchedulingOptions {
-  SchedPolicy policy = SchedPolicy::kOther;
-  int priority = 0;               // 0 for "other", 1..99 for "fifo" and "rr"
+  // Real-time by default (config/atlasd.toml says why); unprivileged without RLIMIT_RTPRIO it
+  // is reported and atlasd runs with "other".
+  SchedPolicy policy = SchedPolicy::kFifo;
+  int priority = 40;              // 0 for "other", 1..99 for "fifo" and "rr"
   std::vector<int> cpu_affinity;  // empty: any CPU
   bool mlockall = false;
 };
