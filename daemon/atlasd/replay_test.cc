@@ -63,8 +63,8 @@ struct LiveRun {
   int late_items = 0;  // items the maps use, added right after a newer one
 };
 
-// A robot driving 6 m down a corridor (walls at y = +-1.2, an end wall), odometry at 50 Hz, the
-// laser at 25 Hz and the sonar ring at 10 Hz, through the live loop's order of work
+// A robot driving 3 m down a corridor (walls at y = +-1.2, an end wall), odometry at 50 Hz, the
+// laser (181 beams) at 25 Hz and the sonar ring at 10 Hz, through the live loop's order of work
 // (live_daemon.cc LoopThread): a wake-up drains the odometry, then the readings and scans in
 // stamp order (InStampOrder) - each republished raw on memq:// LCM (recorded into `log_path` as
 // lcm-logger does) and added if the maps use it - then steps one item, and steps on (or, at
@@ -87,7 +87,9 @@ LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t se
                                                   {Vec2(9, -1.2), Vec2(9, 1.2)}};
   std::vector<Wall> laser_walls;
   for (const FakeSonarWall& w : sonar_walls) laser_walls.push_back({w.a, w.b});
-  FakeWallScanner laser(laser_walls, FakeLaserOptions{}, seed);
+  FakeLaserOptions laser_options;
+  laser_options.beams = 181;
+  FakeWallScanner laser(laser_walls, laser_options, seed);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution wakes(0.5), catches_up(0.3), late(0.2);
   std::vector<OdometrySample> odometry_queue;
@@ -126,7 +128,7 @@ LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t se
     while (lcm.handleTimeout(0) > 0) {
     }
   };
-  for (int k = 0; k <= 1200; ++k) {  // 10 ms ticks
+  for (int k = 0; k <= 600; ++k) {  // 10 ms ticks
     const double t = 0.01 * k;
     const Pose2 robot{0.5 * t, 0.0, 0.0};
     if (k % 2 == 0) odometry_queue.push_back({FromSeconds(t), robot});
