@@ -16,8 +16,7 @@ constexpr const char* kHelp = R"(usage: atlas-lcm-log-summary LOGFILE [--poses F
 
 Prints key=value lines about an lcm-logger file recorded from atlasd (default channels):
   events.CHANNEL            messages per channel
-  pose.count, pose.max_gap_s (largest gap between consecutive ATLAS_POSE receive times),
-  pose.max_gap_after_s      (the same, after the first pose)
+  pose.count, pose.max_gap_s (largest gap between consecutive ATLAS_POSE receive times)
   health.count, health.laser_fault_seen (a status with LASER FAULT), health.last_steps,
   health.max_overruns, health.dropped_scans,
   health.<driver>.<counter> (last value: bad_crc garbage_bytes truncated discontinuities
