@@ -103,7 +103,7 @@ struct NoiseOptions {
 // The Atlas framework's parameters (paper, Sections I-A and III). Generic on purpose: the atlas
 // and local-map modules fill their own options structs from these fields.
 struct AtlasParameters {
-  int map_capacity = 30;              // features a local map may hold (map capacity, Section I-A)
+  int map_capacity = 10;              // features a local map may hold (map capacity, Section I-A)
   int max_hypotheses = 8;             // juvenile + mature hypotheses alive at once
   int probation_steps = 20;           // steps a juvenile hypothesis has to mature (Section III-E)
   double quality_alpha = 0.5;         // alpha of the quality metric q, eq. 5
