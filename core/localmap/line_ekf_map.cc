@@ -421,18 +421,32 @@ void LineEkfMap::AddFeature(const ObservedLine& z) {
   const Pose2 r = Robot();
   const LineTransform t = LineToParent(r, z.rho, z.alpha);
   const int n = static_cast<int>(x_.size());
+  const ObservedLine in_map = ObservedLineToParent(r, z);
+  AppendFeature(t.line,
+                t.d_pose * P_.topLeftCorner<3, 3>() * t.d_pose.transpose() +
+                    t.d_line * z.cov * t.d_line.transpose(),
+                t.d_pose * P_.topLeftCorner(3, n), in_map.endpoint_a, in_map.endpoint_b);
+}
+
+int LineEkfMap::AddJointFeature(const Vec2& line, const Mat2& cov, const Eigen::MatrixXd& cross,
+                                const Vec2& a, const Vec2& b) {
+  if (Complexity() >= Capacity() || cross.rows() != 2 || cross.cols() != x_.size()) return -1;
+  AppendFeature(line, cov, cross, a, b);
+  return ids_.back();
+}
+
+void LineEkfMap::AppendFeature(const Vec2& line, const Mat2& cov, const Eigen::MatrixXd& cross,
+                               const Vec2& a, const Vec2& b) {
+  const int n = static_cast<int>(x_.size());
   x_.conservativeResize(n + 2);
-  x_(n) = t.line(0);
-  x_(n + 1) = WrapAngle(t.line(1));
+  x_(n) = line(0);
+  x_(n + 1) = WrapAngle(line(1));
   P_.conservativeResize(n + 2, n + 2);
-  const Eigen::MatrixXd cross = t.d_pose * P_.topLeftCorner(3, n);  // 2 x n
   P_.block(n, 0, 2, n) = cross;
   P_.block(0, n, n, 2) = cross.transpose();
-  P_.block<2, 2>(n, n) = t.d_pose * P_.topLeftCorner<3, 3>() * t.d_pose.transpose() +
-                         t.d_line * z.cov * t.d_line.transpose();
+  P_.block<2, 2>(n, n) = cov;
   ids_.push_back(next_id_++);
-  const ObservedLine in_map = ObservedLineToParent(r, z);
-  extents_.push_back(Extent{in_map.endpoint_a, in_map.endpoint_b});
+  extents_.push_back(Extent{a, b});
 }
 
 void LineEkfMap::GrowExtent(int k, const ObservedLine& z_map) {

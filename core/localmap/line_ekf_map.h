@@ -66,6 +66,12 @@ class LineEkfMap final : public LocalMap {
   // the state, by the same inverse model as a laser feature (cross covariances with the robot
   // and the map). Returns its id, or -1 at capacity.
   int AddObservedFeature(const ObservedLine& z);
+  // Adds a feature given jointly with the state: the map-frame line (rho, alpha), its
+  // covariance `cov` and its cross covariance `cross` (2 x StateSize) with the state, and its
+  // map-frame extent a-b (core/sonar: a line initialised from delayed vantage states). Returns
+  // its id, or -1 at capacity or if `cross` has the wrong size.
+  int AddJointFeature(const Vec2& line, const Mat2& cov, const Eigen::MatrixXd& cross,
+                      const Vec2& a, const Vec2& b);
   // Grows the tracked extent of feature k to cover the map-frame points a and b.
   void GrowFeatureExtent(int k, const Vec2& a, const Vec2& b);
 
@@ -108,6 +114,8 @@ class LineEkfMap final : public LocalMap {
   };
   Pose2 Robot() const { return Pose2{x_(0), x_(1), x_(2)}; }
   void AddFeature(const ObservedLine& z);
+  void AppendFeature(const Vec2& line, const Mat2& cov, const Eigen::MatrixXd& cross, const Vec2& a,
+                     const Vec2& b);
   // Q(u) of Predict: OdometryNoise without the calibration terms, plus the calibration errors
   // as errors that repeat every step since the last update that matched (their standard
   // deviation grows linearly with the distance and turn since then).

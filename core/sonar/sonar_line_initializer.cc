@@ -68,6 +68,7 @@ void SonarLineInitializer::DropOld() {
 void SonarLineInitializer::Add(const SonarTransducer& mount, double range) {
   if (moved_since_vantage_ || vantage_.empty()) {
     vantage_.push_back(SonarVantage{});
+    vantage_.back().id = next_vantage_id_++;
     moved_since_vantage_ = false;
   }
   BufferedReturn r;
@@ -77,6 +78,15 @@ void SonarLineInitializer::Add(const SonarTransducer& mount, double range) {
   r.range = range;
   returns_.push_back(r);
   DropOld();
+}
+
+std::vector<int64_t> SonarLineInitializer::VantagesInUse() const {
+  std::vector<int64_t> ids;
+  for (const BufferedReturn& r : returns_) {
+    const int64_t id = vantage_[r.vantage].id;
+    if (ids.empty() || ids.back() != id) ids.push_back(id);
+  }
+  return ids;
 }
 
 double SonarLineInitializer::ReturnVariance(const BufferedReturn& r, double rho,
@@ -213,6 +223,8 @@ GroupingDecision SonarLineInitializer::Decide() {
       init.vantage.push_back(vantage_[r.vantage].pose);
       init.sensors.push_back(Compose(vantage_[r.vantage].pose, r.mount.pose));
       init.ranges.push_back(r.range);
+      init.mounts.push_back(r.mount);
+      init.vantage_ids.push_back(vantage_[r.vantage].id);
       const double t = PositionAlongLine(best.line(1), p.foot);
       lo = std::min(lo, t);
       hi = std::max(hi, t);

@@ -23,16 +23,18 @@
 //   - no rival: no other hypothesis with a clearly different line claims rival_overlap of the
 //     same returns with rival_ratio of the support (else kAmbiguous: wait for more returns).
 // An accepted line leaves the buffer with its inliers and is returned in the ROBOT frame with
-// covariance (H^T W H)^-1 plus floors, to be added to the map by the inverse model
-// LineEkfMap::AddObservedFeature (cross covariances with the robot pose and every feature).
+// covariance (H^T W H)^-1 plus floors, with the ids and transducers of its supporting returns.
 //
-// Approximations (documented, see the sonar NEES figures): the vantage points' relative poses
-// are treated as independent of each other and of the current map state (they share odometry
-// increments, which the map has already used for the robot pose); past poses are thus not kept
-// in the state as full delayed-state SLAM would, only their odometry-relative uncertainty enters
-// the line's covariance.
+// Used alone, the vantage points' relative poses come from the odometry (Predict) and are
+// treated as independent of each other and of any map. SonarLocalMap keeps the vantage points
+// as delayed states of its EKF (delayed_vantages.h), gives the initialiser their relative poses
+// from that joint (SetVantage), and adds an accepted line refitted over the joint, with the
+// correlation with the past poses (the consistent covariance of delayed decision making). The
+// RANSAC inlier test and the robot-frame refinement here still treat the vantage points as
+// independent of each other (a grouping decision, not the line's covariance in the map).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <random>
 #include <utility>
 #include <vector>
@@ -48,6 +50,7 @@ enum class GroupingOutcome { kAccepted, kAmbiguous, kInsufficient };
 struct SonarVantage {
   Pose2 pose;  // robot pose at firing, in the current robot frame
   Mat3 cov = Mat3::Zero();
+  int64_t id = 0;  // unique within this initialiser (DelayedVantages keys)
 };
 
 struct BufferedReturn {
@@ -57,11 +60,13 @@ struct BufferedReturn {
 };
 
 struct InitialisedLine {
-  ObservedLine line;                 // robot frame, canonical, covariance over (rho, alpha)
-  std::vector<Pose2> vantage;        // robot-frame vantage points of the supporting returns
-  std::vector<Vec2> tangent_points;  // robot frame
-  std::vector<Pose2> sensors;        // robot-frame transducer poses of the supporting returns
-  std::vector<double> ranges;        // their ranges
+  ObservedLine line;                    // robot frame, canonical, covariance over (rho, alpha)
+  std::vector<Pose2> vantage;           // robot-frame vantage points of the supporting returns
+  std::vector<Vec2> tangent_points;     // robot frame
+  std::vector<Pose2> sensors;           // robot-frame transducer poses of the supporting returns
+  std::vector<double> ranges;           // their ranges
+  std::vector<SonarTransducer> mounts;  // their transducers (beam width scaled by cone_scale)
+  std::vector<int64_t> vantage_ids;     // SonarVantage::id of each supporting return
   int support = 0;
   double baseline = 0.0;
 };
@@ -93,6 +98,16 @@ class SonarLineInitializer {
   }
 
   const std::vector<SonarVantage>& Vantages() const { return vantage_; }
+  // Replaces vantage point i's relative pose and covariance (SonarLocalMap: from the delayed
+  // states, DelayedVantages::Relative).
+  void SetVantage(int i, const Pose2& pose, const Mat3& cov) {
+    vantage_[i].pose = pose;
+    vantage_[i].cov = cov;
+  }
+  // Ids of the vantage points that buffered returns refer to.
+  std::vector<int64_t> VantagesInUse() const;
+  // The effective model (edge_incidence 0 unless SonarInitOptions::edge_echoes).
+  const SonarModelOptions& Model() const { return m_; }
   const std::vector<BufferedReturn>& Returns() const { return returns_; }
   // Variance of return j's range about the line (rho, alpha) (robot frame), incl. its pose.
   double ReturnVariance(const BufferedReturn& r, double rho, double alpha) const;
@@ -107,6 +122,7 @@ class SonarLineInitializer {
   std::vector<SonarVantage> vantage_;
   std::vector<BufferedReturn> returns_;
   bool moved_since_vantage_ = true;
+  int64_t next_vantage_id_ = 0;
   std::mt19937_64 rng_;
 };
 

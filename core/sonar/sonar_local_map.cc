@@ -1,6 +1,7 @@
 #include "core/sonar/sonar_local_map.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -13,6 +14,69 @@ namespace {
 
 constexpr uint32_t kMagic = 0x4e535441;  // "ATSN"
 constexpr uint32_t kVersion = 1;
+
+// A line initialised from buffered returns, refitted in the map frame over the delayed vantage
+// states (DelayedVantages): the returns' ranges r_j = h(v_j, L) + noise are fitted by Gauss-
+// Newton with the range variances alone, and the vantage poses' errors enter through
+// dL = -B dv, B = A^-1 sum_j w_j h_L,j^T h_v,j (A = sum_j w_j h_L,j^T h_L,j), so that
+//   Cov(L) = A^-1 + B V B^T (+ floors),  Cov(L, s) = -B C,  Cov(L, v) = -B V.
+struct JointLine {
+  Vec2 line = Vec2::Zero();
+  Mat2 cov = Mat2::Zero();
+  Eigen::MatrixXd cross;  // 2 x n, with the EKF state
+  Eigen::MatrixXd cov_v;  // 3m x 2, with the vantage points
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+};
+
+bool FitJointLine(const InitialisedLine& init, const DelayedVantages& dv, const Pose2& robot,
+                  const SonarModelOptions& m, const SonarInitOptions& io, JointLine& out) {
+  const int count = static_cast<int>(init.ranges.size());
+  std::vector<int> index(count);
+  for (int j = 0; j < count; ++j) {
+    index[j] = dv.IndexOf(init.vantage_ids[j]);
+    if (index[j] < 0) return false;
+  }
+  Vec2 line = LineToParent(robot, init.line.rho, init.line.alpha).line;
+  CanonicalizeLine(line(0), line(1));
+  Mat2 a;
+  Eigen::MatrixXd hv = Eigen::MatrixXd::Zero(2, 3 * dv.Size());  // sum_j w_j h_L^T h_v
+  for (int it = 0; it < 5; ++it) {
+    a.setZero();
+    hv.setZero();
+    Vec2 g = Vec2::Zero();
+    for (int j = 0; j < count; ++j) {
+      const SonarRangePrediction p =
+          PredictSonarRange(dv.Pose(index[j]), init.mounts[j], line(0), line(1), m.edge_incidence);
+      if (!p.echoes()) continue;
+      const double sigma = m.range_sigma + m.range_sigma_per_m * init.ranges[j];
+      const double w = 1.0 / (sigma * sigma + m.model_sigma * m.model_sigma);
+      a += w * p.d_line.transpose() * p.d_line;
+      g += w * p.d_line.transpose() * (init.ranges[j] - p.range);
+      hv.block<2, 3>(0, 3 * index[j]) += w * p.d_line.transpose() * p.d_pose;
+    }
+    if (!(std::abs(a.determinant()) > 1e-12)) return false;
+    const Vec2 step = a.ldlt().solve(g);
+    if (it == 4 || step.norm() < 1e-9) break;
+    line += step;
+    CanonicalizeLine(line(0), line(1));
+  }
+  if (!std::isfinite(line(0)) || !std::isfinite(line(1))) return false;
+  const Mat2 a_inv = a.inverse();
+  const Eigen::MatrixXd bm = a_inv * hv;  // B, 2 x 3m
+  const Eigen::MatrixXd bv = bm * dv.Covariance();
+  out.line = line;
+  out.cov = a_inv + bv * bm.transpose();
+  out.cov(0, 0) += io.min_rho_sigma * io.min_rho_sigma;
+  out.cov(1, 1) += io.min_alpha_sigma * io.min_alpha_sigma;
+  out.cov = 0.5 * (out.cov + out.cov.transpose()).eval();
+  out.cross = -bm * dv.CrossCovariance();
+  out.cov_v = -bv.transpose();
+  for (const auto& [from, to] :
+       {std::pair{&init.line.endpoint_a, &out.a}, std::pair{&init.line.endpoint_b, &out.b}}) {
+    *to = PointOnLine(line(0), line(1), PositionAlongLine(line(1), robot.TransformPoint(*from)));
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -27,15 +91,53 @@ std::unique_ptr<LocalMap> SonarLocalMap::Clone() const {
 }
 
 void SonarLocalMap::Predict(const Pose2& u) {
+  const Pose2 before = ekf_.RobotPose().mean;
   ekf_.Predict(u);
   if (o_.sensors != RangeSensors::kLaser) {
+    vantages_.Predict(ComposeJacobianA(before, u));
     init_.Predict(u, LineEkfMap::OdometryNoise(u, o_.line_map.odometry));
+    SyncVantages();
   }
 }
 
 ScanUpdate SonarLocalMap::Update(const LaserScan& scan, bool allow_new_features) {
   if (o_.sensors == RangeSensors::kSonar) return ScanUpdate{};
-  return ekf_.Update(scan, allow_new_features);
+  if (vantages_.Size() == 0) return ekf_.Update(scan, allow_new_features);
+  const Eigen::VectorXd x0 = ekf_.State();
+  const Eigen::MatrixXd p0 = ekf_.Covariance();
+  const ScanUpdate out = ekf_.Update(scan, allow_new_features);
+  vantages_.Follow(x0, p0, ekf_.State(), ekf_.Covariance());
+  return out;
+}
+
+void SonarLocalMap::ResetRobotPose(const UncertainPose& pose) {
+  const Pose2 before = ekf_.RobotPose().mean;
+  const Eigen::MatrixXd p0 = ekf_.Covariance();
+  ekf_.ResetRobotPose(pose);
+  vantages_.Reanchor(before, p0, ekf_.RobotPose().mean, ekf_.RobotPose().cov);
+}
+
+void SonarLocalMap::SyncVantages() {
+  if (!o_.init.delayed_states) return;
+  const std::vector<int64_t> in_use = init_.VantagesInUse();
+  vantages_.Keep(in_use);
+  for (const int64_t id : in_use) {
+    if (vantages_.IndexOf(id) < 0) vantages_.Augment(id, ekf_.State(), ekf_.Covariance());
+  }
+}
+
+void SonarLocalMap::RefreshVantages() {
+  if (!o_.init.delayed_states) return;
+  const Pose2 robot = ekf_.RobotPose().mean;
+  const std::vector<SonarVantage>& v = init_.Vantages();
+  for (int i = 0; i < static_cast<int>(v.size()); ++i) {
+    const int k = vantages_.IndexOf(v[i].id);
+    if (k < 0) continue;
+    Pose2 pose;
+    Mat3 cov;
+    vantages_.Relative(k, robot, ekf_.Covariance(), pose, cov);
+    init_.SetVantage(i, pose, cov);
+  }
 }
 
 bool SonarLocalMap::Duplicate(const ObservedLine& z) const {
@@ -189,7 +291,9 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
   }
   if (rows > 0) {
     const Eigen::MatrixXd rm = r.head(rows).asDiagonal();
+    const Eigen::MatrixXd p0 = vantages_.Size() > 0 ? ekf_.Covariance() : Eigen::MatrixXd();
     if (ekf_.UpdateWithMeasurements(nu.head(rows), h.topRows(rows), rm)) {
+      vantages_.Update(nu.head(rows), h.topRows(rows), rm, p0);
       out.matched = rows;
       out.pairings = std::move(pairings);
       for (const auto& [k, foot] : extents) ekf_.GrowFeatureExtent(k, foot, foot);
@@ -197,12 +301,25 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
   }
   for (const auto& [mount, range] : unexplained) init_.Add(mount, range);
   out.buffered = static_cast<int>(unexplained.size());
+  SyncVantages();
   if (allow_new_features && ekf_.Complexity() < ekf_.Capacity()) {
+    RefreshVantages();
     GroupingDecision d = init_.Decide();
     out.grouping = d.outcome;
     for (InitialisedLine& line : d.lines) {
       if (ekf_.Complexity() >= ekf_.Capacity() || Duplicate(line.line)) continue;
-      if (ekf_.AddObservedFeature(line.line) >= 0) {
+      int id = -1;
+      if (!o_.init.delayed_states) {
+        id = ekf_.AddObservedFeature(line.line);
+      } else {
+        JointLine joint;
+        if (!FitJointLine(line, vantages_, ekf_.RobotPose().mean, init_.Model(), o_.init, joint)) {
+          continue;
+        }
+        id = ekf_.AddJointFeature(joint.line, joint.cov, joint.cross, joint.a, joint.b);
+        if (id >= 0) vantages_.AppendFeature(joint.cov_v);
+      }
+      if (id >= 0) {
         ++out.added;
         out.initialised.push_back(std::move(line));
       }
@@ -213,6 +330,7 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
         return ThroughWall(Compose(now, sensor), 0.5 * m.beam_width, range);
       });
     }
+    SyncVantages();
   }
   sonar_recent_.Add(out.usable, out.matched);
   return out;
@@ -259,6 +377,7 @@ bool SonarLocalMap::Deserialize(const std::string& bytes) {
   if (magic != kMagic || version != kVersion) return false;
   if (!ekf_.Deserialize(bytes.substr(8))) return false;
   init_.Clear();
+  vantages_.Clear();
   sonar_recent_.Clear();
   return true;
 }

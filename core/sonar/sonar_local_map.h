@@ -14,7 +14,15 @@
 // - Returns compatible with no feature (at the loose gate) go to the SonarLineInitializer; if
 //   the caller allows new features (mature hypotheses, Section III-E) and there is capacity,
 //   its RANSAC + delayed-decision grouping may initialise lines, added with
-//   LineEkfMap::AddObservedFeature unless compatible with an existing feature (duplicate).
+//   LineEkfMap::AddJointFeature unless compatible with an existing feature (duplicate).
+// - Delayed decision with consistent covariance: the vantage points the buffered returns were
+//   fired from are delayed states of the EKF (delayed_vantages.h: their joint covariance with
+//   the robot, the features and each other, updated with every Predict, sonar or laser update
+//   and robot reset). An accepted line is refitted in the map frame over those vantage states
+//   (range noise only) and added with its covariance, its cross covariance with the robot and
+//   every feature through the vantage poses it was fitted from, and the vantage points'
+//   cross covariance with it; the initialiser's RANSAC uses the vantage points' poses relative
+//   to the robot with the covariance of that relative pose from the joint.
 // - Specular misses: a return that is longer than a mapped wall echoing in its cone, or whose
 //   whole cone crosses a mapped wall short of the range, came back after a second bounce
 //   (multipath): it is neither used nor buffered, and buffered returns that a new feature shows
@@ -38,6 +46,7 @@
 
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/quality.h"
+#include "core/sonar/delayed_vantages.h"
 #include "core/sonar/sonar_line_initializer.h"
 #include "core/sonar/sonar_options.h"
 
@@ -73,7 +82,7 @@ class SonarLocalMap final : public LocalMap {
   void Predict(const Pose2& odometry_delta) override;
   ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override;
   UncertainPose RobotPose() const override { return ekf_.RobotPose(); }
-  void ResetRobotPose(const UncertainPose& pose) override { ekf_.ResetRobotPose(pose); }
+  void ResetRobotPose(const UncertainPose& pose) override;
   int Complexity() const override { return ekf_.Complexity(); }
   int Capacity() const override { return ekf_.Capacity(); }
   std::vector<MapLine> Lines() const override { return ekf_.Lines(); }
@@ -93,6 +102,7 @@ class SonarLocalMap final : public LocalMap {
 
   const LineEkfMap& Ekf() const { return ekf_; }
   const SonarLineInitializer& Initializer() const { return init_; }
+  const DelayedVantages& Vantages() const { return vantages_; }
   const SonarLocalMapOptions& Options() const { return o_; }
 
  private:
@@ -105,6 +115,12 @@ class SonarLocalMap final : public LocalMap {
   SonarLocalMapOptions o_;
   LineEkfMap ekf_;
   SonarLineInitializer init_;
+  // Keeps the vantage points that buffered returns refer to as delayed states (adds new ones,
+  // marginalises unused ones).
+  void SyncVantages();
+  // Gives the initialiser every vantage point's relative pose and covariance from the joint.
+  void RefreshVantages();
+  DelayedVantages vantages_;
   RecentObservations sonar_recent_;
 };
 

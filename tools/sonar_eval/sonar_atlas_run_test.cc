@@ -59,16 +59,19 @@ TEST(PoseNees, FloorKeepsASingularCovarianceFinite) {
   EXPECT_NEAR(PoseNees(p, Pose2{0.1, 0.0, 0.0}), 0.01 / (0.01 + 1e-6), 1e-9);
 }
 
-// The seeded run: 0.3 km (3.3 laps) with a 24-transducer ring, sonar only.
+// The seeded run: 0.12 km (1.3 laps: the loop is closed once) with a 24-transducer ring, sonar
+// only. (Until the delayed vantage states, core/sonar/delayed_vantages.h, this was seed 2 over
+// 0.3 km; with consistent new lines that run refuses nothing and makes one true closure, and
+// this shorter run is 2.5 times cheaper under the sanitizers.)
 TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
   const AlcoveLoopOptions loop;
   const sim::World world = AlcoveLoopWorld(loop);
   sim::SimulationOptions so;
-  so.length_m = 300.0;
+  so.length_m = 120.0;
   so.laser = false;
   so.sonar = true;
   so.sonar_options.ring = sim::B21SonarRing();
-  so.seed = 2;
+  so.seed = 6;
   ASSERT_EQ(so.Validate(), "");
   SimRecording run;
   const sim::SimulationSummary sum = sim::Simulate(world, so, run);
@@ -80,13 +83,15 @@ TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
       AtlasOptions{}, [mo]() { return std::make_unique<SonarLocalMap>(mo); }, nullptr);
   const AtlasRunReport r = RunAtlas(atlas, run, true);
 
-  ASSERT_GT(r.steps, 3000);
+  ASSERT_GT(r.steps, 1000);
   EXPECT_GE(r.frames, 4);
   // Refused as ambiguous, and for Condition 2's reasons: repetitive structure or a rival.
   EXPECT_GE(r.ambiguous, 1);
   EXPECT_EQ(r.ambiguous, r.reasons[static_cast<int>(MapMatchReason::kRepetitive)] +
                              r.reasons[static_cast<int>(MapMatchReason::kRivalTransform)]);
-  // Every edge added by map-matching agrees with the ground truth: no false closure.
+  // The loop is closed, and every edge added by map-matching agrees with the ground truth: no
+  // false closure.
+  EXPECT_GE(r.accepted, 1);
   EXPECT_EQ(r.closures.map_match_edges, r.accepted);
   EXPECT_EQ(r.closures.unreferenced, 0);
   EXPECT_EQ(r.closures.false_chi2, 0);
