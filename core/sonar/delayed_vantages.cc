@@ -74,12 +74,13 @@ void DelayedVantages::Update(const Eigen::VectorXd& nu, const Eigen::MatrixXd& h
   const Eigen::MatrixXd s = h * p * h.transpose() + r;
   const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (s + s.transpose()));
   if (llt.info() != Eigen::Success) return;
-  const Eigen::MatrixXd hct = h * c_.transpose();  // H C^T, rows x 3m
-  const Eigen::MatrixXd kvt = llt.solve(hct);      // K_v^T
-  v_ += kvt.transpose() * nu;
-  c_.noalias() -= kvt.transpose() * (h * p);
-  vv_.noalias() -= kvt.transpose() * hct;
-  Symmetrize(vv_);
+  // With S = L L^T and W = L^-1 H C^T: K_v = W^T L^-1, V -= W^T W (a symmetric rank update).
+  const auto l = llt.matrixL();
+  const Eigen::MatrixXd w = l.solve(h * c_.transpose());  // rows x 3m
+  v_.noalias() += w.transpose() * l.solve(nu);
+  c_.noalias() -= w.transpose() * l.solve(h * p);
+  vv_.selfadjointView<Eigen::Lower>().rankUpdate(w.transpose(), -1.0);
+  vv_.triangularView<Eigen::StrictlyUpper>() = vv_.transpose();
   for (int i = 0; i < Size(); ++i) v_(3 * i + 2) = WrapAngle(v_(3 * i + 2));
 }
 

@@ -117,6 +117,35 @@ void BM_UpdateSonarWithRansac(benchmark::State& state) {
 }
 BENCHMARK(BM_UpdateSonarWithRansac)->Unit(benchmark::kMicrosecond);
 
+// The bound of the delayed states (delayed_vantages.h): max_vantage (128) vantage points with
+// buffered returns, i.e. 384 extra rows correlated with the EKF, updated with a full ring's
+// pairings, plus one RANSAC / delayed-decision round on the full buffer (256 returns).
+void BM_UpdateSonarAllVantagePoints(benchmark::State& state) {
+  SonarLocalMap base = MappedCorridor(40);
+  const std::vector<SonarTransducer> ring = FakeSonarRing24();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.3, 5.0);
+  std::uniform_int_distribution<int> which(0, 23);
+  for (int k = 0; k < 2 * base.Options().init.max_vantage; ++k) {
+    SonarReading r;
+    for (int i = 0; i < 2; ++i)
+      r.returns.push_back(SonarReturn{which(rng), static_cast<float>(u(rng))});
+    base.UpdateSonar(r, ring, false);
+    base.Predict(Pose2{0.01, 0.0, 0.005});
+  }
+  const SonarReading reading = FireFakeSonarRing(Rooms(), ring, base.RobotPose().mean, 0.01, rng);
+  for (auto _ : state) {
+    state.PauseTiming();
+    SonarLocalMap map = base;
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(map.UpdateSonar(reading, ring, true));
+  }
+  state.counters["features"] = base.Complexity();
+  state.counters["buffered"] = static_cast<double>(base.Initializer().Returns().size());
+  state.counters["vantages"] = base.Vantages().Size();
+}
+BENCHMARK(BM_UpdateSonarAllVantagePoints)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 }  // namespace atlas
 
