@@ -92,46 +92,24 @@ void BM_UpdateWithSonarFullRing(benchmark::State& state) {
 }
 BENCHMARK(BM_UpdateWithSonarFullRing)->Arg(16)->Arg(24)->Unit(benchmark::kMicrosecond);
 
-void BM_UpdateSonarWithRansac(benchmark::State& state) {
-  // Capacity left, buffer full of returns that no feature explains.
+// A mapped corridor (capacity left) whose initialiser buffer holds clutter that no feature
+// explains: `steps` readings of `per_step` random returns, moving `u` after each; then times
+// UpdateSonar with a full-ring reading (the EKF update and one RANSAC / decision round).
+void TimeUpdateWithClutter(benchmark::State& state, uint64_t seed, int steps, int per_step,
+                           const Pose2& u) {
   SonarLocalMap base = MappedCorridor(40);
   const std::vector<SonarTransducer> ring = FakeSonarRing24();
-  std::mt19937_64 rng(9);
-  // Fill the buffer with scattered returns (clutter) without allowing new features.
-  std::uniform_real_distribution<double> u(0.3, 5.0);
-  for (int k = 0; k < 20; ++k) {
-    SonarReading r;
-    for (int i = 0; i < 24; ++i) r.returns.push_back(SonarReturn{i, static_cast<float>(u(rng))});
-    base.UpdateSonar(r, ring, false);
-    base.Predict(Pose2{0.05, 0.0, 0.01});
-  }
-  const SonarReading reading = FireFakeSonarRing(Rooms(), ring, base.RobotPose().mean, 0.01, rng);
-  for (auto _ : state) {
-    state.PauseTiming();
-    SonarLocalMap map = base;
-    state.ResumeTiming();
-    benchmark::DoNotOptimize(map.UpdateSonar(reading, ring, true));
-  }
-  state.counters["features"] = base.Complexity();
-  state.counters["buffered"] = static_cast<double>(base.Initializer().Returns().size());
-}
-BENCHMARK(BM_UpdateSonarWithRansac)->Unit(benchmark::kMicrosecond);
-
-// The bound of the delayed states (delayed_vantages.h): max_vantage (128) vantage points with
-// buffered returns, i.e. 384 extra rows correlated with the EKF, updated with a full ring's
-// pairings, plus one RANSAC / delayed-decision round on the full buffer (256 returns).
-void BM_UpdateSonarAllVantagePoints(benchmark::State& state) {
-  SonarLocalMap base = MappedCorridor(40);
-  const std::vector<SonarTransducer> ring = FakeSonarRing24();
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.3, 5.0);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> range(0.3, 5.0);
   std::uniform_int_distribution<int> which(0, 23);
-  for (int k = 0; k < 2 * base.Options().init.max_vantage; ++k) {
+  for (int k = 0; k < steps; ++k) {
     SonarReading r;
-    for (int i = 0; i < 2; ++i)
-      r.returns.push_back(SonarReturn{which(rng), static_cast<float>(u(rng))});
+    for (int i = 0; i < per_step; ++i) {
+      const int t = per_step == 24 ? i : which(rng);
+      r.returns.push_back(SonarReturn{t, static_cast<float>(range(rng))});
+    }
     base.UpdateSonar(r, ring, false);
-    base.Predict(Pose2{0.01, 0.0, 0.005});
+    base.Predict(u);
   }
   const SonarReading reading = FireFakeSonarRing(Rooms(), ring, base.RobotPose().mean, 0.01, rng);
   for (auto _ : state) {
@@ -143,6 +121,19 @@ void BM_UpdateSonarAllVantagePoints(benchmark::State& state) {
   state.counters["features"] = base.Complexity();
   state.counters["buffered"] = static_cast<double>(base.Initializer().Returns().size());
   state.counters["vantages"] = base.Vantages().Size();
+}
+
+// Capacity left, buffer full of returns of the whole ring that no feature explains.
+void BM_UpdateSonarWithRansac(benchmark::State& state) {
+  TimeUpdateWithClutter(state, 9, 20, 24, Pose2{0.05, 0.0, 0.01});
+}
+BENCHMARK(BM_UpdateSonarWithRansac)->Unit(benchmark::kMicrosecond);
+
+// The bound of the delayed states (delayed_vantages.h): max_vantage (128) vantage points with
+// buffered returns, i.e. 384 extra rows correlated with the EKF, updated with a full ring's
+// pairings, plus one RANSAC / delayed-decision round on the full buffer.
+void BM_UpdateSonarAllVantagePoints(benchmark::State& state) {
+  TimeUpdateWithClutter(state, 11, 2 * SonarInitOptions{}.max_vantage, 2, Pose2{0.01, 0.0, 0.005});
 }
 BENCHMARK(BM_UpdateSonarAllVantagePoints)->Unit(benchmark::kMicrosecond);
 
