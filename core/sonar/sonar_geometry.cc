@@ -1,6 +1,8 @@
 #include "core/sonar/sonar_geometry.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/localmap/line_model.h"
 
@@ -40,6 +42,31 @@ SonarRangePrediction PredictSonarRange(const Pose2& robot, const SonarTransducer
   p.d_pose(2) -= k;
   p.d_line(1) += k;
   return p;
+}
+
+bool ConeFootprint(const Pose2& sensor, double half, double rho, double alpha, double& lo,
+                   double& hi) {
+  const Vec2 n(std::cos(alpha), std::sin(alpha)), along(-std::sin(alpha), std::cos(alpha));
+  const double e = rho - sensor.x * n.x() - sensor.y * n.y();  // signed distance along n
+  double t[2];
+  int crossing = 0;
+  for (int i = 0; i < 2; ++i) {
+    const double a = sensor.theta + (i == 0 ? -half : half);
+    const Vec2 u(std::cos(a), std::sin(a));
+    const double den = u.dot(n);
+    if (den * e > 0.0) {
+      const double dist = e / den;
+      t[i] = PositionAlongLine(alpha, Vec2(sensor.x, sensor.y) + dist * u);
+      ++crossing;
+    } else {
+      t[i] = u.dot(along) >= 0.0 ? std::numeric_limits<double>::infinity()
+                                 : -std::numeric_limits<double>::infinity();
+    }
+  }
+  if (crossing == 0) return false;  // (a cone narrower than 180 degrees)
+  lo = std::min(t[0], t[1]);
+  hi = std::max(t[0], t[1]);
+  return true;
 }
 
 Vec2 TangentLine(const Pose2& sensor, double range, double phi) {

@@ -45,6 +45,15 @@ struct SonarRangePrediction {
 SonarRangePrediction PredictSonarRange(const Pose2& robot, const SonarTransducer& mount, double rho,
                                        double alpha, double edge_incidence = 0.0);
 
+// The part of the line (rho, alpha) inside the cone (half angle `half`) of the transducer pose
+// `sensor` (same frame), as positions along the line (PositionAlongLine, line_model.h): the
+// interval between the edge rays' crossings, unbounded (+-infinity) on the side of an edge ray
+// that does not cross the line in front of the transducer. A return paired with the line came
+// from somewhere in there; false (lo, hi unchanged) when no ray of the cone meets the line
+// (half < pi / 2).
+bool ConeFootprint(const Pose2& sensor, double half, double rho, double alpha, double& lo,
+                   double& hi);
+
 // The line tangent to the arc of radius `range` around the transducer pose `sensor` (in any
 // frame) at the normal angle sensor.theta + phi: canonical (rho, alpha) in that frame.
 Vec2 TangentLine(const Pose2& sensor, double range, double phi);

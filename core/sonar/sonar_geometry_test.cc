@@ -132,5 +132,26 @@ TEST(CommonTangentLines, RecoversWallFromTwoVantagePoints) {
   EXPECT_EQ(CommonTangentLines(s1, 0.5, h, Pose2{3.0, 0.0, 90 * kDeg}, 4.0, h, out), 0);
 }
 
+TEST(ConeFootprint, EdgeRaysBoundThePartOfTheLineInTheCone) {
+  const double half = 12.5 * std::numbers::pi / 180.0;
+  double lo = 0.0, hi = 0.0;
+  // Facing the line x = 2 head-on: +-2 tan(h) about the foot (positions along the line are y).
+  ASSERT_TRUE(ConeFootprint(Pose2{0.0, 0.0, 0.0}, half, 2.0, 0.0, lo, hi));
+  EXPECT_NEAR(lo, -2.0 * std::tan(half), 1e-12);
+  EXPECT_NEAR(hi, 2.0 * std::tan(half), 1e-12);
+  // Along the line: one edge ray crosses far ahead, the other never does.
+  ASSERT_TRUE(ConeFootprint(Pose2{0.0, 0.0, std::numbers::pi / 2}, half, 2.0, 0.0, lo, hi));
+  EXPECT_NEAR(lo, 2.0 * std::tan(std::numbers::pi / 2 - half), 1e-9);
+  EXPECT_TRUE(std::isinf(hi) && hi > 0.0);
+  // Facing away: no ray meets the line; lo, hi unchanged.
+  lo = hi = 7.0;
+  EXPECT_FALSE(ConeFootprint(Pose2{0.0, 0.0, std::numbers::pi}, half, 2.0, 0.0, lo, hi));
+  EXPECT_EQ(lo, 7.0);
+  // The same line given as (-2, pi): the same part of it, positions with the opposite sign.
+  ASSERT_TRUE(ConeFootprint(Pose2{0.0, 0.0, 0.0}, half, -2.0, std::numbers::pi, lo, hi));
+  EXPECT_NEAR(lo, -2.0 * std::tan(half), 1e-12);
+  EXPECT_NEAR(hi, 2.0 * std::tan(half), 1e-12);
+}
+
 }  // namespace
 }  // namespace atlas

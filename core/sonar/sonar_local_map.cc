@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -76,6 +77,23 @@ bool FitJointLine(const InitialisedLine& init, const DelayedVantages& dv, const 
     *to = PointOnLine(line(0), line(1), PositionAlongLine(line(1), robot.TransformPoint(*from)));
   }
   return true;
+}
+
+// The point an edge-of-cone echo paired with `line` (map frame) grows its extent to: the point of
+// the cone's footprint on the line nearest to the extent (none when they overlap). An edge echo's
+// foot (where the edge ray meets the line) is where a wall would be if one were there; for the
+// jamb of an alcove seen from the corridor the echo comes from its corner, and that point on the
+// jamb's line lies in the corridor (atlas-sonar-eval atlas --world alcoves: robot NEES 34.6 ->
+// 8.7 over 10 runs; growing every pairing this way made 5 false closures instead of 1). In-cone
+// echoes grow the extent to their tangent point.
+Vec2 ExtentGrowth(const Pose2& sensor, double half, const MapLine& line, const Vec2& foot) {
+  double lo = 0.0, hi = 0.0;
+  if (!ConeFootprint(sensor, half, line.rho, line.alpha, lo, hi)) return foot;
+  const double ta = PositionAlongLine(line.alpha, line.endpoint_a);
+  const double tb = PositionAlongLine(line.alpha, line.endpoint_b);
+  if (hi < std::min(ta, tb)) return PointOnLine(line.rho, line.alpha, hi);
+  if (lo > std::max(ta, tb)) return PointOnLine(line.rho, line.alpha, lo);
+  return line.endpoint_a;  // the footprint overlaps the extent
 }
 
 }  // namespace
@@ -278,7 +296,10 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
       h.row(rows) = best_h;
       r(rows) = var;
       ++rows;
-      extents.emplace_back(best, best_foot);
+      extents.emplace_back(best, best_edge && o_.update.edge_extent_footprint
+                                     ? ExtentGrowth(Compose(robot, mount.pose),
+                                                    0.5 * mount.beam_width, lines[best], best_foot)
+                                     : best_foot);
       pairings.push_back(SonarPairing{ri, best, best_edge, best_nu});
     } else if (best >= 0) {
       ++out.ambiguous;

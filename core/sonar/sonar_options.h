@@ -41,6 +41,11 @@ struct SonarUpdateOptions {
   double loose_gate = 0.9999;
   // The tangent point must lie within the feature's extent, or at most this far beyond it.
   double max_extent_gap = 1.0;
+  // An edge-of-cone echo grows a feature's extent only to the point of its cone's footprint on
+  // the line nearest to the extent (none when they overlap), not to where its edge ray meets the
+  // line (the jambs of alcoves grew across the corridor). In-cone echoes grow it to their
+  // tangent point either way. Off: the earlier rule, kept for comparison.
+  bool edge_extent_footprint = true;
   // Two features within the gate: the return is ambiguous unless the best one's squared
   // distance is smaller than the other's minus this margin.
   double ambiguity_margin = 4.0;

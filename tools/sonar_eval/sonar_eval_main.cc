@@ -54,7 +54,7 @@ constexpr char kUsage[] =
     "       atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
     "                             [--seed S=1] [--runs N=1] [--km K=0.4] [--capacity C=10]\n"
     "                             [--laser 0|1 (1)] [--self-match 0|1 (1)] [--trace FILE]\n"
-    "                             [--delayed-states 0|1 (1)]\n"
+    "                             [--delayed-states 0|1 (1)] [--edge-extent 0|1 (1)]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
     "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
@@ -68,6 +68,8 @@ constexpr char kUsage[] =
     "      --delayed-states 0 (mc, atlas): new sonar lines with the earlier approximation "
     "(vantage\n"
     "      points independent of the map, SonarInitOptions::delayed_states) for comparison.\n"
+    "      --edge-extent 0 (atlas): edge echoes grow extents to where the edge ray meets the line\n"
+    "      (SonarUpdateOptions::edge_extent_footprint off) for comparison.\n"
     "atlas: N simulated runs (noise seeds S..S+N-1) with laser and sonar through a world: the\n"
     "      building with corridor loops of atlas-sim (R rooms, layout from --seed), or 'alcoves':\n"
     "      one L x W corridor loop with an alcove every P metres (repetitive structure: Condition\n"
@@ -618,7 +620,7 @@ struct TraceWriter {
 
 int RunAtlasMode(const Args& args) {
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
-         self_match = 1, delayed = 1;
+         self_match = 1, delayed = 1, edge_extent = 1;
   sonar_eval::AlcoveLoopOptions loop;
   std::string error;
   if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
@@ -630,6 +632,7 @@ int RunAtlasMode(const Args& args) {
       !GetNumberOption(args, "--laser", 0, 1, laser, error) ||
       !GetNumberOption(args, "--self-match", 0, 1, self_match, error) ||
       !GetNumberOption(args, "--delayed-states", 0, 1, delayed, error) ||
+      !GetNumberOption(args, "--edge-extent", 0, 1, edge_extent, error) ||
       !GetNumberOption(args, "--period", 0.5, 100, loop.period, error) ||
       !GetNumberOption(args, "--loop-length", 5, 1000, loop.length, error) ||
       !GetNumberOption(args, "--loop-width", 5, 1000, loop.width, error)) {
@@ -684,6 +687,7 @@ int RunAtlasMode(const Args& args) {
     SonarLocalMapOptions sonar_o = sonar_eval::SimulatedMapOptions(
         RangeSensors::kSonar, static_cast<int>(capacity), so.odometry_options, so.sonar_options);
     sonar_o.init.delayed_states = delayed != 0;
+    sonar_o.update.edge_extent_footprint = edge_extent != 0;
     if (std::string e = sonar_o.Validate(); !e.empty()) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
       return 2;
@@ -904,8 +908,8 @@ int main(int argc, char** argv) {
     const atlas::Args a = atlas::eval::ParseToolOptions(
         argc, argv, 2,
         {"--world", "--ring", "--seed", "--runs", "--km", "--rooms", "--capacity", "--laser",
-         "--trace", "--self-match", "--period", "--loop-length", "--loop-width",
-         "--delayed-states"});
+         "--trace", "--self-match", "--period", "--loop-length", "--loop-width", "--delayed-states",
+         "--edge-extent"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
