@@ -14,9 +14,10 @@
 # one core. Also printed: the atlas-fakedev process's own use (it shares the machine), the
 # last health line, and (atlas-pose-latency, over the same seconds) the latency from the laser
 # driver's arrival stamp of each scan to its ATLAS_POSE received by an LCM subscriber.
-# RT_PRIORITY=N (optional) runs atlasd's loop thread as the service may (systemd/atlasd.service
-# allows LimitRTPRIO=50): [scheduling] policy "fifo" at priority N with mlockall, and the
-# subscriber under `chrt -f N`, as a robot's consumer of the pose would run.
+# The shipped defaults run the loop and driver threads SCHED_FIFO 40 (where allowed). RT_PRIORITY=N
+# (optional) sets [scheduling] policy "fifo" at priority N with mlockall (systemd/atlasd.service
+# allows LimitRTPRIO=50) and runs the subscriber under `chrt -f N`, as a robot's consumer of the
+# pose would run.
 source "$(dirname "$0")/hil_lib.sh"
 need_multicast
 : "${SIM:?set SIM to the atlas-sim binary}"
