@@ -47,6 +47,13 @@ Hypothesis Juvenile(int steps, double q, bool bootstrapped) {
   return h;
 }
 
+Hypothesis Mature(double q) {
+  Hypothesis h;
+  h.state = HypothesisState::kMature;
+  h.q = q;
+  return h;
+}
+
 TEST(HypothesisStateMachine, JuvenileWaitsOutProbation) {
   LifecycleOptions o;
   o.bootstrap_scans = 3;
@@ -77,9 +84,7 @@ TEST(HypothesisStateMachine, MatureFailsAfterConsecutiveBadSteps) {
   LifecycleOptions o;
   o.q_fail = 0.4;
   o.fail_steps = 3;
-  Hypothesis h;
-  h.state = HypothesisState::kMature;
-  h.q = 0.3;
+  Hypothesis h = Mature(0.3);
   EXPECT_FALSE(UpdateFailing(&h, o));
   EXPECT_FALSE(UpdateFailing(&h, o));
   h.q = 0.5;  // one good step resets the count
@@ -97,9 +102,7 @@ TEST(HypothesisStateMachine, MatureLaggingFarBehindTheDominantFails) {
   LifecycleOptions o;
   o.retire_margin = 0.2;
   o.lag_steps = 3;
-  Hypothesis h;
-  h.state = HypothesisState::kMature;
-  h.q = 0.5;  // above q_fail: the absolute rule never fires
+  Hypothesis h = Mature(0.5);  // above q_fail: the absolute rule never fires
   EXPECT_FALSE(UpdateLagging(&h, false, 0.75, o));
   EXPECT_FALSE(UpdateLagging(&h, false, 0.75, o));
   EXPECT_FALSE(UpdateLagging(&h, false, 0.65, o));  // within the margin: the count restarts
@@ -108,9 +111,7 @@ TEST(HypothesisStateMachine, MatureLaggingFarBehindTheDominantFails) {
   EXPECT_FALSE(UpdateLagging(&h, false, 0.75, o));
   EXPECT_TRUE(UpdateLagging(&h, false, 0.75, o));
   EXPECT_FALSE(UpdateFailing(&h, o));
-  Hypothesis d;  // the dominant one never lags
-  d.state = HypothesisState::kMature;
-  d.q = 0.1;
+  Hypothesis d = Mature(0.1);  // the dominant one never lags
   for (int i = 0; i < 5; ++i) EXPECT_FALSE(UpdateLagging(&d, true, 0.9, o));
   Hypothesis j;  // nor do juveniles
   j.q = 0.0;

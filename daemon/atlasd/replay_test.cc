@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
@@ -184,8 +186,9 @@ class ReplayOfRawSonar : public ::testing::TestWithParam<LocalMapSensors> {};
 // order the live loop republished them), replayed by `atlasd --replay` (RunReplay) with the
 // same configuration: the same steps, on the same stamps, with the same poses and frames.
 TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
-  char dir_template[] = "/tmp/atlas_replay_XXXXXX";
-  const std::string dir = mkdtemp(dir_template);
+  char dir_template[] = "/tmp/atlas_replay_XXXXXX";  // mkdtemp replaces the X's
+  ASSERT_NE(mkdtemp(dir_template), nullptr) << std::strerror(errno);
+  const std::string dir = dir_template;
   DaemonOptions o;
   o.sonar.enabled = true;
   o.sonar.ring = SonarRing::kB21_24;
