@@ -30,6 +30,7 @@ std::string AtlasOptions::Validate() const {
   if (match_memory < 1) return "match_memory must be at least 1";
   if (max_refinements_per_step < 0) return "max_refinements_per_step must be non-negative";
   if (refine_interval_steps < 1) return "refine_interval_steps must be at least 1";
+  if (!(refine_gate_chi2 > 0)) return "refine_gate_chi2 must be positive";
   if (!(capacity_explanation >= 0 && capacity_explanation <= 1))
     return "capacity_explanation must lie in [0, 1]";
   if (genesis_min_interval_steps < 0) return "genesis_min_interval_steps must be non-negative";
@@ -245,7 +246,12 @@ void Atlas::HandleFailures() {
       continue;
     }
     const bool below = UpdateFailing(&h, options_.lifecycle);
-    const bool lagging = UpdateLagging(&h, i == dominant, dominant_q, options_.lifecycle);
+    bool lagging = UpdateLagging(&h, i == dominant, dominant_q, options_.lifecycle);
+    if (i != dominant && dominant >= 0 && ContradictsDominant(hypotheses_[dominant], h)) {
+      h.lagging_steps = options_.lifecycle.lag_steps;
+      lagging = true;
+      ++stats_.contradicting;
+    }
     if (below || lagging)
       ++failing;
     else
@@ -271,6 +277,14 @@ void Atlas::HandleFailures() {
     }
     ++i;
   }
+}
+
+bool Atlas::ContradictsDominant(const Hypothesis& dominant, const Hypothesis& h) const {
+  const int edge = graph_.FindEdge(dominant.frame, h.frame);
+  if (edge < 0) return false;
+  const UncertainPose obs = EdgeObservation(PoseOf(dominant), PoseOf(h));
+  return RefineEdge(obs, graph_.Transform(edge, dominant.frame), options_.refine_gate_chi2)
+             .result == RefineResult::kRejected;
 }
 
 void Atlas::GenesisAtCapacity() {
@@ -559,10 +573,15 @@ void Atlas::RefineEdges() {
       const int64_t last = std::max(e.made_step, e.refined_step);
       if (step_ - last < options_.refine_interval_steps) continue;
       const UncertainPose obs = EdgeObservation(PoseOf(hypotheses_[i]), PoseOf(hypotheses_[j]));
-      const CovarianceIntersection ci = IntersectCovariances(obs, graph_.Transform(edge, fi));
-      graph_.SetTransform(edge, fi, ci.fused, EdgeKind::kRefined, step_);
-      ++stats_.refined;
+      const EdgeRefinement r =
+          RefineEdge(obs, graph_.Transform(edge, fi), options_.refine_gate_chi2);
       --budget;
+      if (r.result == RefineResult::kRejected) {
+        ++stats_.refine_rejected;
+        continue;
+      }
+      graph_.SetTransform(edge, fi, r.ci.fused, EdgeKind::kRefined, step_);
+      ++stats_.refined;
     }
   }
 }

@@ -107,6 +107,46 @@ TEST(Atlas, GenesisEdgeCarriesRobotCovarianceExactly) {
   EXPECT_TRUE(saw_genesis);
 }
 
+// Two mature hypotheses in adjacent frames must agree with the edge between them (edge
+// refinement's gate). Right after Genesis the old frame's hypothesis is still the dominant one
+// (the new map has no lines yet). The new frame's hypothesis is made to jump 3 m sideways (a
+// wrong association): it contradicts the dominant one across the Genesis edge and is retired in
+// that step, and the edge is not refined towards it. Without the jump it stays.
+TEST(Atlas, MatureHypothesisContradictingTheDominantAcrossAnEdgeIsRetired) {
+  for (const bool jump : {false, true}) {
+    SCOPED_TRACE(jump ? "frame 1 jumps" : "no jump");
+    TestWorld w;
+    Atlas atlas(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+    const auto alive_in = [&atlas](FrameId f) {
+      for (const Hypothesis& h : atlas.Hypotheses())
+        if (h.frame == f) return true;
+      return false;
+    };
+    int genesis_step = -1;
+    for (int i = 0; i < 80 && genesis_step < 0; ++i)
+      if (atlas.Step(Pose2{0.25, 0.0, 0.0}, TestScan()).genesis > 0) genesis_step = i;
+    ASSERT_GE(genesis_step, 0) << "no Genesis: the test world changed";
+    ASSERT_TRUE(alive_in(0) && alive_in(1));
+    ASSERT_EQ(atlas.Dominant().frame, 0) << "the test world changed";
+    if (jump) {
+      auto once = std::make_shared<bool>(true);
+      w.script->relocate = [once](int tag, const Pose2& p) {
+        if (tag != 1 || !*once) return p;
+        *once = false;
+        return Pose2{p.x, p.y + 3.0, p.theta};
+      };
+    }
+    const StepStats& s = atlas.Step(Pose2{0.25, 0.0, 0.0}, TestScan());
+    CheckInvariants(atlas);
+    const AtlasGraph& g = atlas.Graph();
+    const AtlasEdge& e = g.Edge(g.FindEdge(0, 1));
+    EXPECT_LT(std::abs(e.b_in_a.mean.y), 0.5) << "the edge moved towards the jumped hypothesis";
+    EXPECT_TRUE(alive_in(0));
+    EXPECT_EQ(s.contradicting, jump ? 1 : 0);
+    EXPECT_EQ(alive_in(1), !jump);
+  }
+}
+
 // Out and back along a corridor: Genesis on the way out, traversal on the way back, and the
 // dominant frame id falls back to 0 (Fig. 7).
 TEST(Atlas, TraversalFallsBackToKnownFrames) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 
 namespace atlas {
 
@@ -60,6 +61,19 @@ CovarianceIntersection IntersectCovariances(const UncertainPose& observation,
   out.fused.mean = Pose2::FromVector(mean);
   out.fused.cov = 0.5 * (cov + cov.transpose());
   out.omega = w;
+  return out;
+}
+
+EdgeRefinement RefineEdge(const UncertainPose& observation, const UncertainPose& prior,
+                          double gate_chi2) {
+  EdgeRefinement out;
+  Vec3 v = observation.mean.ToVector() - prior.mean.ToVector();
+  v.z() = WrapAngle(v.z());
+  const Mat3 s = observation.cov + prior.cov;
+  out.d2 = Invertible(s) ? v.dot(s.inverse() * v) : std::numeric_limits<double>::infinity();
+  if (!(out.d2 <= gate_chi2)) return out;
+  out.result = RefineResult::kAccepted;
+  out.ci = IntersectCovariances(observation, prior);
   return out;
 }
 

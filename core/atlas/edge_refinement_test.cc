@@ -70,5 +70,37 @@ TEST(EdgeObservation, Eq14And15) {
   EXPECT_LT((t.cov - expect).cwiseAbs().maxCoeff(), 1e-14);
 }
 
+// The gate: d2 = v^T (Sigma_obs + Sigma_prior)^-1 v. Observation (1, 0, 0.2) against the prior
+// (0, 0, 0), both diag(0.5, 0.5, 0.01): Sigma = diag(1, 1, 0.02), d2 = 1 + 0 + 0.04 / 0.02 = 3.
+TEST(RefineEdge, GateDistanceWorkedExample) {
+  UncertainPose obs{Pose2{1, 0, 0.2}, Vec3(0.5, 0.5, 0.01).asDiagonal()};
+  UncertainPose prior{Pose2{0, 0, 0}, Vec3(0.5, 0.5, 0.01).asDiagonal()};
+  const EdgeRefinement r = RefineEdge(obs, prior, 16.27);
+  EXPECT_NEAR(r.d2, 3.0, 1e-9);
+  ASSERT_EQ(r.result, RefineResult::kAccepted);
+  const CovarianceIntersection ci = IntersectCovariances(obs, prior);
+  EXPECT_EQ(r.ci.fused.mean.x, ci.fused.mean.x);
+  EXPECT_EQ(r.ci.omega, ci.omega);
+  // The same observation with a gate below 3 is rejected.
+  EXPECT_EQ(RefineEdge(obs, prior, 2.9).result, RefineResult::kRejected);
+}
+
+// mit-csail's case: a mislocalised hypothesis observes the edge 20 m and 2 rad away. Fused, CI
+// would move the edge there; gated, the observation is rejected and the caller keeps the edge.
+TEST(RefineEdge, GrossDisagreementIsRejected) {
+  UncertainPose prior{Pose2{5.7, -9.9, -1.34}, Vec3(0.25, 0.09, 0.06).asDiagonal()};
+  UncertainPose obs{Pose2{-6.4, 6.6, 2.13}, Vec3(0.3, 0.3, 0.1).asDiagonal()};
+  const EdgeRefinement r = RefineEdge(obs, prior, 16.27);
+  EXPECT_EQ(r.result, RefineResult::kRejected);
+  EXPECT_GT(r.d2, 100.0);
+  // Angles are compared across the wrap: -3.1 and 3.1 are 0.083 rad apart, inside the gate.
+  UncertainPose a{Pose2{0, 0, 3.1}, Vec3(0.1, 0.1, 0.01).asDiagonal()};
+  UncertainPose b{Pose2{0, 0, -3.1}, Vec3(0.1, 0.1, 0.01).asDiagonal()};
+  EXPECT_EQ(RefineEdge(a, b, 16.27).result, RefineResult::kAccepted);
+  // A singular sum (both exact) cannot be gated: rejected, not fused.
+  UncertainPose exact{Pose2{0, 0, 0}, Mat3::Zero()};
+  EXPECT_EQ(RefineEdge(exact, exact, 16.27).result, RefineResult::kRejected);
+}
+
 }  // namespace
 }  // namespace atlas

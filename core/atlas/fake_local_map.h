@@ -33,6 +33,8 @@ struct FakeWorldScript {
   int observations = -1;  // >= 0 overrides the count of returns
   // Lines a map reports (in its own frame), by tag; empty = the map's own grown lines.
   std::function<std::vector<MapLine>(int tag)> lines;
+  // Where a map puts the robot after an update (a mislocalisation), by tag; empty = unchanged.
+  std::function<Pose2(int tag, const Pose2& pose)> relocate;
 };
 
 struct FakeLocalMapOptions {
@@ -101,6 +103,7 @@ class FakeLocalMap : public LocalMap {
       ++u.added;
     }
     if (u.matched >= 2) pose_.cov *= o_.update_shrink;
+    if (script_ && script_->relocate) pose_.mean = script_->relocate(tag_, pose_.mean);
     ++updates_;
     last_allow_new_ = allow_new_features;
     return u;

@@ -49,12 +49,15 @@ class RecordingSink final : public StepSink {
     matured += s.matured;
     deleted += s.deleted;
     killed_by_w += s.killed_by_w;
+    refine_rejected += s.refine_rejected;
+    contradicting += s.contradicting;
   }
   std::vector<StampedFramePose> trajectory;
   std::vector<TimingRow> timing;
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
   std::array<int64_t, kMapMatchReasonCount> match_reasons{};
   int64_t seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
+  int64_t refine_rejected = 0, contradicting = 0;
 };
 
 struct OutFile {
@@ -219,6 +222,8 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   sum.matured = sink.matured;
   sum.deleted = sink.deleted;
   sum.killed_by_w = sink.killed_by_w;
+  sum.refine_rejected = sink.refine_rejected;
+  sum.contradicting = sink.contradicting;
 
   const AtlasGraph& graph = atlas->Graph();
   sum.frames = graph.FrameCount();
@@ -388,6 +393,8 @@ std::string SummaryJson(const ReplaySummary& s) {
   Append(t, "\"seeded\": %lld, \"matured\": %lld, \"deleted\": %lld, \"killed_by_w\": %lld, ",
          static_cast<long long>(s.seeded), static_cast<long long>(s.matured),
          static_cast<long long>(s.deleted), static_cast<long long>(s.killed_by_w));
+  Append(t, "\"refine_rejected\": %lld, \"contradicting\": %lld, ",
+         static_cast<long long>(s.refine_rejected), static_cast<long long>(s.contradicting));
   Append(t, "\"global_rows\": %d, \"data_seconds\": %.6f, \"wall_seconds\": %.6f, ", s.global_rows,
          s.data_seconds, s.wall_seconds);
   Append(t, "\"speedup\": %.3f, \"step_ns_median\": %.0f, \"step_ns_max\": %.0f, ",
@@ -441,6 +448,10 @@ std::string SummaryText(const ReplaySummary& s) {
   Append(t, "traversal            seeded %lld, matured %lld, deleted %lld (w failed %lld)\n",
          static_cast<long long>(s.seeded), static_cast<long long>(s.matured),
          static_cast<long long>(s.deleted), static_cast<long long>(s.killed_by_w));
+  Append(t,
+         "consistency          refinements rejected by the gate %lld, hypotheses retired "
+         "for contradicting the dominant %lld\n",
+         static_cast<long long>(s.refine_rejected), static_cast<long long>(s.contradicting));
   Append(t, "global rows          %d\n", s.global_rows);
   Append(t, "data time            %.3f s\n", s.data_seconds);
   Append(t, "stepping wall time   %.3f s (%.1fx real time)\n", s.wall_seconds,

@@ -58,6 +58,9 @@ struct ReplaySummary {
   std::array<int64_t, kMapMatchReasonCount> match_reasons{};
   // Traversal (III-E): juveniles seeded, matured, deleted (of which killed because w failed).
   int64_t seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
+  // Edge refinement observations outside the gate, and mature hypotheses retired because they
+  // contradicted the dominant one across an edge (core/atlas/atlas.h, steps 3 and 7).
+  int64_t refine_rejected = 0, contradicting = 0;
   int global_rows = 0;        // trajectory rows placed in the global projection
   double data_seconds = 0.0;  // last scan stamp - first scan stamp
   double wall_seconds = 0.0;  // stepping only (not reading the log or writing files)
