@@ -12,45 +12,13 @@
 #include <vector>
 
 #include "drivers/device/laser_reader.h"
+#include "drivers/fake/fake_lms.h"
 #include "drivers/serial/pseudo_terminal.h"
 #include "drivers/sick/lms_messages.h"
 #include "drivers/sick/lms_telegram.h"
 
 namespace atlas {
 namespace {
-
-// Answers the start-up sequence at 9600 until the reader asked for continuous output.
-bool AnswerStartUp(PseudoTerminal& pty) {
-  sick::StreamDecoder dec;
-  uint8_t buf[1024];
-  const Time deadline = Now() + std::chrono::seconds(5);
-  bool streaming = false;
-  while (!streaming && Now() < deadline) {
-    const long n = pty.Read(buf, sizeof(buf), 20);
-    if (n <= 0) continue;
-    dec.FeedAll(
-        std::span<const uint8_t>(buf, static_cast<size_t>(n)), [&](const sick::StreamEvent& e) {
-          if (e.kind != sick::StreamEventKind::kTelegram) return;
-          const sick::HostCommand c = sick::DecodeHostCommand(e.telegram);
-          std::vector<uint8_t> reply;
-          switch (c.kind) {
-            case sick::HostCommand::Kind::kStatus:
-              reply = sick::EncodeStatusReply(0x10);
-              break;
-            case sick::HostCommand::Kind::kVariant:
-              reply = sick::EncodeVariantReply(true, c.angle_deg, c.resolution_centideg, 0x10);
-              break;
-            case sick::HostCommand::Kind::kModeContinuous:
-              streaming = true;
-              [[fallthrough]];
-            default:
-              reply = sick::EncodeModeReply(true, 0x10);
-          }
-          pty.WriteAll(reply.data(), reply.size());
-        });
-  }
-  return streaming;
-}
 
 void BM_LaserTelegramToQueue(benchmark::State& state) {
   PseudoTerminal pty;
@@ -66,7 +34,7 @@ void BM_LaserTelegramToQueue(benchmark::State& state) {
   o.reconnect.realtime_priority = static_cast<int>(state.range(0));
   LaserReader reader(o);
   reader.Start();
-  if (!AnswerStartUp(pty)) {
+  if (!fake::AnswerLmsStartUp(pty, std::chrono::seconds(5))) {
     state.SkipWithError("the reader did not start");
     return;
   }

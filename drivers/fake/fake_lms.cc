@@ -106,4 +106,36 @@ Time FakeLms::Tick(Time now) {
   return clock().WallAt(scans[next_scan_].stamp);
 }
 
+bool AnswerLmsStartUp(PseudoTerminal& pty, Duration timeout, uint8_t status) {
+  sick::StreamDecoder decoder;
+  uint8_t buf[1024];
+  const Time deadline = Now() + timeout;
+  bool streaming = false;
+  while (!streaming && Now() < deadline) {
+    const long n = pty.Read(buf, sizeof(buf), 20);
+    if (n <= 0) continue;
+    decoder.FeedAll(
+        std::span<const uint8_t>(buf, static_cast<size_t>(n)), [&](const sick::StreamEvent& e) {
+          if (e.kind != sick::StreamEventKind::kTelegram || e.telegram.is_reply()) return;
+          const sick::HostCommand c = sick::DecodeHostCommand(e.telegram);
+          std::vector<uint8_t> reply;
+          switch (c.kind) {
+            case sick::HostCommand::Kind::kStatus:
+              reply = sick::EncodeStatusReply(status);
+              break;
+            case sick::HostCommand::Kind::kVariant:
+              reply = sick::EncodeVariantReply(true, c.angle_deg, c.resolution_centideg, status);
+              break;
+            case sick::HostCommand::Kind::kModeContinuous:
+              streaming = true;
+              [[fallthrough]];
+            default:
+              reply = sick::EncodeModeReply(true, status);
+          }
+          pty.WriteAll(reply.data(), reply.size());
+        });
+  }
+  return streaming;
+}
+
 }  // namespace atlas::fake

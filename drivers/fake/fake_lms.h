@@ -62,4 +62,10 @@ class FakeLms final : public FakeSerialDevice {
   std::vector<size_t> sent_intact_;
 };
 
+// For benchmarks that write the 0xB0 telegrams themselves on a pseudo-terminal they own: answers
+// the host's start-up sequence as the scanner does (status, mode and variant requests, each
+// acknowledged; at whatever rate the host set, the baud switch included) until the host asks for
+// continuous output (true) or `timeout` passes (false).
+bool AnswerLmsStartUp(PseudoTerminal& pty, Duration timeout, uint8_t status = 0x10);
+
 }  // namespace atlas::fake
