@@ -63,5 +63,14 @@ TEST(DaemonSetup, NoiseModelsReachTheMapper) {
   EXPECT_GT(OdometryIncrementNoise(step, ToMapperSettings(o))(2, 2), before);
 }
 
+// laser.time_offset_s reaches the step loop (seconds -> Duration, sign kept).
+TEST(DaemonSetup, LaserTimeOffsetReachesTheLoop) {
+  DaemonOptions o;
+  EXPECT_EQ(ToStepLoopOptions(o).laser_time_offset, Duration::zero());
+  o.laser.time_offset_s = -0.12;
+  EXPECT_EQ(ToStepLoopOptions(o).laser_time_offset, std::chrono::milliseconds(-120));
+  EXPECT_EQ(ValidateDerivedOptions(o), "");
+}
+
 }  // namespace
 }  // namespace atlas

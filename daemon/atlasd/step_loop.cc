@@ -29,6 +29,8 @@ std::string StepLoopOptions::Validate() const {
   if (!(max_range_m > 0)) return "max_range_m must be positive";
   if (laser_timeout <= Duration::zero()) return "laser_timeout must be positive";
   if (odometry_capacity < 2) return "odometry_capacity must be at least 2";
+  if (laser_time_offset < -std::chrono::seconds(1) || laser_time_offset > std::chrono::seconds(1))
+    return "laser_time_offset must be within -1 s and +1 s";
   return "";
 }
 
@@ -87,8 +89,9 @@ bool StepLoop::StepOne(StepSink* sink) {
       if (!(r < max_range)) r = kNoReturn;
   }
   Pose2 odometry;
+  const Time taken = sonar ? stamp : stamp + options_.laser_time_offset;
   const OdometryLookup lookup = track_.PoseAt(
-      stamp, sonar ? sonar_odometry_[sonar_head_] : pending_odometry_[pending_head_], &odometry);
+      taken, sonar ? sonar_odometry_[sonar_head_] : pending_odometry_[pending_head_], &odometry);
   if (lookup == OdometryLookup::kNoData) {
     ++scans_without_odometry_;
     odometry = have_previous_ ? previous_odometry_ : Pose2{};

@@ -8,7 +8,8 @@
 // - When more than `max_pending_scans` scans wait, the OLDEST is dropped and counted
 //   (dropped_scans): the loop never queues work up when it falls behind.
 // - StepOne() steps the atlas with the oldest pending scan: the odometry increment is the
-//   difference of the odometry poses at the previous and the current scan stamps, each
+//   difference of the odometry poses at the previous and the current scan's time taken (for a
+//   scan: its stamp + laser_time_offset, below; for a sonar reading: its stamp), each
 //   interpolated between the samples bracketing the stamp (OdometryTrack; extrapolated briefly
 //   when the scan is newer than every sample), using only the odometry that had arrived when
 //   the scan was added, so that a scan stepped late gives the same result as one stepped at
@@ -34,6 +35,17 @@
 //   as live did, however the live steps fell between arrivals (a scan whose reader was
 //   preempted between its arrival stamp and its push comes after a newer reading; live and
 //   replay both step it after the reading).
+// - Laser time offset: a scan was TAKEN at stamp + laser_time_offset (negative: before its
+//   stamp). Drivers stamp a scan at the arrival of the telegram's last byte (laser_reader.h),
+//   but the mirror swept the beams before the scanner sent the telegram, and the serial line
+//   takes time: a 361-value SICK LMS telegram (732 bytes, 10 bits a byte) takes about 0.19 s at
+//   38400 baud and about 15 ms at 500 kbaud (a 181-value one half as long), plus the sweep
+//   itself. On mit-csail (361 beams, 38400 baud) the scans are 0.10-0.12 s older than their
+//   stamps (docs/atlas.md). Only the odometry lookup uses the offset: the scan's stamp stays
+//   its identity (the stamp of the pose reported to the sink, of last_scan_stamp(), of the
+//   laser-silence rule), as the drivers made it. A positive offset may reach past the odometry
+//   known at the scan's arrival; the lookup then extrapolates briefly as above. Sonar readings
+//   are looked up at their stamps.
 // - Deterministic: given the same calls in the same order, the same outputs (replay relies on
 //   it; when the steps are made does not matter, only the order of the calls); only the
 //   measured step times differ.
@@ -56,6 +68,8 @@ struct StepLoopOptions {
   Duration laser_timeout = std::chrono::milliseconds(500);
   Duration dead_reckoning_period = std::chrono::milliseconds(50);
   size_t odometry_capacity = 512;
+  // A scan was taken at its stamp + laser_time_offset (contract above); within +-1 s.
+  Duration laser_time_offset = Duration::zero();
   std::string Validate() const;
 };
 

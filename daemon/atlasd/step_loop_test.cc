@@ -40,6 +40,44 @@ TEST_F(StepLoopTest, OdometryIsInterpolatedToTheScanStamp) {
   EXPECT_EQ(sink.last_steps, 2);
 }
 
+// laser_time_offset: the odometry is looked up at stamp + offset, the pose keeps the stamp.
+// The robot stands until 10.1 s and then drives 1 m in 0.1 s: scans stamped 10.1 and 10.2 but
+// taken 0.1 s earlier saw the robot standing, so the fake maps (which follow the odometry
+// increment exactly) must not move it; without the offset they move it by the whole metre.
+TEST_F(StepLoopTest, LaserTimeOffsetShiftsTheOdometryLookupNotTheStamp) {
+  for (const double offset : {0.0, -0.1}) {
+    Atlas atlas(TestWorld::Options(), world_.Factory(), nullptr);
+    StepLoopOptions o;
+    o.laser_time_offset = FromSeconds(offset).time_since_epoch();
+    ASSERT_EQ(o.Validate(), "");
+    StepLoop loop(o, settings_, &atlas);
+    FakeStepSink sink;
+    loop.AddOdometry({FromSeconds(10.0), Pose2{0, 0, 0}});
+    loop.AddOdometry({FromSeconds(10.1), Pose2{0, 0, 0}});
+    loop.AddOdometry({FromSeconds(10.2), Pose2{1.0, 0, 0.2}});
+    loop.AddScan(ScanAt(10.1));
+    loop.AddScan(ScanAt(10.2));
+    EXPECT_EQ(loop.StepAll(&sink), 2);
+    ASSERT_EQ(sink.poses.size(), 2u);
+    EXPECT_EQ(sink.poses[0].stamp, FromSeconds(10.1));
+    EXPECT_EQ(sink.poses[1].stamp, FromSeconds(10.2));
+    EXPECT_EQ(loop.last_scan_stamp(), FromSeconds(10.2));
+    const Pose2 moved = Between(sink.poses[0].pose.pose.mean, sink.poses[1].pose.pose.mean);
+    EXPECT_NEAR(moved.x, offset == 0.0 ? 1.0 : 0.0, 1e-6) << offset;
+    EXPECT_NEAR(moved.theta, offset == 0.0 ? 0.2 : 0.0, 1e-6) << offset;
+  }
+}
+
+TEST_F(StepLoopTest, LaserTimeOffsetBeyondOneSecondIsRejected) {
+  StepLoopOptions o;
+  o.laser_time_offset = std::chrono::milliseconds(-1001);
+  EXPECT_NE(o.Validate().find("laser_time_offset"), std::string::npos);
+  o.laser_time_offset = std::chrono::milliseconds(1001);
+  EXPECT_NE(o.Validate(), "");
+  o.laser_time_offset = std::chrono::milliseconds(-1000);
+  EXPECT_EQ(o.Validate(), "");
+}
+
 TEST_F(StepLoopTest, DropsTheOldestScansWhenBehind) {
   StepLoopOptions o;
   o.max_pending_scans = 2;

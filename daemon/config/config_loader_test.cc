@@ -93,6 +93,7 @@ angular_range_deg = 100
 angular_resolution_deg = 0.25
 unit = "cm"
 max_range_m = 30
+time_offset_s = -0.12
 [laser.mount]
 theta_deg = 90
 [odometry]
@@ -119,6 +120,7 @@ mlockall = true
   EXPECT_DOUBLE_EQ(o.laser.angular_resolution_deg, 0.25);
   EXPECT_EQ(o.laser.unit, LaserUnit::kCentimetre);
   EXPECT_DOUBLE_EQ(o.laser.max_range_m, 30.0);
+  EXPECT_DOUBLE_EQ(o.laser.time_offset_s, -0.12);
   EXPECT_DOUBLE_EQ(o.laser.mount.theta_deg, 90.0);
   EXPECT_DOUBLE_EQ(o.laser.mount.x_m, 0.1);  // default kept
   EXPECT_EQ(o.odometry.interface, "unix:/tmp/fakecan");
@@ -162,6 +164,10 @@ TEST(ConfigLoader, OutOfRangeNamesKeyAndLine) {
                  "must be one of 9600, 19200, 38400, 500000");
   ExpectOneError(LoadConfigString("[laser]\nunit = \"inch\"\n", "test.toml"), "laser.unit", 2,
                  "must be one of \"cm\", \"mm\"");
+  ExpectOneError(LoadConfigString("[laser]\ntime_offset_s = -1.5\n", "test.toml"),
+                 "laser.time_offset_s", 2, "must be between -1 and 1, got -1.5");
+  ExpectOneError(LoadConfigString("[laser]\ntime_offset_s = \"-0.1\"\n", "test.toml"),
+                 "laser.time_offset_s", 2, "expected a number, got a string");
   ExpectOneError(LoadConfigString("[atlas]\nmax_sigma_x = nan\n", "test.toml"), "atlas.max_sigma_x",
                  2, "finite");
   ExpectOneError(LoadConfigString("[odometry]\ninterface = \"can0/x\"\n", "test.toml"),
@@ -260,7 +266,7 @@ TEST(ConfigLoader, FlattenOptionsWritesFileSyntax) {
   EXPECT_EQ(flat.at("lcm.channels.pose"), "\"ATLAS_POSE\"");
   EXPECT_EQ(flat.at("scheduling.cpu_affinity"), "[0, 1]");
   EXPECT_EQ(flat.at("sonar.enabled"), "false");
-  EXPECT_EQ(flat.size(), 65u) << "a key was added or removed: update config/atlasd.toml";
+  EXPECT_EQ(flat.size(), 66u) << "a key was added or removed: update config/atlasd.toml";
 }
 
 TEST(ConfigLoader, DiffForReloadSeparatesWhatNeedsARestart) {

@@ -67,6 +67,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
     v.Enum("unit", l.unit, kLaserUnitNames);
     v.Double("max_range_m", l.max_range_m, 0.5, 81.91);
     v.Int("queue_capacity", l.queue_capacity, 1, 1024);
+    v.Double("time_offset_s", l.time_offset_s, -1.0, 1.0);
     v.Section("mount", [&] { VisitMount(v, l.mount); });
   });
   v.Section("odometry", [&] {

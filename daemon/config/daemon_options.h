@@ -36,6 +36,10 @@ struct LaserOptions {
   double max_range_m = 8.0;
   MountPose mount{0.1, 0.0, 0.0};
   int queue_capacity = 8;  // scans between the reader thread and the loop
+  // A scan was taken at its arrival stamp + time_offset_s (negative: before it), seconds: the
+  // loop looks the odometry up there (daemon/atlasd/step_loop.h says why). 0 on our robot
+  // until calibrated (docs/config.md, "Laser time offset"); mit-csail needs about -0.1.
+  double time_offset_s = 0.0;
 };
 
 // AgileX base odometry on CAN (specs/devices.md, section 2).
