@@ -14,6 +14,7 @@
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
 #include "drivers/carmen/reference_odometry.h"
+#include "tools/replay/laser_time_offset.h"
 #include "tools/replay/replay_run.h"
 
 namespace atlas::replay {
@@ -21,6 +22,7 @@ namespace {
 
 constexpr const char* kHelp = R"(Usage: atlas-replay [options] LOG
        atlas-replay [options] SIMDIR
+       atlas-replay --sweep-laser-time-offset FROM:TO:STEP [options] LOG|SIMDIR
 
 Runs a CARMEN log (plain or gzip; ODOM and laser lines) through the Atlas as fast as it can,
 with atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped).
@@ -59,13 +61,25 @@ Options:
                        the options below override it. Without it: the defaults shown below
                        and core/localmap's noise models
   --max-range M        ranges beyond M metres are no-return for the maps (default 8)
+  --laser-time-offset S  a scan was taken at its stamp + S seconds (-1..1; negative: before
+                       the stamp; default 0 or the config's laser.time_offset_s): the odometry
+                       is looked up there; trajectory rows keep the scan stamps. mit-csail
+                       (361 beams at 38400 baud, stamped at arrival): about -0.1
+  --sweep-laser-time-offset FROM:TO:STEP
+                       calibrate the offset without ground truth: replay once per offset
+                       (into OUT/offset_<S>/) and print, per offset, the mean and rms |heading
+                       correction| of the atlas between consecutive scans in one frame (the
+                       atlas's heading change minus the odometry's, odometry at stamp + offset);
+                       the smallest mean is the best offset (also OUT/sweep.tsv). Needs a run
+                       with turns. Example: --sweep-laser-time-offset -0.2:0:0.02
   --map-capacity N     features per map-frame (default 10)
   --max-hypotheses N   live hypotheses (default 4)
   --skip-bad-lines     count malformed log lines instead of stopping at the first
   --quiet              no progress on stderr
   -h, --help           this text
 
-Exit status: 0 done, 1 the log could not be read or the output not written, 2 bad command line,
+Exit status: 0 done, 1 the log could not be read or the output not written (or a sweep scored
+no pair of scans), 2 bad command line,
 78 the --config file was rejected (each error with its key, line and column).
 )";
 
@@ -91,13 +105,38 @@ bool ParseDouble(const char* s, double& out) {
   return true;
 }
 
+int Sweep(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& options,
+          const OffsetRange& range, const std::string& out_dir, bool quiet,
+          const std::string& log_path) {
+  const auto start = std::chrono::steady_clock::now();
+  const SweepResult s = SweepLaserTimeOffset(
+      events, options, range, out_dir, [&](const OffsetSweepRow& row, int done, int total) {
+        if (quiet) return;
+        std::fprintf(
+            stderr,
+            "atlas-replay: offset %+.3f s (%d/%d): mean |heading correction| %.3f deg, "
+            "%d pairs, %.1f s\n",
+            row.offset_s, done, total, row.corrections.mean_abs_rad * 180.0 / M_PI,
+            row.corrections.pairs,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      });
+  if (!s.error.empty()) {
+    std::fprintf(stderr, "atlas-replay: %s\n", s.error.c_str());
+    return 1;
+  }
+  std::printf("atlas-replay laser time offset sweep %s -> %s/sweep.tsv\n%s", log_path.c_str(),
+              out_dir.c_str(), FormatSweep(s).c_str());
+  return s.best.index < 0 ? 1 : 0;
+}
+
 int Main(int argc, char** argv) {
   std::string log_path, out_dir = "replay-out";
   ReplayOptions options;
   carmen::CarmenLogOptions log_options;
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
-  bool quiet = false, corrected = false;
+  bool quiet = false, corrected = false, sweep = false;
+  OffsetRange sweep_range;
   // --config first, so that the other options override what it sets.
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) != "--config") continue;
@@ -152,6 +191,20 @@ int Main(int argc, char** argv) {
       if (v == nullptr || !ParseInt(v, 1, n) || n > 1000)
         return Usage("--max-hypotheses needs an integer in 1..1000");
       options.mapper.max_hypotheses = static_cast<int>(n);
+    } else if (a == "--laser-time-offset") {
+      const char* v = value("--laser-time-offset");
+      char* end = nullptr;
+      const double d = v == nullptr ? 0.0 : std::strtod(v, &end);
+      if (v == nullptr || end == v || *end != '\0' || !std::isfinite(d) || d < -1.0 || d > 1.0)
+        return Usage("--laser-time-offset needs a number of seconds in -1..1");
+      options.loop.laser_time_offset = FromSeconds(d).time_since_epoch();
+    } else if (a == "--sweep-laser-time-offset") {
+      const char* v = value("--sweep-laser-time-offset");
+      std::string error;
+      if (v == nullptr) return Usage("--sweep-laser-time-offset needs FROM:TO:STEP");
+      if (!ParseOffsetRange(v, &sweep_range, &error))
+        return Usage("--sweep-laser-time-offset: " + error);
+      sweep = true;
     } else if (a == "--refine") {
       options.refine = true;
     } else if (a == "--corrected") {
@@ -228,8 +281,9 @@ int Main(int argc, char** argv) {
     reference = ReferenceAtScans(read.log);
     synthesized = carmen::EventsWithSynthesizedOdometry(read.log, noise, seed);
   }
-  ReplayResult r = RunReplay(corrected ? synthesized : read.log.events, options, out_dir, progress,
-                             1000, reference);
+  const std::vector<carmen::CarmenEvent>& events = corrected ? synthesized : read.log.events;
+  if (sweep) return Sweep(events, options, sweep_range, out_dir, quiet, log_path);
+  ReplayResult r = RunReplay(events, options, out_dir, progress, 1000, reference);
   if (!quiet && tty) std::fputc('\n', stderr);
   if (!r.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", r.error.c_str());

@@ -67,20 +67,6 @@ struct OutFile {
   }
 };
 
-// Writes `text` to dir/name; returns an error message or "".
-std::string WriteFile(const std::string& dir, const char* name, const std::string& text) {
-  const std::string path = dir + "/" + name;
-  OutFile out;
-  out.f = std::fopen(path.c_str(), "w");
-  if (out.f == nullptr) return "cannot write " + path + ": " + std::strerror(errno);
-  if (std::fwrite(text.data(), 1, text.size(), out.f) != text.size())
-    return "cannot write " + path + ": " + std::strerror(errno);
-  const int rc = std::fclose(out.f);
-  out.f = nullptr;
-  if (rc != 0) return "cannot write " + path + ": " + std::strerror(errno);
-  return "";
-}
-
 void Append(std::string& s, const char* fmt, auto... args) {
   char buf[512];
   const int n = std::snprintf(buf, sizeof buf, fmt, args...);
@@ -125,6 +111,19 @@ const Pose2* ReferenceAt(const std::vector<TruthSample>& reference, Time stamp) 
 }
 
 }  // namespace
+
+std::string WriteOutputFile(const std::string& dir, const char* name, const std::string& text) {
+  const std::string path = dir + "/" + name;
+  OutFile out;
+  out.f = std::fopen(path.c_str(), "w");
+  if (out.f == nullptr) return "cannot write " + path + ": " + std::strerror(errno);
+  if (std::fwrite(text.data(), 1, text.size(), out.f) != text.size())
+    return "cannot write " + path + ": " + std::strerror(errno);
+  const int rc = std::fclose(out.f);
+  out.f = nullptr;
+  if (rc != 0) return "cannot write " + path + ": " + std::strerror(errno);
+  return "";
+}
 
 std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log) {
   std::vector<TruthSample> out;
@@ -233,7 +232,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   for (const StampedFramePose& r : sink.trajectory)
     Append(text, "%.6f\t%d\t%.6f\t%.6f\t%.6f\n", r.stamp_s, r.frame, r.pose.x, r.pose.y,
            r.pose.theta);
-  if (std::string e = WriteFile(out_dir, "trajectory.tsv", text); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "trajectory.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
@@ -254,7 +253,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     if (edge.origin == EdgeKind::kMapMatch) ++sum.map_match_origin_edges;
     text += GraphTsvRow(edge);
   }
-  if (std::string e = WriteFile(out_dir, "graph.tsv", text); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "graph.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
@@ -264,7 +263,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     Append(text, "%lld\t%.6f\t%d\t%d\t%d\t%lld\n", static_cast<long long>(r.step),
            ToSeconds(r.stamp), r.frames, r.hypotheses, r.dominant,
            static_cast<long long>(r.step_ns));
-  if (std::string e = WriteFile(out_dir, "timing.tsv", text); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "timing.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
@@ -272,7 +271,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   for (size_t k = 0; k < sink.timing.size() && k < step_cpu_ns.size(); ++k)
     Append(text, "%lld\t%lld\n", static_cast<long long>(sink.timing[k].step),
            static_cast<long long>(step_cpu_ns[k]));
-  if (std::string e = WriteFile(out_dir, "step_cpu.tsv", text); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "step_cpu.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
@@ -281,7 +280,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
                                 "atlas-replay global: timestamp x y theta (Dijkstra projection "
                                 "from frame 0)",
                                 &sum.global_rows);
-  if (std::string e = WriteFile(out_dir, "global.tsv", text); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "global.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
@@ -309,14 +308,14 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
       if (ref != nullptr) origin_reference[static_cast<size_t>(f)] = *ref;
     }
   }
-  if (std::string e = WriteFile(out_dir, "frames.tsv", text); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "frames.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
 
   text = "# atlas-replay maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
   text += MapsTsvRows(graph);
-  if (std::string e = WriteFile(out_dir, "maps.tsv", text); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "maps.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
@@ -329,7 +328,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
       Append(text, "%.6f\t%.6f\t%.6f\t%.6f\n", ToSeconds(r.stamp), ref->x, ref->y, ref->theta);
       ++sum.reference_rows;
     }
-    if (std::string e = WriteFile(out_dir, "reference.tsv", text); !e.empty()) {
+    if (std::string e = WriteOutputFile(out_dir, "reference.tsv", text); !e.empty()) {
       result.error = e;
       return result;
     }
@@ -338,7 +337,8 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     sum.false_closures_chi2 = closures.false_chi2;
     sum.false_closures_axis = closures.false_axis;
     sum.gross_closures = closures.gross;
-    if (std::string e = WriteFile(out_dir, "closures.tsv", FormatClosures(closures)); !e.empty()) {
+    if (std::string e = WriteOutputFile(out_dir, "closures.tsv", FormatClosures(closures));
+        !e.empty()) {
       result.error = e;
       return result;
     }
@@ -358,17 +358,18 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
                                   "atlas-replay global_refined: timestamp x y theta (global "
                                   "least-squares arrangement of the frames, frame 0 fixed)",
                                   &sum.refined_rows);
-    if (std::string e = WriteFile(out_dir, "global_refined.tsv", text); !e.empty()) {
+    if (std::string e = WriteOutputFile(out_dir, "global_refined.tsv", text); !e.empty()) {
       result.error = e;
       return result;
     }
   }
   sum.atlas_image_bytes = static_cast<int64_t>(atlas->Serialize().size());
   sum.max_rss_kb = MaxRssKb();
-  if (std::string e = WriteFile(out_dir, "summary.json", SummaryJson(sum)); !e.empty()) {
+  if (std::string e = WriteOutputFile(out_dir, "summary.json", SummaryJson(sum)); !e.empty()) {
     result.error = e;
     return result;
   }
+  result.trajectory = std::move(sink.trajectory);
   return result;
 }
 

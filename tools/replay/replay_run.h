@@ -32,6 +32,7 @@
 #include "drivers/carmen/carmen_log.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/replay/closure_check.h"
+#include "tools/replay/replay_files.h"
 
 namespace atlas::replay {
 
@@ -88,6 +89,7 @@ struct ReplaySummary {
 struct ReplayResult {
   std::string error;  // empty on success: "<what>: <why>"
   ReplaySummary summary;
+  std::vector<StampedFramePose> trajectory;  // the rows of trajectory.tsv
 };
 
 // Steps every scan of `events` (time-ordered) and writes the files into `out_dir` (created if
@@ -103,6 +105,9 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
 // The reference poses of a log read with reference_trajectory set (corrected logs): the poses
 // of its laser lines, at their stamps.
 std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log);
+
+// Writes `text` to dir/name; returns an error message ("cannot write PATH: why") or "".
+std::string WriteOutputFile(const std::string& dir, const char* name, const std::string& text);
 
 std::string SummaryJson(const ReplaySummary& s);
 std::string SummaryText(const ReplaySummary& s);
