@@ -5,9 +5,13 @@
 //       wheel-odometry models): average NEES of the robot pose and of the features per step
 //       against the 95 % chi-square band.
 //   atlas-localmap-eval real [--log F] [--relations F] [--stretch M] [--capacity C] [--png F]
+//                            [--laser-time-offset S]
 //       mit-csail: one local map per stretch of M metres of travel (no Genesis), scored on the
 //       relations whose two poses lie in one stretch, against dead reckoning on the same ones;
-//       optionally draws one local map over its scans.
+//       optionally draws one local map over its scans. With a laser time offset the filter's
+//       odometry is interpolated at each scan's stamp + S (daemon/atlasd/step_loop.h).
+//       Dead reckoning is the log's odometry at the relation stamps (and, with an offset, also
+//       the odometry at stamp + S).
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -25,6 +29,7 @@
 #include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
+#include "daemon/atlasd/odometry_track.h"
 #include "drivers/carmen/carmen_log.h"
 #include "drivers/sim/laser_model.h"
 #include "drivers/sim/ray_caster.h"
@@ -41,7 +46,7 @@ constexpr char kUsage[] =
     "       atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
     "C=100]\n"
     "                                [--png F] [--draw-stretch K=3] [--set name=v,...]\n"
-    "                                [--laser-x X=0]\n"
+    "                                [--laser-x X=0] [--laser-time-offset S=0]\n"
     "\n"
     "mc:   Monte Carlo consistency of the line EKF in a simulated 20 m corridor (seeded runs of\n"
     "      M minutes each). Prints the 95 %% chi-square band of the average NEES (robot: 3 dof;\n"
@@ -51,6 +56,9 @@ constexpr char kUsage[] =
     "      and dead reckoning on the same relations. --png draws stretch K's map over its scans.\n"
     "      --laser-x: the laser X metres ahead of the robot's centre (the log's FLASER lines\n"
     "      give none). --set overrides filter options (a bad name lists them).\n"
+    "      --laser-time-offset S: a scan was taken at its stamp + S seconds (-1..1; mit-csail:\n"
+    "      about -0.1): the filter's odometry is interpolated there. Dead reckoning is the\n"
+    "      log's odometry at the scan stamps (with S, also printed at stamp + S).\n"
     "      Defaults: " ATLAS_SHARED_DIR "/datasets/mit-csail/mit-csail.clf.gz and .relations\n";
 
 using Args = eval::ToolOptions;
@@ -407,8 +415,9 @@ std::string ApplyOverrides(const std::string& spec, LocalMapOptions& o) {
 struct ScanRecord {
   Time stamp{};
   int stretch = 0;
-  Pose2 estimate;  // in the stretch's map-frame
-  Pose2 odometry;
+  Pose2 estimate;        // in the stretch's map-frame
+  Pose2 odometry;        // the log's, at the stamp
+  Pose2 odometry_taken;  // at the stamp + laser time offset (the filter's)
   const LaserScan* scan = nullptr;
 };
 
@@ -417,10 +426,11 @@ int RunReal(const Args& args) {
   std::string rel_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.relations";
   if (args.values.count("--log")) log_path = args.values.at("--log");
   if (args.values.count("--relations")) rel_path = args.values.at("--relations");
-  double stretch_m = 30, capacity = 100, draw_stretch = 3, laser_x = 0.0;
+  double stretch_m = 30, capacity = 100, draw_stretch = 3, laser_x = 0.0, time_offset_s = 0.0;
   std::string error;
   if (!GetNumberOption(args, "--stretch", 1, 1e6, stretch_m, error) ||
       !GetNumberOption(args, "--laser-x", -2, 2, laser_x, error) ||
+      !GetNumberOption(args, "--laser-time-offset", -1, 1, time_offset_s, error) ||
       !GetNumberOption(args, "--capacity", 1, 10000, capacity, error) ||
       !GetNumberOption(args, "--draw-stretch", 0, 1e6, draw_stretch, error)) {
     std::fprintf(stderr, "atlas-localmap-eval real: %s\n", error.c_str());
@@ -451,6 +461,15 @@ int RunReal(const Args& args) {
     std::fprintf(stderr, "atlas-localmap-eval real: bad filter options: %s\n", invalid.c_str());
     return 1;
   }
+  // The odometry of the laser lines, to look it up at stamp + offset (as atlasd's loop does).
+  std::vector<OdometrySample> samples;
+  for (const carmen::CarmenEvent& ev : read.log.events) {
+    const LaserScan* scan = std::get_if<LaserScan>(&ev.event);
+    if (scan != nullptr && ev.odometry_pose) samples.push_back({scan->stamp, *ev.odometry_pose});
+  }
+  OdometryTrack track(samples.size(), Duration::zero());
+  for (const OdometrySample& o : samples) track.Add(o);
+  const Duration time_offset = FromSeconds(time_offset_s).time_since_epoch();
   std::vector<ScanRecord> records;
   std::unique_ptr<LineEkfMap> map;
   std::unique_ptr<LineEkfMap> drawn;
@@ -463,7 +482,8 @@ int RunReal(const Args& args) {
   for (const carmen::CarmenEvent& ev : read.log.events) {
     const LaserScan* scan = std::get_if<LaserScan>(&ev.event);
     if (scan == nullptr || !ev.odometry_pose) continue;
-    const Pose2 odo = *ev.odometry_pose;
+    Pose2 odo = *ev.odometry_pose;
+    if (time_offset != Duration::zero()) track.PoseAt(scan->stamp + time_offset, &odo);
     Pose2 delta;
     if (have_odo) {
       delta = Between(last_odo, odo);
@@ -513,7 +533,8 @@ int RunReal(const Args& args) {
     matched += up.matched;
     observed += up.observations;
     ambiguous += up.ambiguous ? 1 : 0;
-    records.push_back(ScanRecord{scan->stamp, stretch, map->RobotPose().mean, odo, scan});
+    records.push_back(
+        ScanRecord{scan->stamp, stretch, map->RobotPose().mean, *ev.odometry_pose, odo, scan});
     if (stretch == static_cast<int>(draw_stretch)) drawn_records.push_back(records.size() - 1);
   }
   if (map && stretch == static_cast<int>(draw_stretch)) drawn = std::move(map);
@@ -539,7 +560,7 @@ int RunReal(const Args& args) {
     }
     return best_d <= eval::kDefaultMatchTolerance ? best : nullptr;
   };
-  std::vector<double> est_t, est_r, dr_t, dr_r;
+  std::vector<double> est_t, est_r, dr_t, dr_r, drs_t, drs_r;
   int unmatched = 0, cross_stretch = 0;
   for (const eval::Relation& rel : rels.relations) {
     const ScanRecord* a = find(rel.t1);
@@ -567,9 +588,14 @@ int RunReal(const Args& args) {
     est_r.push_back(e.rotation_deg);
     dr_t.push_back(d.translation_m);
     dr_r.push_back(d.rotation_deg);
+    const eval::RelationError ds =
+        eval::RelationErrorOf(rel, Between(a->odometry_taken, b->odometry_taken));
+    drs_t.push_back(ds.translation_m);
+    drs_r.push_back(ds.rotation_deg);
   }
   const eval::ErrorStats et = eval::Summarize(est_t), er = eval::Summarize(est_r);
   const eval::ErrorStats dt = eval::Summarize(dr_t), dr = eval::Summarize(dr_r);
+  const eval::ErrorStats dst = eval::Summarize(drs_t), dsr = eval::Summarize(drs_r);
   std::printf(
       "mit-csail: %zu relations; scored %zu (both poses in one %.0f m stretch), %d across "
       "stretches, %d without a scan\n",
@@ -580,6 +606,12 @@ int RunReal(const Args& args) {
   std::printf(
       "  dead reckoning : trans %.4f +- %.4f m (rmse %.4f, max %.3f), rot %.3f +- %.3f deg\n",
       dt.mean, dt.stddev, dt.rmse, dt.max, dr.mean, dr.stddev);
+  if (time_offset != Duration::zero()) {
+    std::printf(
+        "  dead reckoning at stamp %+.3f s: trans %.4f +- %.4f m (rmse %.4f, max %.3f), rot %.3f "
+        "+- %.3f deg\n",
+        time_offset_s, dst.mean, dst.stddev, dst.rmse, dst.max, dsr.mean, dsr.stddev);
+  }
   auto median = [](std::vector<double> v) {
     if (v.empty()) return 0.0;
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -590,6 +622,11 @@ int RunReal(const Args& args) {
       median(est_t), median(est_r), median(dr_t), median(dr_r));
   std::printf("  ratio dead reckoning / EKF: translation %.2f, rotation %.2f (target >= 5)\n",
               dt.mean / std::max(et.mean, 1e-12), dr.mean / std::max(er.mean, 1e-12));
+  if (time_offset != Duration::zero()) {
+    std::printf("  ratio dead reckoning at stamp %+.3f s / EKF: translation %.2f, rotation %.2f\n",
+                time_offset_s, dst.mean / std::max(et.mean, 1e-12),
+                dsr.mean / std::max(er.mean, 1e-12));
+  }
 
   if (args.values.count("--png") && drawn && !drawn_records.empty()) {
     const std::string png = args.values.at("--png");
@@ -676,10 +713,10 @@ int main(int argc, char** argv) {
     return atlas::RunMonteCarlo(a);
   }
   if (cmd == "real") {
-    const atlas::Args a =
-        atlas::eval::ParseToolOptions(argc, argv, 2,
-                                      {"--log", "--relations", "--stretch", "--capacity", "--png",
-                                       "--draw-stretch", "--set", "--laser-x"});
+    const atlas::Args a = atlas::eval::ParseToolOptions(
+        argc, argv, 2,
+        {"--log", "--relations", "--stretch", "--capacity", "--png", "--draw-stretch", "--set",
+         "--laser-x", "--laser-time-offset"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-localmap-eval real: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
