@@ -2,9 +2,11 @@
 // against a reference trajectory. See --help and docs/formats.md.
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "core/eval/reference_score.h"
 #include "core/eval/relations_metric.h"
@@ -30,7 +32,9 @@ With --atlas DIR (atlas-replay's output directory), P(t1) and P(t2) are read fro
 DIR/trajectory.tsv, each in its own map-frame; when the frames differ, P(t2) is carried into
 P(t1)'s frame along the Dijkstra path (minimum det of the composed covariance, paper eq. 2-3)
 between the two frames in DIR/graph.tsv, as the paper does; no global arrangement is used.
-Relations whose frames are not connected are counted and left out.
+Relations whose frames are not connected are counted and left out. The score is also printed
+for four parts of the relations: both poses in one frame / composed across frames, and
+spanning under 1 s / 1 s or more (on mit-csail the long ones are the robot's returns).
 Reference scoring: relative pose error over pose pairs a fixed distance (--segment) or a fixed
 number of poses (--step) apart, and absolute error after the best rigid alignment.
 
@@ -82,6 +86,27 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
   if (!relations.error.empty()) return Fail(relations.error);
 
   const size_t poses = trajectory.rows.size();
+  // The relations split by composition (same frame or not) and by span; each part scored with
+  // a lookup of its own.
+  std::vector<FramePose> rows = trajectory.rows;
+  std::vector<Relation> part[4];  // same frame, cross frame, span < 1 s, span >= 1 s
+  {
+    DijkstraComposedPoses classify(rows, graph, tolerance);
+    for (const Relation& r : relations.relations) {
+      const int64_t cross = classify.Counts().cross_frame;
+      if (!classify(r.t1, r.t2)) continue;
+      part[classify.Counts().cross_frame > cross ? 1 : 0].push_back(r);
+      part[r.t2 - r.t1 < std::chrono::seconds(1) ? 2 : 3].push_back(r);
+    }
+  }
+  RelationsScore part_score[4];
+  for (int k = 0; k < 4; ++k) {
+    DijkstraComposedPoses part_lookup(rows, graph, tolerance);
+    part_score[k] =
+        ScoreRelations(part[k], [&part_lookup](Time t1, Time t2) { return part_lookup(t1, t2); });
+  }
+  static constexpr const char* kPartName[4] = {"same_frame", "cross_frame", "span_under_1s",
+                                               "span_1s_or_more"};
   DijkstraComposedPoses lookup(std::move(trajectory.rows), graph, tolerance);
   const RelationsScore s =
       ScoreRelations(relations.relations, [&lookup](Time t1, Time t2) { return lookup(t1, t2); });
@@ -90,12 +115,18 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
     std::printf(
         "{\"estimate\": %s, \"relations\": %s, \"poses\": %zu, \"frames\": %d, \"edges\": %zu, "
         "\"matched\": %lld, \"same_frame\": %lld, \"cross_frame\": %lld, \"unconnected\": %lld, "
-        "\"unmatched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s}\n",
+        "\"unmatched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s, \"parts\": {",
         JsonString(dir).c_str(), JsonString(relations_path).c_str(), poses, frames,
         edges.rows.size(), static_cast<long long>(s.matched), static_cast<long long>(c.same_frame),
         static_cast<long long>(c.cross_frame), static_cast<long long>(c.unconnected),
         static_cast<long long>(c.unmatched), StatsJson(s.translation_m).c_str(),
         StatsJson(s.rotation_deg).c_str());
+    for (int k = 0; k < 4; ++k)
+      std::printf("%s\"%s\": {\"matched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s}",
+                  k > 0 ? ", " : "", kPartName[k], static_cast<long long>(part_score[k].matched),
+                  StatsJson(part_score[k].translation_m).c_str(),
+                  StatsJson(part_score[k].rotation_deg).c_str());
+    std::printf("}}\n");
   } else {
     std::printf("estimate:   %s (%zu poses in %d frames, %zu edges)\nrelations:  %s\n", dir.c_str(),
                 poses, frames, edges.rows.size(), relations_path.c_str());
@@ -107,6 +138,11 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
         static_cast<long long>(c.unconnected), static_cast<long long>(c.unmatched));
     std::fputs(FormatStats("translational", "m", s.translation_m).c_str(), stdout);
     std::fputs(FormatStats("rotational", "deg", s.rotation_deg).c_str(), stdout);
+    for (int k = 0; k < 4; ++k) {
+      std::printf("%s (%lld relations): translational %.4f m, rotational %.3f deg\n", kPartName[k],
+                  static_cast<long long>(part_score[k].matched), part_score[k].translation_m.mean,
+                  part_score[k].rotation_deg.mean);
+    }
   }
   return s.matched > 0 ? 0
                        : Fail(
