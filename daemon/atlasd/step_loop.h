@@ -40,12 +40,14 @@
 //   but the mirror swept the beams before the scanner sent the telegram, and the serial line
 //   takes time: a 361-value SICK LMS telegram (732 bytes, 10 bits a byte) takes about 0.19 s at
 //   38400 baud and about 15 ms at 500 kbaud (a 181-value one half as long), plus the sweep
-//   itself. On mit-csail (361 beams, 38400 baud) the scans are 0.10-0.12 s older than their
-//   stamps (docs/atlas.md). Only the odometry lookup uses the offset: the scan's stamp stays
-//   its identity (the stamp of the pose reported to the sink, of last_scan_stamp(), of the
-//   laser-silence rule), as the drivers made it. A positive offset may reach past the odometry
-//   known at the scan's arrival; the lookup then extrapolates briefly as above. Sonar readings
-//   are looked up at their stamps.
+//   itself. On mit-csail (361 beams at 4.7 Hz, the rate 38400 baud allows: specs/devices.md)
+//   the odometry fits best 0.10-0.12 s before the stamps (docs/atlas.md, "Laser time offset";
+//   tools/replay/laser_time_offset.h calibrates the offset without ground truth). Only the
+//   odometry lookup uses the offset: the scan's stamp stays its identity (the stamp of the
+//   pose reported to the sink, of last_scan_stamp(), of the laser-silence rule), as the
+//   drivers made it. A positive offset may reach past the odometry known at the scan's
+//   arrival; the lookup then extrapolates briefly as above. Sonar readings are looked up at
+//   their stamps.
 // - Deterministic: given the same calls in the same order, the same outputs (replay relies on
 //   it; when the steps are made does not matter, only the order of the calls); only the
 //   measured step times differ.
