@@ -21,10 +21,12 @@
 // afterwards: the pose of scan k has the largest k whose write began before its arrival stamp;
 // poses are in scan order, so when two poses give the same k (the reader was late and read two
 // telegrams at once) the earlier pose is the earlier scan. Counters: median, p90, p99 and max
-// of (receipt - write) in microseconds over the timed scans; `missing` scans without a pose
-// (dropped by the loop or lost); overruns and dropped scans from the daemon's last ATLAS_HEALTH;
-// the 1-minute load average at the start and the end. The manual iteration time is the pose's
-// latency when it came before the next scan was due (else the time until then).
+// of (receipt - write) in microseconds over the timed scans, and the p99 and max of its two hops
+// (to_arrival: write -> the reader's arrival stamp; from_arrival: arrival stamp -> receipt);
+// `missing` scans without a pose (dropped by the loop or lost); overruns and dropped scans from the
+// daemon's last ATLAS_HEALTH; the 1-minute load average at the start and the end. The manual
+// iteration time is the pose's latency when it came before the next scan was due (else the time
+// until then).
 //
 // LCM multicast is sent only inside a private network namespace: the benchmark refuses to run
 // unless LCM_DEFAULT_URL is udpm:// and lo is the only network interface (memq:// cannot serve:
@@ -427,16 +429,25 @@ void BM_TelegramToPoseReceived(benchmark::State& state) {
   std::vector<Receipt> receipts(subscriber.count());
   for (size_t j = 0; j < receipts.size(); ++j) receipts[j] = subscriber.at(j);
   const std::vector<int64_t> scan = MatchReceiptsToWrites(receipts, written);
-  std::vector<double> latency_us;
-  for (size_t j = 0; j < receipts.size(); ++j)
-    if (scan[j] >= static_cast<int64_t>(kWarmupScans))
-      latency_us.push_back(ToSeconds(receipts[j].received - written[scan[j]]) * 1e6);
-  std::sort(latency_us.begin(), latency_us.end());
+  // The whole path, and its two hops: write -> the reader's arrival stamp, arrival -> receipt.
+  std::vector<double> latency_us, to_arrival_us, from_arrival_us;
+  for (size_t j = 0; j < receipts.size(); ++j) {
+    if (scan[j] < static_cast<int64_t>(kWarmupScans)) continue;
+    const Time arrival = Time(Duration(receipts[j].utime * 1000));
+    latency_us.push_back(ToSeconds(receipts[j].received - written[scan[j]]) * 1e6);
+    to_arrival_us.push_back(ToSeconds(arrival - written[scan[j]]) * 1e6);
+    from_arrival_us.push_back(ToSeconds(receipts[j].received - arrival) * 1e6);
+  }
+  for (auto* v : {&latency_us, &to_arrival_us, &from_arrival_us}) std::sort(v->begin(), v->end());
   const size_t timed = written.size() - kWarmupScans;
   state.counters["median_us"] = Quantile(latency_us, 0.5);
   state.counters["p90_us"] = Quantile(latency_us, 0.9);
   state.counters["p99_us"] = Quantile(latency_us, 0.99);
   state.counters["max_us"] = latency_us.empty() ? 0.0 : latency_us.back();
+  state.counters["to_arrival_p99_us"] = Quantile(to_arrival_us, 0.99);
+  state.counters["to_arrival_max_us"] = to_arrival_us.empty() ? 0.0 : to_arrival_us.back();
+  state.counters["from_arrival_p99_us"] = Quantile(from_arrival_us, 0.99);
+  state.counters["from_arrival_max_us"] = from_arrival_us.empty() ? 0.0 : from_arrival_us.back();
   state.counters["poses"] = static_cast<double>(latency_us.size());
   state.counters["missing"] = static_cast<double>(timed - latency_us.size());
   state.counters["late_writes"] = late_writes - late_in_warmup;
@@ -449,6 +460,46 @@ void BM_TelegramToPoseReceived(benchmark::State& state) {
   if (!subscriber.schedule_error().empty())
     state.SetLabel("subscriber: " + subscriber.schedule_error());
 }
+// The machine's floor, without atlasd: how late a thread like atlasd's wakes here. A thread on
+// `cpu` at SCHED_FIFO 40 sleeps to absolute deadlines 1 ms apart (as cyclictest does); each
+// iteration is one wake-up, its time the lateness. Counters: median, p99, max lateness, and
+// gaps_over_2ms. A late wake-up of a real-time thread on an otherwise busy CPU means the
+// virtual CPU itself was not running (the hypervisor), which no setting inside atlasd changes.
+void BM_RealTimeWakeUpLateness(benchmark::State& state) {
+  const int cpu = static_cast<int>(state.range(0));
+  std::vector<double> late_us;
+  late_us.reserve(static_cast<size_t>(state.max_iterations));
+  const double load_start = LoadAverage();
+  std::thread sleeper([&] {
+    const bool fifo = ScheduleThisThread(40, cpu).empty();
+    Time next = Now();
+    for (auto _ : state) {
+      next += std::chrono::milliseconds(1);
+      SleepUntil(next);
+      const double late = ToSeconds(Now() - next);
+      late_us.push_back(late * 1e6);
+      state.SetIterationTime(late);
+    }
+    if (!fifo) state.SetLabel("SCHED_FIFO refused");
+  });
+  sleeper.join();
+  std::sort(late_us.begin(), late_us.end());
+  state.counters["median_us"] = Quantile(late_us, 0.5);
+  state.counters["p99_us"] = Quantile(late_us, 0.99);
+  state.counters["max_us"] = late_us.empty() ? 0.0 : late_us.back();
+  state.counters["gaps_over_2ms"] =
+      static_cast<double>(late_us.end() - std::upper_bound(late_us.begin(), late_us.end(), 2000.0));
+  state.counters["load_start"] = load_start;
+  state.counters["load_end"] = LoadAverage();
+}
+BENCHMARK(BM_RealTimeWakeUpLateness)
+    ->ArgName("cpu")
+    ->Arg(0)
+    ->Arg(1)
+    ->Iterations(30000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+
 BENCHMARK(BM_TelegramToPoseReceived)
     ->ArgNames({"fifo", "sub_fifo", "pin"})
     ->Args({40, 0, 0})   // the shipped [scheduling], subscriber at normal priority
