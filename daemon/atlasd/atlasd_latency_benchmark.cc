@@ -508,6 +508,7 @@ BENCHMARK(BM_TelegramToPoseReceived)
     ->Args({40, 40, 2})  // ... atlasd and the subscriber on CPU 1
     ->Args({40, 40, 3})  // ... atlasd on CPU 1, the subscriber on CPU 0
     ->Args({0, 0, 0})    // policy "other" everywhere
+    ->Args({0, 0, 2})    // ... atlasd and the subscriber on CPU 1
     ->Iterations(ScansPerRun())
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
