@@ -28,6 +28,9 @@ std::string MapMatchOptions::Validate() const {
     return "map_match distinct thresholds must be positive";
   if (gauss_newton_iterations < 1) return "map_match.gauss_newton_iterations must be >= 1";
   if (max_line_checks < 1) return "map_match.max_line_checks must be at least 1";
+  if (!(redundancy_sigma >= 0)) return "map_match.redundancy_sigma must be >= 0 (0: off)";
+  if (!(redundancy_prior_halfwidth >= 0))
+    return "map_match.redundancy_prior_halfwidth must be >= 0 (0: never)";
   return "";
 }
 
@@ -61,6 +64,8 @@ const char* MapMatchReasonName(MapMatchReason r) {
       return "rival-transform";
     case MapMatchReason::kWorkBound:
       return "work-bound";
+    case MapMatchReason::kSinglePair:
+      return "single-pair";
   }
   return "unknown";
 }
@@ -331,6 +336,28 @@ bool InsidePrior(const Pose2& t, const UncertainPose* prior, const MapMatchOptio
   return d.dot(cov.inverse() * d) <= o.prior_gate_chi2;
 }
 
+// The translation direction that information `h` over t fixes worst, and t's standard deviation
+// along it (from the marginal information of the translation, the Schur complement of the
+// rotation); infinite when h leaves a direction free.
+struct WeakDirection {
+  Vec2 direction = Vec2::UnitX();
+  double sigma = std::numeric_limits<double>::infinity();
+};
+
+WeakDirection Weakest(const Mat3& h) {
+  WeakDirection w;
+  // A rotation the pairs do not fix leaves the translation free too.
+  const bool rotation_fixed = h(2, 2) > 1e-12 * std::max(1.0, h.norm());
+  Mat2 info = h.topLeftCorner<2, 2>();
+  if (rotation_fixed) info -= h.topRightCorner<2, 1>() * h.bottomLeftCorner<1, 2>() / h(2, 2);
+  const Eigen::SelfAdjointEigenSolver<Mat2> eig(0.5 * (info + info.transpose()));
+  w.direction = eig.eigenvectors().col(0);
+  const double lambda = eig.eigenvalues()(0);
+  if (rotation_fixed && lambda > 1e-12 * std::max(1.0, info.norm()) && std::isfinite(lambda))
+    w.sigma = 1.0 / std::sqrt(lambda);
+  return w;
+}
+
 }  // namespace
 
 SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions& o) {
@@ -438,14 +465,17 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
   // t and its covariance from all matched lines (Gauss-Newton).
   Pose2 t = best->t;
   Mat3 h = Mat3::Zero();
+  std::array<Mat3, 64> h_pair;  // each pair's information at the final t
+  const int pairs = best->support.count;
   for (int it = 0; it <= o.gauss_newton_iterations; ++it) {
     h.setZero();
     Vec3 g = Vec3::Zero();
-    for (int p = 0; p < best->support.count; ++p) {
+    for (int p = 0; p < pairs; ++p) {
       const auto [i, k] = best->support.pairs[p];
       const PairResidual r = Residual(a[i], b[k], t);
       const Mat2 s_inv = r.s.inverse();
-      h += r.jt.transpose() * s_inv * r.jt;
+      h_pair[p] = r.jt.transpose() * s_inv * r.jt;
+      h += h_pair[p];
       g += r.jt.transpose() * s_inv * r.r;
     }
     if (it == o.gauss_newton_iterations) break;
@@ -459,6 +489,22 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
   if (!(ev(0) > 1e-10 * ev(2)) || !ev.allFinite()) {
     out.reason = MapMatchReason::kDegenerate;
     return out;
+  }
+  // Condition 2 per direction: t must stay fixed without any one pair, or the direction that
+  // pair alone fixes rests on one unverified correspondence (e.g. the only jamb of a corridor).
+  if (o.redundancy_sigma > 0) {
+    for (int p = 0; p < pairs; ++p) {
+      const WeakDirection w = Weakest(h - h_pair[p]);
+      if (w.sigma <= o.redundancy_sigma) continue;
+      // The prior alone tells the pair's alternatives apart along that direction (Condition 2).
+      if (prior != nullptr &&
+          o.prior_gate_chi2 * w.direction.dot(prior->cov.topLeftCorner<2, 2>() * w.direction) <=
+              o.redundancy_prior_halfwidth * o.redundancy_prior_halfwidth)
+        continue;
+      out.result = MapMatchResult::kAmbiguous;
+      out.reason = MapMatchReason::kSinglePair;
+      return out;
+    }
   }
   out.b_in_a.mean = t;
   out.b_in_a.cov = h.inverse();

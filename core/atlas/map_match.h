@@ -25,6 +25,18 @@
 //   only these verified rivals, without the exclusion, closes many more loops on the corrected
 //   logs but accepts a wrong period in a repetitive corridor when the shifted placement
 //   overlaps more of B than the true one: core/sonar/sonar_condition2_test.cc.)
+// - Condition 2 per direction (redundancy): every matched pair must be redundant, i.e. the
+//   other pairs alone fix t's translation to `redundancy_sigma` in every direction. A direction
+//   fixed by one pair only (in a corridor: two walls and a single jamb, or one wall and jambs)
+//   rests on a correspondence nothing else checks: any other line of that orientation would do
+//   as well, and t's covariance, from that pair's own covariance, says nothing about the
+//   choice. Such a match is kAmbiguous (kSinglePair), unless the prior's gate along that
+//   direction reaches no further than `redundancy_prior_halfwidth` either side (Condition 2:
+//   the prior tells the alternatives apart). On the sonar alcove loop (tools/sonar_eval, seeds
+//   1-20) every gross false closure (2.3-2.4 m along or across the corridor, d2 > 1000) was
+//   of this kind; the sonar atlas's priors are themselves inconsistent, so it uses 0.5 m
+//   (sonar_eval::SonarAtlasOptions; 1-2 m let gross ones back). The default 2 m leaves the six
+//   corrected laser logs' closures as they were (0.5 m refused 2 of intel's 4 true ones).
 // - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
 //   pairs, Sigma = (sum H^T S^-1 H)^-1. The lines of one local map are correlated (they share
 //   the robot's errors when they were seen) and MapLine carries only each line's marginal, so
@@ -74,6 +86,12 @@ struct MapMatchOptions {
   int gauss_newton_iterations = 4;
   // t's covariance n (sum H^T S^-1 H)^-1 instead of (sum H^T S^-1 H)^-1 (see above).
   bool unknown_line_correlation = false;
+  // Every matched pair must be redundant: without it, the other pairs fix t's translation to
+  // this standard deviation (metres) in every direction (see above); 0 turns the test off.
+  double redundancy_sigma = 1.0;
+  // ... unless the prior's gate (prior_gate_chi2) along that direction reaches at most this far
+  // (metres) either side: the prior then tells the pair's alternatives apart. 0: never.
+  double redundancy_prior_halfwidth = 2.0;
   std::string Validate() const;
 };
 
@@ -87,8 +105,9 @@ enum class MapMatchReason {
   kRepetitive,        // ambiguous: structure unique within the maps is too little
   kRivalTransform,    // ambiguous: a distinct transform is (nearly) as well supported
   kWorkBound,         // rejected: the search (or a self-match) was cut short by max_line_checks
+  kSinglePair,        // ambiguous: one matched pair alone fixes a direction of t
 };
-inline constexpr int kMapMatchReasonCount = 8;
+inline constexpr int kMapMatchReasonCount = 9;
 const char* MapMatchResultName(MapMatchResult r);
 const char* MapMatchReasonName(MapMatchReason r);
 

@@ -42,9 +42,11 @@ std::vector<std::pair<Vec2, Vec2>> Room() {
           {{4, 5}, {0, 4}}, {{0, 4}, {0, 0}}, {{2, 1}, {3, 2.5}}};
 }
 
-// A comb: a long wall with identical short walls every 4 m (repetitive structure).
+// A comb: a corridor (walls y = 0 and y = -2.4) with identical short walls every 4 m on one
+// side (repetitive structure). Two walls: a single one would fix the across direction by one
+// pair alone (kSinglePair, DirectionFixedBySinglePairIsAmbiguous).
 std::vector<std::pair<Vec2, Vec2>> Comb(double x0, double x1) {
-  std::vector<std::pair<Vec2, Vec2>> s{{{x0, 0}, {x1, 0}}};
+  std::vector<std::pair<Vec2, Vec2>> s{{{x0, 0}, {x1, 0}}, {{x0, -2.4}, {x1, -2.4}}};
   for (double x = 0; x <= 24; x += 4)
     if (x >= x0 - 0.01 && x <= x1 + 0.01) s.push_back({{x, 0}, {x, 2}});
   return s;
@@ -155,6 +157,41 @@ TEST(MapMatch, CovarianceAllowsForUnknownCorrelationBetweenTheLines) {
       conservative.b_in_a.cov.isApprox(conservative.support * independent.b_in_a.cov, 1e-9));
   EXPECT_NEAR((conservative.b_in_a.mean.ToVector() - independent.b_in_a.mean.ToVector()).norm(),
               0.0, 1e-12);
+}
+
+// A corridor (walls y = -1.2 and y = 1.2) with a jamb at x = 6 and one at x = 10. A saw only
+// the first jamb, B (2 m further along) only the second: the walls fix the across-corridor
+// direction and the rotation twice over, but the along-corridor direction rests on the one jamb
+// pair, and pairing B's jamb with A's gives support 3 at a transform 4 m off (the false
+// closures of the sonar alcove loop: atlas-sonar-eval atlas --world alcoves). That match is
+// ambiguous; with both jambs in both maps it is accepted.
+TEST(MapMatch, DirectionFixedBySinglePairIsAmbiguous) {
+  MapMatchOptions o;
+  const Pose2 truth{2.0, 0.0, 0.0};
+  const std::pair<Vec2, Vec2> south{{0, -1.2}, {14, -1.2}}, north{{0, 1.2}, {14, 1.2}},
+      jamb6{{6, 1.2}, {6, 2.2}}, jamb10{{10, 1.2}, {10, 2.2}};
+  const auto a = InA({south, north, jamb6});
+  const auto b = SeenFrom({south, north, jamb10}, truth);
+  const MapMatch m = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);
+  EXPECT_EQ(m.result, MapMatchResult::kAmbiguous);
+  EXPECT_EQ(m.reason, MapMatchReason::kSinglePair) << MapMatchReasonName(m.reason);
+  // Without the test, the wrong pairing is accepted: t is 4 m off along the corridor with a
+  // covariance of centimetres.
+  o.redundancy_sigma = 0.0;
+  const MapMatch unguarded = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);
+  ASSERT_EQ(unguarded.result, MapMatchResult::kAccepted);
+  EXPECT_NEAR(unguarded.b_in_a.mean.x, truth.x - 4.0, 0.05);
+  EXPECT_LT(std::sqrt(unguarded.b_in_a.cov(0, 0)), 0.1);
+  // Both jambs in both maps and a prior (0.3 m) that tells the 4 m self-repetition (walls and
+  // one jamb) from t: every direction has two pairs, the match is accepted and true.
+  o = MapMatchOptions{};
+  const auto a2 = InA({south, north, jamb6, jamb10});
+  const auto b2 = SeenFrom({south, north, jamb6, jamb10}, truth);
+  const UncertainPose prior{Pose2{2.2, 0.1, 0.01}, Vec3(0.09, 0.09, 0.01).asDiagonal()};
+  const MapMatch both = MatchMaps(a2, SelfMatchMap(a2, o), b2, SelfMatchMap(b2, o), &prior, o);
+  ASSERT_EQ(both.result, MapMatchResult::kAccepted) << MapMatchReasonName(both.reason);
+  EXPECT_NEAR(both.b_in_a.mean.x, truth.x, 0.05);
+  EXPECT_NEAR(both.b_in_a.mean.y, truth.y, 0.05);
 }
 
 TEST(MapMatch, ParallelOrTooFewLinesAreRejected) {

@@ -15,6 +15,30 @@ std::string ClosureCheckOptions::Validate() const {
   return "";
 }
 
+ClosureVerdict CheckClosure(const AtlasEdge& edge, const Pose2& reference_a,
+                            const Pose2& reference_b, const ClosureCheckOptions& options) {
+  ClosureVerdict v;
+  v.a = edge.a;
+  v.b = edge.b;
+  v.kind = edge.kind;
+  v.estimate = edge.b_in_a.mean;
+  v.reference = Between(reference_a, reference_b);
+  v.error = Vec3(v.estimate.x - v.reference.x, v.estimate.y - v.reference.y,
+                 WrapAngle(v.estimate.theta - v.reference.theta));
+  // A floor keeps a degenerate covariance from dividing by zero; it is far below any real
+  // edge's uncertainty (1e-6 m, 1e-6 rad).
+  const Mat3 cov = edge.b_in_a.cov + Mat3::Identity() * 1e-12;
+  v.d2 = v.error.dot(cov.ldlt().solve(v.error));
+  for (int i = 0; i < 3; ++i)
+    v.worst_axis_sigmas =
+        std::max(v.worst_axis_sigmas, std::abs(v.error[i]) / std::sqrt(cov(i, i)));
+  v.false_chi2 = !(v.d2 <= options.chi2_threshold);
+  v.false_axis = !(v.worst_axis_sigmas <= options.axis_sigmas);
+  v.gross = std::hypot(v.error[0], v.error[1]) > options.gross_translation_m ||
+            std::abs(v.error[2]) * 180.0 / M_PI > options.gross_rotation_deg;
+  return v;
+}
+
 ClosureReport CheckClosures(const AtlasGraph& graph,
                             const std::vector<std::optional<Pose2>>& origin_reference,
                             const ClosureCheckOptions& options) {
@@ -32,25 +56,7 @@ ClosureReport CheckClosures(const AtlasGraph& graph,
       ++report.unreferenced;
       continue;
     }
-    ClosureVerdict v;
-    v.a = edge.a;
-    v.b = edge.b;
-    v.kind = edge.kind;
-    v.estimate = edge.b_in_a.mean;
-    v.reference = Between(**ra, **rb);
-    v.error = Vec3(v.estimate.x - v.reference.x, v.estimate.y - v.reference.y,
-                   WrapAngle(v.estimate.theta - v.reference.theta));
-    // A floor keeps a degenerate covariance from dividing by zero; it is far below any real
-    // edge's uncertainty (1e-6 m, 1e-6 rad).
-    const Mat3 cov = edge.b_in_a.cov + Mat3::Identity() * 1e-12;
-    v.d2 = v.error.dot(cov.ldlt().solve(v.error));
-    for (int i = 0; i < 3; ++i)
-      v.worst_axis_sigmas =
-          std::max(v.worst_axis_sigmas, std::abs(v.error[i]) / std::sqrt(cov(i, i)));
-    v.false_chi2 = !(v.d2 <= options.chi2_threshold);
-    v.false_axis = !(v.worst_axis_sigmas <= options.axis_sigmas);
-    v.gross = std::hypot(v.error[0], v.error[1]) > options.gross_translation_m ||
-              std::abs(v.error[2]) * 180.0 / M_PI > options.gross_rotation_deg;
+    const ClosureVerdict v = CheckClosure(edge, **ra, **rb, options);
     report.false_chi2 += v.false_chi2;
     report.false_axis += v.false_axis;
     report.gross += v.gross;

@@ -50,6 +50,10 @@ struct ClosureReport {
   int false_chi2 = 0, false_axis = 0, gross = 0;
 };
 
+// One edge (its current estimate) against the reference poses of its frames' origins.
+ClosureVerdict CheckClosure(const AtlasEdge& edge, const Pose2& reference_a,
+                            const Pose2& reference_b, const ClosureCheckOptions& options);
+
 // `origin_reference[f]` is the reference pose of frame f's origin (nullopt when unknown).
 ClosureReport CheckClosures(const AtlasGraph& graph,
                             const std::vector<std::optional<Pose2>>& origin_reference,

@@ -35,6 +35,13 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
   return o;
 }
 
+AtlasOptions SonarAtlasOptions() {
+  AtlasOptions o;
+  o.match.redundancy_sigma = 0.25;
+  o.match.redundancy_prior_halfwidth = 0.5;
+  return o;
+}
+
 double PoseNees(const UncertainPose& est, const Pose2& truth) {
   const Vec3 e(truth.x - est.mean.x, truth.y - est.mean.y, WrapAngle(truth.theta - est.mean.theta));
   const Mat3 cov = est.cov + Vec3(kNeesFloorM * kNeesFloorM, kNeesFloorM * kNeesFloorM,
@@ -67,6 +74,7 @@ AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
                         const std::function<void(double)>& progress, const StepObserver& observer) {
   AtlasRunReport r;
   std::vector<std::optional<Pose2>> origin;  // true pose of each frame's origin
+  size_t edges_seen = 0;  // graph edges already looked at (edges are only appended)
   bool first = true;
   Pose2 last_odo, odo0;
   const size_t total = run.Events().size();
@@ -89,6 +97,13 @@ AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
     for (int k = 0; k < kMapMatchReasonCount; ++k) r.reasons[k] += st.match_reasons[k];
     r.genesis += st.genesis;
     r.frames = st.frames;
+    for (; edges_seen < atlas.Graph().Edges().size(); ++edges_seen) {
+      const AtlasEdge& edge = atlas.Graph().Edges()[edges_seen];
+      if (edge.origin == EdgeKind::kMapMatch && static_cast<size_t>(edge.a) < origin.size() &&
+          static_cast<size_t>(edge.b) < origin.size())
+        r.as_made.push_back(replay::CheckClosure(edge, *origin[edge.a], *origin[edge.b],
+                                                 replay::ClosureCheckOptions{}));
+    }
     if (observer) observer(atlas, e.stamp, truth, origin);
     const DominantOutput d = atlas.Dominant();
     if (!d.valid) continue;

@@ -80,15 +80,17 @@ TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
       SimulatedMapOptions(RangeSensors::kSonar, 10, so.odometry_options, so.sonar_options);
   ASSERT_EQ(mo.Validate(), "");
   Atlas atlas(
-      AtlasOptions{}, [mo]() { return std::make_unique<SonarLocalMap>(mo); }, nullptr);
+      SonarAtlasOptions(), [mo]() { return std::make_unique<SonarLocalMap>(mo); }, nullptr);
   const AtlasRunReport r = RunAtlas(atlas, run, true);
 
   ASSERT_GT(r.steps, 1000);
   EXPECT_GE(r.frames, 4);
-  // Refused as ambiguous, and for Condition 2's reasons: repetitive structure or a rival.
+  // Refused as ambiguous, and for Condition 2's reasons: repetitive structure, a rival, or a
+  // direction of t that rests on one line pair.
   EXPECT_GE(r.ambiguous, 1);
   EXPECT_EQ(r.ambiguous, r.reasons[static_cast<int>(MapMatchReason::kRepetitive)] +
-                             r.reasons[static_cast<int>(MapMatchReason::kRivalTransform)]);
+                             r.reasons[static_cast<int>(MapMatchReason::kRivalTransform)] +
+                             r.reasons[static_cast<int>(MapMatchReason::kSinglePair)]);
   // The loop is closed, and every edge added by map-matching agrees with the ground truth: no
   // false closure.
   EXPECT_GE(r.accepted, 1);
@@ -96,6 +98,8 @@ TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
   EXPECT_EQ(r.closures.unreferenced, 0);
   EXPECT_EQ(r.closures.false_chi2, 0);
   EXPECT_EQ(r.closures.gross, 0);
+  ASSERT_EQ(static_cast<int>(r.as_made.size()), r.closures.map_match_edges);
+  for (const replay::ClosureVerdict& v : r.as_made) EXPECT_FALSE(v.false_chi2) << v.a << "-" << v.b;
   for (const replay::ClosureVerdict& v : r.closures.edges) {
     EXPECT_LT(std::hypot(v.error[0], v.error[1]), 0.5) << v.a << "-" << v.b;
     EXPECT_LT(v.d2, 14.16) << v.a << "-" << v.b;

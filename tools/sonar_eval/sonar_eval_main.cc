@@ -55,6 +55,8 @@ constexpr char kUsage[] =
     "                             [--seed S=1] [--runs N=1] [--km K=0.4] [--capacity C=10]\n"
     "                             [--laser 0|1 (1)] [--self-match 0|1 (1)] [--trace FILE]\n"
     "                             [--delayed-states 0|1 (1)] [--edge-extent 0|1 (1)]\n"
+    "                             [--redundancy-sigma S=0.25] [--redundancy-prior H=0.5]\n"
+    "                             [--line-correlation 0|1 (0)]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
     "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
@@ -80,7 +82,12 @@ constexpr char kUsage[] =
     "      averaged over the runs against its 95 %% band, and relative-pose errors (5 s, 30 s)\n"
     "      next to dead reckoning. --trace FILE: one row per step and live hypothesis.\n"
     "      --self-match 0: map-matching without the self-match test of repetitive structure\n"
-    "      (what Condition 2's refusals protect against).\n"
+    "      (what Condition 2's refusals protect against). --redundancy-sigma S: the sonar atlas's\n"
+    "      map_match redundancy_sigma (0: a direction of t may rest on one line pair),\n"
+    "      --redundancy-prior H its redundancy_prior_halfwidth (0: never; SonarAtlasOptions);\n"
+    "      --line-correlation\n"
+    "      1: map_match's unknown_line_correlation (t's covariance times the pairs). Each edge is\n"
+    "      also judged as map-matching made it (before edge refinement).\n"
     "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
     "      to a feature is checked against the wall the simulator echoed it from (in-cone and\n"
     "      edge-of-cone pairings: the true wall's line, another line, or no wall: multipath);\n"
@@ -531,7 +538,8 @@ void PrintNeesBand(const char* name, const std::vector<sonar_eval::AtlasRunRepor
 }
 
 void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport>& runs) {
-  int frames = 0, genesis = 0, acc = 0, amb = 0, rej = 0, edges = 0, false_chi2 = 0, gross = 0;
+  int frames = 0, genesis = 0, acc = 0, amb = 0, rej = 0, edges = 0, false_chi2 = 0, gross = 0,
+      made_false = 0, made_gross = 0;
   std::array<int, kMapMatchReasonCount> reasons{};
   for (const auto& r : runs) {
     frames += r.frames;
@@ -542,6 +550,10 @@ void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport
     edges += r.closures.map_match_edges;
     false_chi2 += r.closures.false_chi2;
     gross += r.closures.gross;
+    for (const replay::ClosureVerdict& v : r.as_made) {
+      made_false += v.false_chi2;
+      made_gross += v.gross;
+    }
     for (int k = 0; k < kMapMatchReasonCount; ++k) reasons[k] += r.reasons[k];
   }
   std::printf(
@@ -554,16 +566,21 @@ void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport
   }
   std::printf(
       "\n    map-match edges vs ground truth: %d edges, %d false closures (chi2 3 dof > 14.16), "
-      "%d gross (> 0.5 m or 5 deg)\n",
-      edges, false_chi2, gross);
+      "%d gross (> 0.5 m or 5 deg); as map-matching made them (before edge refinement): %d "
+      "false, %d gross\n",
+      edges, false_chi2, gross, made_false, made_gross);
   for (size_t i = 0; i < runs.size(); ++i) {
     for (const replay::ClosureVerdict& v : runs[i].closures.edges) {
+      const auto made =
+          std::find_if(runs[i].as_made.begin(), runs[i].as_made.end(),
+                       [&](const replay::ClosureVerdict& m) { return m.a == v.a && m.b == v.b; });
       std::printf(
           "    run %zu edge %d-%d: estimate (%.3f, %.3f, %.2f deg), truth (%.3f, %.3f, %.2f "
-          "deg), d2 %.2f: %s\n",
+          "deg), d2 %.2f (as made %.2f%s): %s\n",
           i + 1, v.a, v.b, v.estimate.x, v.estimate.y, v.estimate.theta * 180.0 / std::numbers::pi,
           v.reference.x, v.reference.y, v.reference.theta * 180.0 / std::numbers::pi, v.d2,
-          v.false_chi2 ? "FALSE CLOSURE" : "true");
+          made == runs[i].as_made.end() ? -1.0 : made->d2,
+          v.kind == EdgeKind::kRefined ? ", refined" : "", v.false_chi2 ? "FALSE CLOSURE" : "true");
     }
   }
 }
@@ -620,7 +637,9 @@ struct TraceWriter {
 
 int RunAtlasMode(const Args& args) {
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
-         self_match = 1, delayed = 1, edge_extent = 1;
+         self_match = 1, delayed = 1, edge_extent = 1,
+         redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
+         redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth;
   sonar_eval::AlcoveLoopOptions loop;
   std::string error;
   if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
@@ -633,6 +652,9 @@ int RunAtlasMode(const Args& args) {
       !GetNumberOption(args, "--self-match", 0, 1, self_match, error) ||
       !GetNumberOption(args, "--delayed-states", 0, 1, delayed, error) ||
       !GetNumberOption(args, "--edge-extent", 0, 1, edge_extent, error) ||
+      !GetNumberOption(args, "--redundancy-sigma", 0, 100, redundancy, error) ||
+      !GetNumberOption(args, "--line-correlation", 0, 1, line_correlation, error) ||
+      !GetNumberOption(args, "--redundancy-prior", 0, 100, redundancy_prior, error) ||
       !GetNumberOption(args, "--period", 0.5, 100, loop.period, error) ||
       !GetNumberOption(args, "--loop-length", 5, 1000, loop.length, error) ||
       !GetNumberOption(args, "--loop-width", 5, 1000, loop.width, error)) {
@@ -692,8 +714,13 @@ int RunAtlasMode(const Args& args) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
       return 2;
     }
-    AtlasOptions ao;
+    AtlasOptions ao = sonar_eval::SonarAtlasOptions();
     ao.match.self_match = self_match != 0;
+    ao.match.redundancy_sigma = redundancy;
+    ao.match.redundancy_prior_halfwidth = redundancy_prior;
+    ao.match.unknown_line_correlation = line_correlation != 0;
+    AtlasOptions laser_ao;
+    laser_ao.match.self_match = self_match != 0;
     Atlas sonar_atlas(
         ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, nullptr);
     TraceWriter tw{trace, r + 1};
@@ -711,7 +738,7 @@ int RunAtlasMode(const Args& args) {
                                           so.odometry_options, so.sonar_options)
               .line_map;
       Atlas laser_atlas(
-          ao, [lm]() { return std::make_unique<LineEkfMap>(lm); },
+          laser_ao, [lm]() { return std::make_unique<LineEkfMap>(lm); },
           std::make_shared<LineMapBootstrapper>(lm));
       laser_runs.push_back(sonar_eval::RunAtlas(laser_atlas, rec, false, [&](double f) {
         std::fprintf(stderr, "\rrun %d/%d: laser atlas %.0f%%   ", r + 1, n, 100 * f);
@@ -909,7 +936,7 @@ int main(int argc, char** argv) {
         argc, argv, 2,
         {"--world", "--ring", "--seed", "--runs", "--km", "--rooms", "--capacity", "--laser",
          "--trace", "--self-match", "--period", "--loop-length", "--loop-width", "--delayed-states",
-         "--edge-extent"});
+         "--edge-extent", "--redundancy-sigma", "--line-correlation", "--redundancy-prior"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
