@@ -182,6 +182,17 @@ TEST(MapMatch, DirectionFixedBySinglePairIsAmbiguous) {
   ASSERT_EQ(unguarded.result, MapMatchResult::kAccepted);
   EXPECT_NEAR(unguarded.b_in_a.mean.x, truth.x - 4.0, 0.05);
   EXPECT_LT(std::sqrt(unguarded.b_in_a.cov(0, 0)), 0.1);
+  // A prior whose gate along the corridor is within redundancy_prior_halfwidth (sigma 0.1 m:
+  // +-0.4 m) vouches for the one jamb pair, right or wrong (here it is the wrong one: a tight
+  // prior is believed, Condition 2); with the half width 0 nothing does.
+  o = MapMatchOptions{};
+  o.redundancy_prior_halfwidth = 0.5;
+  const UncertainPose tight{Pose2{-2.05, 0.0, 0.0}, Vec3(0.01, 0.01, 0.001).asDiagonal()};
+  const MapMatch vouched = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &tight, o);
+  EXPECT_EQ(vouched.result, MapMatchResult::kAccepted) << MapMatchReasonName(vouched.reason);
+  o.redundancy_prior_halfwidth = 0.0;
+  EXPECT_EQ(MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &tight, o).reason,
+            MapMatchReason::kSinglePair);
   // Both jambs in both maps and a prior (0.3 m) that tells the 4 m self-repetition (walls and
   // one jamb) from t: every direction has two pairs, the match is accepted and true.
   o = MapMatchOptions{};
