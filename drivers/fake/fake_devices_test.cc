@@ -186,6 +186,42 @@ TEST(FakeLmsTest, BaudSwitchIsFollowed) {
   std::filesystem::remove_all(dir);
 }
 
+// AnswerLmsStartUp (for benchmarks that write the telegrams themselves): the reader's whole
+// start-up, the switch to 500000 included, is answered on a pty the test owns; a telegram then
+// written by hand arrives decoded, stamped after its write.
+TEST(FakeLmsTest, StartUpAnsweredOnAnOwnPty) {
+  PseudoTerminal pty;
+  std::string err;
+  ASSERT_TRUE(pty.Create("", &err)) << err;
+  LaserReaderOptions lo;
+  lo.device = pty.slave_path();
+  lo.baud = 500000;
+  lo.resolution_centideg = 100;  // 181 beams
+  LaserReader reader(lo);
+  reader.Start();
+  ASSERT_TRUE(AnswerLmsStartUp(pty, std::chrono::seconds(5)));
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (reader.Health().state != DriverState::kRunning && Now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_EQ(reader.Health().state, DriverState::kRunning) << reader.Health().last_error;
+  EXPECT_EQ(pty.SlaveBaud(), 500000);
+  LaserScan scan;
+  scan.angle_min = -1.5707964f;
+  scan.angle_increment = 0.017453292f;
+  scan.ranges.assign(181, 2.5f);
+  const std::vector<uint8_t> telegram =
+      *sick::EncodeMeasuredValues(scan, sick::Unit::kMillimetre, 0x10);
+  const Time written = Now();
+  ASSERT_TRUE(pty.WriteAll(telegram.data(), telegram.size()));
+  LaserScan out;
+  while (!reader.Pop(&out) && Now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_EQ(out.ranges.size(), 181u);
+  EXPECT_NEAR(out.ranges[90], 2.5f, 1e-3f);
+  EXPECT_GE(out.stamp, written);
+  reader.Stop();
+}
+
 // The sonar reader calls on_reading right after queueing each reading (atlasd's loop sleeps
 // until then when its maps use the sonar): every reading sent arrives and was signalled.
 TEST(FakeP2osTest, SonarReaderSignalsEveryQueuedReading) {
