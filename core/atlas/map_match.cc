@@ -46,6 +46,12 @@ const char* MapMatchResultName(MapMatchResult r) {
   return "unknown";
 }
 
+MapMatchOptions SonarMapMatchOptions(MapMatchOptions o) {
+  o.redundancy_sigma = 0.25;
+  o.redundancy_prior_halfwidth = 0.5;
+  return o;
+}
+
 const char* MapMatchReasonName(MapMatchReason r) {
   switch (r) {
     case MapMatchReason::kMatched:

@@ -95,6 +95,13 @@ struct MapMatchOptions {
   std::string Validate() const;
 };
 
+// The Condition 2 settings for maps of wide-beam sonar lines: `o` with redundancy_sigma 0.25 m
+// and redundancy_prior_halfwidth 0.5 m (laser defaults 1 m / 2 m). A sonar atlas's priors are
+// less consistent (robot NEES mean 6-8 on the alcove loop): with the laser's values the alcove
+// loop had gross false closures (docs/sonar.md, session 5). Used by atlasd (sensors = "sonar")
+// and by tools/sonar_eval.
+MapMatchOptions SonarMapMatchOptions(MapMatchOptions o = {});
+
 enum class MapMatchResult { kAccepted, kRejected, kAmbiguous };
 enum class MapMatchReason {
   kMatched,

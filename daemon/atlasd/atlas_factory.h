@@ -3,7 +3,8 @@
 // the laser alone (MapperSettings::sensors) they are line-EKF maps (core/localmap), with w
 // (eq. 12) bound by LineMapBootstrapper; with the sonar ring alone or with both they are
 // SonarLocalMaps (core/sonar: the same EKF, fed by Atlas::Step with SonarReadings too), w from
-// the laser scans when there is a laser, none for sonar alone (juveniles judged on q).
+// the laser scans when there is a laser, none for sonar alone (juveniles judged on q). With
+// sonar alone, map-matching uses SonarMapMatchOptions (core/atlas/map_match.h).
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
 // daemon_setup.cc, so that the replay tools build the same mapper without the configuration

@@ -252,6 +252,21 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
   EXPECT_NEAR(d.pose.mean.x, 6.0, 0.3);
 }
 
+// Sonar alone maps with the sonar's Condition 2 settings (map_match.h, SonarMapMatchOptions),
+// the laser and both with the laser's defaults.
+TEST(StepLoopSonar, SonarAtlasMatchesMapsWithTheSonarSettings) {
+  MapperSettings s;
+  EXPECT_EQ(MakeAtlas(s)->Options().match.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
+  s.sonar_ring = FakeSonarRing24();
+  s.sensors = RangeSensors::kBoth;
+  EXPECT_EQ(MakeAtlas(s)->Options().match.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
+  s.sensors = RangeSensors::kSonar;
+  const MapMatchOptions m = MakeAtlas(s)->Options().match;
+  EXPECT_EQ(m.redundancy_sigma, SonarMapMatchOptions().redundancy_sigma);
+  EXPECT_EQ(m.redundancy_prior_halfwidth, SonarMapMatchOptions().redundancy_prior_halfwidth);
+  EXPECT_LT(m.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
+}
+
 // A saved atlas of laser maps is not read as one of sonar maps (start moves it aside).
 TEST(StepLoopSonar, AtlasImageOfTheOtherMapKindIsRefused) {
   MapperSettings laser;

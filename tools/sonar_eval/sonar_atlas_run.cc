@@ -37,8 +37,7 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
 
 AtlasOptions SonarAtlasOptions() {
   AtlasOptions o;
-  o.match.redundancy_sigma = 0.25;
-  o.match.redundancy_prior_halfwidth = 0.5;
+  o.match = SonarMapMatchOptions(o.match);
   return o;
 }
 

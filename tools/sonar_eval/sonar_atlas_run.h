@@ -34,11 +34,10 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
                                          const WheelOdometryNoiseOptions& wheel,
                                          const sim::SonarOptions& sonar);
 
-// The atlas options of a sonar-only atlas: the defaults, except that a direction of a map-match's
-// t resting on one line pair (map_match.h, redundancy) is vouched for by the prior only when the
-// prior's gate along it is within +-0.5 m (laser default: 2 m), and the "other pairs" must fix
-// it to 0.25 m (default 1 m). The sonar atlas's priors are not consistent (robot NEES mean 6-8
-// on the alcove loop): with the laser's values, alcove seeds 1-10 had a gross false closure.
+// The atlas options of a sonar-only atlas: the defaults with SonarMapMatchOptions (map_match.h:
+// a direction of a map-match's t resting on one line pair is vouched for by the prior only when
+// the prior's gate along it is within +-0.5 m, and the other pairs must fix it to 0.25 m), as
+// atlasd uses them with sensors = "sonar".
 AtlasOptions SonarAtlasOptions();
 
 // NEES (3 dof) of `estimate` against `truth` (heading difference wrapped). The covariance gets
