@@ -45,7 +45,8 @@
 //   correlation. It is off by default: on the six corrected logs it cut the edges beyond 3
 //   sigma of the reference (11 of 31 -> 2 of 57, gross 4 -> 1), but the looser edges widen the
 //   Dijkstra projection's priors, and in the seeded sonar run on a repetitive corridor
-//   (tools/sonar_eval SonarAtlasCondition2) a wrong period then passed the prior gate. Matched
+//   (tools/sonar_eval SonarAtlasCondition2) a wrong period then passed the prior gate. atlasd
+//   turns it on for laser lines (daemon/atlasd/atlas_factory.h), not for sonar ones. Matched
 //   lines that are all parallel leave a singular information matrix: kRejected (degenerate),
 //   never a guess.
 // Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each

@@ -33,7 +33,11 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
   o.quality.sigma_theta = s.max_sigma_theta;
   o.projection_max_frames = s.frames_examined_per_step;
   o.match_candidates_per_step = s.match_candidates_per_step;
-  if (s.sensors == RangeSensors::kSonar) o.match = SonarMapMatchOptions(o.match);
+  if (s.sensors == RangeSensors::kSonar) {
+    o.match = SonarMapMatchOptions(o.match);
+  } else {
+    o.match.unknown_line_correlation = true;
+  }
   return o;
 }
 

@@ -4,7 +4,11 @@
 // (eq. 12) bound by LineMapBootstrapper; with the sonar ring alone or with both they are
 // SonarLocalMaps (core/sonar: the same EKF, fed by Atlas::Step with SonarReadings too), w from
 // the laser scans when there is a laser, none for sonar alone (juveniles judged on q). With
-// sonar alone, map-matching uses SonarMapMatchOptions (core/atlas/map_match.h).
+// sonar alone, map-matching uses SonarMapMatchOptions (core/atlas/map_match.h); with laser
+// lines, unknown_line_correlation (t's covariance n times the independent-lines one): on the six
+// corrected logs with 24 frames examined it cut the map-match edges beyond 3 sigma of the
+// reference from 8 of 21 to 2 of 14, none gross (docs/atlas.md, session 5). On the sonar alcove
+// loop it let gross ones through (docs/sonar.md), so sonar keeps it off.
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
 // daemon_setup.cc, so that the replay tools build the same mapper without the configuration

@@ -253,18 +253,21 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
 }
 
 // Sonar alone maps with the sonar's Condition 2 settings (map_match.h, SonarMapMatchOptions),
-// the laser and both with the laser's defaults.
+// the laser and both with the laser's: default redundancy, lines of unknown correlation.
 TEST(StepLoopSonar, SonarAtlasMatchesMapsWithTheSonarSettings) {
   MapperSettings s;
   EXPECT_EQ(MakeAtlas(s)->Options().match.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
+  EXPECT_TRUE(MakeAtlas(s)->Options().match.unknown_line_correlation);
   s.sonar_ring = FakeSonarRing24();
   s.sensors = RangeSensors::kBoth;
   EXPECT_EQ(MakeAtlas(s)->Options().match.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
+  EXPECT_TRUE(MakeAtlas(s)->Options().match.unknown_line_correlation);
   s.sensors = RangeSensors::kSonar;
   const MapMatchOptions m = MakeAtlas(s)->Options().match;
   EXPECT_EQ(m.redundancy_sigma, SonarMapMatchOptions().redundancy_sigma);
   EXPECT_EQ(m.redundancy_prior_halfwidth, SonarMapMatchOptions().redundancy_prior_halfwidth);
   EXPECT_LT(m.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
+  EXPECT_FALSE(m.unknown_line_correlation);
 }
 
 // A saved atlas of laser maps is not read as one of sonar maps (start moves it aside).

@@ -107,14 +107,17 @@ struct NoiseOptions {
 // The Atlas framework's parameters (paper, Sections I-A and III). Generic on purpose: the atlas
 // and local-map modules fill their own options structs from these fields.
 struct AtlasParameters {
-  int map_capacity = 10;              // features a local map may hold (map capacity, Section I-A)
-  int max_hypotheses = 8;             // juvenile + mature hypotheses alive at once
-  int probation_steps = 20;           // steps a juvenile hypothesis has to mature (Section III-E)
-  double quality_alpha = 0.5;         // alpha of the quality metric q, eq. 5
-  double max_sigma_x = 1.0;           // sigma_x of eq. 5, metres
-  double max_sigma_y = 1.0;           // sigma_y of eq. 5, metres
-  double max_sigma_theta = 0.35;      // sigma_theta of eq. 5, radians
-  int frames_examined_per_step = 4;   // work budget: map-frames tried for transitions per step
+  int map_capacity = 10;          // features a local map may hold (map capacity, Section I-A)
+  int max_hypotheses = 8;         // juvenile + mature hypotheses alive at once
+  int probation_steps = 20;       // steps a juvenile hypothesis has to mature (Section III-E)
+  double quality_alpha = 0.5;     // alpha of the quality metric q, eq. 5
+  double max_sigma_x = 1.0;       // sigma_x of eq. 5, metres
+  double max_sigma_y = 1.0;       // sigma_y of eq. 5, metres
+  double max_sigma_theta = 0.35;  // sigma_theta of eq. 5, radians
+  // Work budget: frames the bounded Dijkstra projection settles per step, nearest first; the
+  // candidates for traversal and map-matching come from them (4 left loops of more than 3
+  // frames unclosed).
+  int frames_examined_per_step = 24;
   int match_candidates_per_step = 2;  // work budget: map-matching candidates per step
 };
 
