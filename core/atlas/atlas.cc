@@ -570,6 +570,7 @@ void Atlas::RefineEdges() {
       const int edge = graph_.FindEdge(fi, fj);
       if (edge < 0) continue;
       const AtlasEdge& e = graph_.Edge(edge);
+      if (e.origin == EdgeKind::kMapMatch && !options_.refine_map_match_edges) continue;
       const int64_t last = std::max(e.made_step, e.refined_step);
       if (step_ - last < options_.refine_interval_steps) continue;
       const UncertainPose obs = EdgeObservation(PoseOf(hypotheses_[i]), PoseOf(hypotheses_[j]));

@@ -47,7 +47,11 @@
 //  7. Edge refinement (III-F): for mature hypotheses in adjacent frames, covariance
 //     intersection (edge_refinement.h), at most `max_refinements_per_step`, each edge at most
 //     once per `refine_interval_steps`. An observation that disagrees with the edge beyond
-//     `refine_gate_chi2` is rejected (RefineEdge), not fused.
+//     `refine_gate_chi2` is rejected (RefineEdge), not fused. Only edges made by Genesis are
+//     refined unless `refine_map_match_edges` (our choice): a map-match edge's t comes from the
+//     two maps alone (eq. 9), while the observation of eq. 14-15 comes from the hypotheses'
+//     robot poses, which on the sonar alcove loop and intel were less consistent than the
+//     maps; fused in, they made 2 true sonar closures and 1 laser one false (docs/atlas.md).
 //
 // Constant time: every loop above is bounded by an option (hypotheses alive, projection frames,
 // seeds, candidates, refinements) and by the map capacity; no loop runs over all frames or
@@ -107,6 +111,8 @@ struct AtlasOptions {
   int refine_interval_steps = 10;
   // Edge refinement gate (edge_refinement.h): chi-square, 3 dof; 16.27 = 99.9 %.
   double refine_gate_chi2 = 16.27;
+  // Whether edges made by map-matching are refined too (step 7).
+  bool refine_map_match_edges = false;
   double capacity_explanation = 0.8;
   int genesis_min_interval_steps = 5;
   // Matching into unconnected parts of the graph (after ResumeInNewFrame), no prior.

@@ -147,6 +147,55 @@ TEST(Atlas, MatureHypothesisContradictingTheDominantAcrossAnEdgeIsRetired) {
   }
 }
 
+// Edge refinement (III-F) leaves map-match edges alone unless asked: the Genesis edge of a fresh
+// frame is relabelled as made by map-matching in the byte image (kind and origin follow the
+// edge's 12 doubles there; no juvenile is alive, so no later copy of them), and with both
+// hypotheses mature the edge is refined only with refine_map_match_edges. The Genesis edge
+// itself is refined either way.
+TEST(Atlas, MapMatchEdgesAreRefinedOnlyWhenAsked) {
+  for (const bool refine_mm : {false, true}) {
+    for (const bool relabel : {false, true}) {
+      SCOPED_TRACE(std::string(refine_mm ? "refine_map_match_edges" : "default") +
+                   (relabel ? ", map-match edge" : ", Genesis edge"));
+      TestWorld w;
+      AtlasOptions o = TestWorld::Options();
+      o.refine_map_match_edges = refine_mm;
+      Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+      int i = 0;
+      while (i < 80 && atlas.Step(Pose2{0.25, 0.0, 0.0}, TestScan()).genesis == 0) ++i;
+      ASSERT_EQ(atlas.Graph().EdgeCount(), 1) << "no Genesis: the test world changed";
+      std::string image = atlas.Serialize();
+      if (relabel) {
+        const AtlasEdge& e = atlas.Graph().Edge(0);
+        const double mean[3] = {e.b_in_a.mean.x, e.b_in_a.mean.y, e.b_in_a.mean.theta};
+        // The last copy: frame 0's map blob, written before the edges, holds the same pose.
+        const size_t at = image.rfind(std::string(reinterpret_cast<const char*>(mean), 24));
+        ASSERT_NE(at, std::string::npos);
+        image[at + 96] = static_cast<char>(EdgeKind::kMapMatch);  // kind, after mean and cov
+        image[at + 97] = static_cast<char>(EdgeKind::kMapMatch);  // origin
+      }
+      Atlas restored(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+      ASSERT_TRUE(restored.Deserialize(image));
+      ASSERT_EQ(restored.Graph().Edge(0).origin,
+                relabel ? EdgeKind::kMapMatch : EdgeKind::kGenesis);
+      int refined = 0, both_mature = 0;
+      for (int k = 0; k < 8; ++k) {
+        refined += restored.Step(Pose2{0.25, 0.0, 0.0}, TestScan()).refined;
+        both_mature += restored.Hypotheses().size() == 2;
+      }
+      ASSERT_GE(both_mature, 3)
+          << "the old frame's hypothesis did not stay: the test world changed";
+      if (relabel && !refine_mm) {
+        EXPECT_EQ(refined, 0);
+        EXPECT_EQ(restored.Graph().Edge(0).refined_step, -1);
+      } else {
+        EXPECT_GE(refined, 1);
+        EXPECT_EQ(restored.Graph().Edge(0).kind, EdgeKind::kRefined);
+      }
+    }
+  }
+}
+
 // Out and back along a corridor: Genesis on the way out, traversal on the way back, and the
 // dominant frame id falls back to 0 (Fig. 7).
 TEST(Atlas, TraversalFallsBackToKnownFrames) {
@@ -344,6 +393,7 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
   TestWorld w;
   const auto frame_in_world = InstallSquareRoom(&w);
   AtlasOptions o = TestWorld::Options();
+  ASSERT_FALSE(o.refine_map_match_edges);
   Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
   Pose2 truth{};
   int accepted = 0, matched_reason = 0, self_matches = 0;
@@ -362,6 +412,12 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
     EXPECT_GE(s.match_reasons[static_cast<int>(MapMatchReason::kMatched)], s.match_accepted);
     matched_reason += s.match_reasons[static_cast<int>(MapMatchReason::kMatched)];
     PlaceNewFrames(atlas.Graph(), truth, frame_in_world.get());
+    // Map-match edges keep the maps' transform: they are not refined (AtlasOptions).
+    for (const AtlasEdge& e : atlas.Graph().Edges()) {
+      if (e.origin == EdgeKind::kMapMatch) {
+        EXPECT_EQ(e.kind, EdgeKind::kMapMatch) << "step " << i;
+      }
+    }
   }
   EXPECT_GE(accepted, 1);
   EXPECT_GE(matched_reason, accepted);
