@@ -140,9 +140,10 @@ struct StepStats {
   // accepted match whose edge could not be added counts as kMatched and as match_rejected.
   std::array<int, kMapMatchReasonCount> match_reasons{};
   int refined = 0;
+  // Refinement observations outside the gate (a hypothesis disagrees with the edge), and mature
+  // hypotheses retired for contradicting the dominant one across an edge.
   int refine_rejected = 0;
-  int contradicting = 0;  // mature hypotheses retired for contradicting the dominant across an edge
-                          // // observations outside the gate (a hypothesis disagrees with the edge)
+  int contradicting = 0;
   FrameId dominant_frame = kNoFrame;
 };
 
