@@ -1,8 +1,5 @@
 #include "tools/replay/laser_time_offset.h"
 
-#include <sys/stat.h>
-
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -136,8 +133,8 @@ SweepResult SweepLaserTimeOffset(
     result.error = "offsets: " + e;
     return result;
   }
-  if (mkdir(out_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-    result.error = "cannot create " + out_dir + ": " + std::strerror(errno);
+  if (std::string e = CreateOutputDir(out_dir); !e.empty()) {
+    result.error = e;
     return result;
   }
   std::vector<OdometrySample> odometry;

@@ -112,6 +112,12 @@ const Pose2* ReferenceAt(const std::vector<TruthSample>& reference, Time stamp) 
 
 }  // namespace
 
+std::string CreateOutputDir(const std::string& dir) {
+  if (mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST)
+    return "cannot create " + dir + ": " + std::strerror(errno);
+  return "";
+}
+
 std::string WriteOutputFile(const std::string& dir, const char* name, const std::string& text) {
   const std::string path = dir + "/" + name;
   OutFile out;
@@ -152,8 +158,8 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     result.error = "options: " + e;
     return result;
   }
-  if (mkdir(out_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-    result.error = "cannot create " + out_dir + ": " + std::strerror(errno);
+  if (std::string e = CreateOutputDir(out_dir); !e.empty()) {
+    result.error = e;
     return result;
   }
   int64_t total_scans = 0;

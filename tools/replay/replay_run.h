@@ -106,6 +106,9 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
 // of its laser lines, at their stamps.
 std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log);
 
+// Creates `dir` unless it exists; returns an error message ("cannot create DIR: why") or "".
+std::string CreateOutputDir(const std::string& dir);
+
 // Writes `text` to dir/name; returns an error message ("cannot write PATH: why") or "".
 std::string WriteOutputFile(const std::string& dir, const char* name, const std::string& text);
 
