@@ -278,9 +278,13 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
   if (recovery && assoc.pairings == 0 && !wide.empty()) {
     wide.insert(wide.end(), strict.begin(), strict.end());
     jo.joint_gate = ao.recovery_gate;
-    assoc = Jcbb(m, wide, cross, jo);
-    active = &wide;
-    last_recovered_ = assoc.pairings > 0;
+    JcbbResult recovered = Jcbb(m, wide, cross, jo);
+    // A lone pairing at the wide gate is unverified (AssociationOptions::recovery_min_pairings).
+    if (recovered.pairings >= ao.recovery_min_pairings) {
+      assoc = std::move(recovered);
+      active = &wide;
+      last_recovered_ = true;
+    }
   }
   const std::vector<CandidatePair>& cands = *active;
   out.ambiguous = assoc.status != AssociationStatus::kUnique;

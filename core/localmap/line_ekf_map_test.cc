@@ -39,6 +39,9 @@ TEST(LineEkfMapTest, OptionsValidate) {
   EXPECT_NE(o.Validate(), "");
   o.association.recovery_gate = 0.0;  // off
   EXPECT_EQ(o.Validate(), "");
+  o = LocalMapOptions();
+  o.association.recovery_min_pairings = 0;
+  EXPECT_NE(o.Validate(), "");
 }
 
 TEST(LineEkfMapTest, PredictComposesAndGrowsCovarianceWithDistanceAndTurn) {
@@ -145,6 +148,46 @@ TEST(LineEkfMapTest, LineNearAFeatureIsNotAddedAgain) {
   EXPECT_EQ(up.matched, 0);
   EXPECT_EQ(up.added, 0);
   EXPECT_EQ(map.Complexity(), 1);
+}
+
+// The recovery pass's failure mode (mit-csail, docs/atlas.md session 6): the map holds one wall;
+// the odometry is right, but the robot now sees only an unmapped segment turned 2.8 sigma of the
+// heading away from that wall (a door leaf; with the line noises, d2 between the 99 % and the
+// 99.99 % quantiles). Its pairing with the wall fails the 99 % gate and
+// passes the 99.99 % one. Alone, nothing verifies it: with the default recovery_min_pairings (2)
+// it is left unpaired and the heading stays right; with 1 the map pairs it and turns the robot
+// by about the segment's angle, while claiming a smaller heading sigma than before.
+TEST(LineEkfMapTest, RecoveryPassLeavesALonePairingUnpaired) {
+  const std::vector<Wall> mapped = {{Vec2(3.0, -2.0), Vec2(3.0, 2.0)}};
+  for (const int min_pairings : {2, 1}) {
+    LocalMapOptions o = SimOptions();
+    o.odometry.theta_var_per_m = 1e-3;  // heading sigma 10 mrad after 0.1 m, far above the lines'
+    o.association.recovery_min_pairings = min_pairings;
+    ASSERT_EQ(o.Validate(), "");
+    LineEkfMap map(o);
+    map.Update(FakeWallScanner(mapped, FakeLaserOptions(), 21).Scan(Pose2{}), true);
+    ASSERT_EQ(map.Complexity(), 1);
+    const Pose2 truth{0.1, 0.0, 0.0};
+    map.Predict(truth);  // the odometry is exact
+    const double sigma = std::sqrt(map.RobotPose().cov(2, 2));
+    // The unmapped segment: the wall's middle part turned by 2.8 sigma about (3, 0).
+    const double phi = 2.8 * sigma, half = 1.5;
+    const Vec2 d(-std::sin(phi), std::cos(phi));
+    const std::vector<Wall> seen = {{Vec2(3.0, 0.0) - half * d, Vec2(3.0, 0.0) + half * d}};
+    const ScanUpdate up =
+        map.Update(FakeWallScanner(seen, FakeLaserOptions(), 22).Scan(truth), false);
+    const double error = std::abs(WrapAngle(map.RobotPose().mean.theta - truth.theta));
+    if (min_pairings == 2) {
+      EXPECT_EQ(up.matched, 0);
+      EXPECT_FALSE(map.LastUpdateRecovered());
+      EXPECT_LT(error, 1e-12);
+    } else {
+      EXPECT_EQ(up.matched, 1);
+      EXPECT_TRUE(map.LastUpdateRecovered());
+      EXPECT_GT(error, 2.0 * sigma);
+      EXPECT_LT(std::sqrt(map.RobotPose().cov(2, 2)), sigma);
+    }
+  }
 }
 
 // A heading error of 3.7 sigma of the predicted pose: every pairing fails the 99 % gate, the

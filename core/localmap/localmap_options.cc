@@ -48,6 +48,7 @@ std::string AssociationOptions::Validate() const {
   if (!Probability(new_feature_gate)) return "association.new_feature_gate must be in (0, 1)";
   if (new_feature_gate < individual_gate)
     return "association.new_feature_gate must be >= association.individual_gate";
+  if (recovery_min_pairings < 1) return "association.recovery_min_pairings must be at least 1";
   if (recovery_gate != 0.0 && (!Probability(recovery_gate) || recovery_gate < individual_gate ||
                                recovery_gate < joint_gate))
     return "association.recovery_gate must be 0 (off) or in (0, 1) and >= the individual and "

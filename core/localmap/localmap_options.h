@@ -79,6 +79,16 @@ struct AssociationOptions {
   // (a rare odometry excursion, or a turn the noise model under-states) otherwise rejects every
   // pairing, the pose is never corrected and the map is lost. 0 = off.
   double recovery_gate = 0.9999;
+  // The recovery pass is used only if its jointly compatible hypothesis has at least this many
+  // pairings. Joint compatibility (jcbb.h) can reject a spurious pairing only against another
+  // pairing: a lone one at the wide gate is not verified by anything, and the recovery pass
+  // runs exactly when the robot has lost its lines (a turn, a corner), where an unmapped
+  // segment (door leaf, jamb) lies within the widened gate of a mapped wall 20-40 degrees off.
+  // On mit-csail the recovery pass made the heading better as often as worse when it paired
+  // one line (12 and 12 of 34, against the relations' reference), and one such pairing turned
+  // the robot 18 degrees wrong in the step that made the Genesis edge 10-11 (docs/atlas.md,
+  // session 6). 1 = any pairing (the behaviour before 2026-11-23).
+  int recovery_min_pairings = 2;
   double new_feature_min_length = 1.0;  // metres
   // Nor if, in the map-frame at the estimated pose, it is parallel to a feature's line within
   // duplicate_alpha and its middle lies within duplicate_rho of that line: a second feature for
