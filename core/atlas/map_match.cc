@@ -31,6 +31,7 @@ std::string MapMatchOptions::Validate() const {
   if (!(redundancy_sigma >= 0)) return "map_match.redundancy_sigma must be >= 0 (0: off)";
   if (!(redundancy_prior_halfwidth >= 0))
     return "map_match.redundancy_prior_halfwidth must be >= 0 (0: never)";
+  if (!(alternative_sigmas >= 0)) return "map_match.alternative_sigmas must be >= 0 (0: off)";
   return "";
 }
 
@@ -364,6 +365,54 @@ WeakDirection Weakest(const Mat3& h) {
   return w;
 }
 
+// Condition 2 against the maps' own alternatives (map_match.h, "Alternative lines"): the matched
+// pair `p` of `pairs` could as well pair its line of B with another line of A of (nearly) its
+// orientation, or its line of A with another line of B: the placement t' = t + shift that does
+// so. True when some t' differs from t by more than `o.alternative_sigmas` of t's covariance
+// `cov_t` along the shift, puts the two segments side by side (overlap_slack), lies inside the
+// prior's gate, and leaves every other pair inside its line gate: nothing then tells the two
+// placements apart.
+bool PairHasAlternative(const std::vector<Line>& a, const std::vector<Line>& b,
+                        const std::pair<uint8_t, uint8_t>* pairs, int count, int p, const Pose2& t,
+                        const Mat3& cov_t, const UncertainPose* prior, const MapMatchOptions& o) {
+  const auto [i, k] = pairs[p];
+  const Rigid rigid(t);
+  const Mat2 info_xy = cov_t.topLeftCorner<2, 2>().inverse();
+  // Is t shifted by `shift` an alternative placement, with line ai of A beside line bk of B?
+  auto alternative = [&](const Vec2& shift, int ai, int bk) {
+    if (!(shift.dot(info_xy * shift) > o.alternative_sigmas * o.alternative_sigmas)) return false;
+    const Pose2 moved{t.x + shift.x(), t.y + shift.y(), t.theta};
+    if (!SegmentsOverlap(a[ai], b[bk], Rigid(moved), o.overlap_slack)) return false;
+    if (!InsidePrior(moved, prior, o)) return false;
+    for (int q = 0; q < count; ++q) {
+      if (q == p) continue;
+      const auto [iq, kq] = pairs[q];
+      if (!(Residual(a[iq], b[kq], moved).chi2 <= o.line_gate_chi2)) return false;
+    }
+    return true;
+  };
+  auto near_parallel = [&](double x, double y) {
+    return std::abs(AngleModPi(x - y)) < o.parallel_tolerance;
+  };
+  // Another line of A beside B's line k: shift line k (moved by t) through that line's
+  // midpoint, along k's normal.
+  const MovedLine mk = Move(b[k], t);
+  const Vec2 n_k(mk.c, mk.s);
+  for (int j = 0; j < static_cast<int>(a.size()); ++j) {
+    if (j == i || !near_parallel(a[j].alpha, a[i].alpha)) continue;
+    if (alternative((n_k.dot(0.5 * (a[j].p + a[j].q)) - mk.rho) * n_k, j, k)) return true;
+  }
+  // Another line of B beside A's line i: shift its midpoint (moved by t) onto line i, along
+  // i's normal.
+  const Vec2 n_i(a[i].cos_alpha, a[i].sin_alpha);
+  for (int l = 0; l < static_cast<int>(b.size()); ++l) {
+    if (l == k || !near_parallel(b[l].alpha, b[k].alpha)) continue;
+    const Vec2 mid_l = rigid.Apply(0.5 * (b[l].p + b[l].q));
+    if (alternative((a[i].rho - n_i.dot(mid_l)) * n_i, i, l)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions& o) {
@@ -516,6 +565,17 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
   out.b_in_a.cov = h.inverse();
   if (o.unknown_line_correlation) out.b_in_a.cov *= static_cast<double>(best->support.count);
   out.b_in_a.cov = 0.5 * (out.b_in_a.cov + out.b_in_a.cov.transpose());
+  if (o.alternative_sigmas > 0) {
+    for (int p = 0; p < pairs; ++p) {
+      if (!PairHasAlternative(a, b, best->support.pairs.data(), pairs, p, t, out.b_in_a.cov, prior,
+                              o))
+        continue;
+      out.b_in_a = UncertainPose{};
+      out.result = MapMatchResult::kAmbiguous;
+      out.reason = MapMatchReason::kSinglePair;
+      return out;
+    }
+  }
   out.result = MapMatchResult::kAccepted;
   out.reason = MapMatchReason::kMatched;
   return out;

@@ -37,6 +37,24 @@
 //   of this kind; the sonar atlas's priors are themselves inconsistent, so it uses 0.5 m
 //   (sonar_eval::SonarAtlasOptions; 1-2 m let gross ones back). The default 2 m leaves the six
 //   corrected laser logs' closures as they were (0.5 m refused 2 of intel's 4 true ones).
+// - Condition 2 against alternative lines: the redundancy test above asks whether the other
+//   pairs fix a direction to an absolute redundancy_sigma; the maps themselves say which
+//   alternatives there are. For each matched pair (i of A, k of B), every other line of A
+//   nearly parallel to i (within parallel_tolerance) that k could lie on instead, and every
+//   other line of B nearly parallel to k that could lie on i, gives a placement t' = t + shift
+//   (t's rotation, translation moved along the alternative's normal). If the shift exceeds
+//   `alternative_sigmas` standard deviations of t's covariance along it (smaller shifts are
+//   what the covariance already allows), the two segments lie side by side at t'
+//   (overlap_slack), t' lies inside the prior's gate, and every other pair stays inside its
+//   line gate at t', then neither the other pairs nor the prior tell t from t': kAmbiguous
+//   (kSinglePair). The case that made this test (freiburg-079, edge 8-0, 2026-11-23 session 6,
+//   docs/atlas.md): a wall with a 0.4 m step; frame 8's map held both faces (a 4.8 m line and
+//   a 1 m one, 0.09 rad apart), frame 0's map only the recessed one, which the match paired
+//   with the 4.8 m line. That pair alone fixed t's x (sigma 0.105 m with it, 0.44 m without:
+//   "redundant" by the 1 m test), and t came out 0.40 m off the reference (d2 18.7); the three
+//   other pairs and the prior allowed the true placement as well. atlasd turns it on (3 sigma)
+//   for laser lines (daemon/atlasd/atlas_factory.cc); off by default, so sonar atlases are as
+//   they were measured (docs/sonar.md).
 // - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
 //   pairs, Sigma = (sum H^T S^-1 H)^-1. The lines of one local map are correlated (they share
 //   the robot's errors when they were seen) and MapLine carries only each line's marginal, so
@@ -93,6 +111,10 @@ struct MapMatchOptions {
   // ... unless the prior's gate (prior_gate_chi2) along that direction reaches at most this far
   // (metres) either side: the prior then tells the pair's alternatives apart. 0: never.
   double redundancy_prior_halfwidth = 2.0;
+  // Alternative lines (see above): a pair whose line could as well be paired with another
+  // near-parallel line, at a placement more than this many sigmas of t's covariance away that
+  // the other pairs and the prior both allow, makes the match kAmbiguous (kSinglePair). 0: off.
+  double alternative_sigmas = 0.0;
   std::string Validate() const;
 };
 

@@ -205,6 +205,63 @@ TEST(MapMatch, DirectionFixedBySinglePairIsAmbiguous) {
   EXPECT_NEAR(both.b_in_a.mean.y, truth.y, 0.05);
 }
 
+// A wall with a 0.4 m step (freiburg-079, edge 8-0, docs/atlas.md session 6): the recessed face
+// x = -0.4 (y 1 .. -1.6) and the forward face x = 0 (y -1.6 .. -6.4), and three cross walls
+// whose normals lie within 0.13 rad of the y axis, so they fix y and the rotation well and x
+// only loosely. A saw the forward face whole and a metre of the recessed one (its line 0.09 rad
+// off, as short lines are); B saw the recessed face and the cross walls. Pairing B's recessed
+// face with A's forward face gives support 4 at t 0.4 m off in x, and that one pair makes t's x
+// sigma a tenth of that; the cross walls alone leave x to about 0.3 m, "redundant" by the 1 m
+// test. A's short recessed line is the alternative the maps show: the placement that puts B's
+// face on it is 0.4 m away, inside the prior and every other pair's gate: kAmbiguous
+// (kSinglePair). With a wall that fixes x twice over, or a prior that excludes the alternative,
+// B seeing the forward face is accepted and true.
+TEST(MapMatch, PairWithAnAlternativeLineNothingElseExcludesIsAmbiguous) {
+  MapMatchOptions o;
+  o.unknown_line_correlation = true;
+  const Pose2 truth{-9.7, 3.4, -0.23};
+  const std::pair<Vec2, Vec2> forward{{0, -1.6}, {0, -6.4}}, recessed{{-0.4, 1.0}, {-0.4, -1.6}},
+      recessed_piece{{-0.445, -0.5}, {-0.355, -1.5}}, cross1{{1.5, 0.5}, {3.0, 0.3}},
+      cross2{{-1.0, 0.5}, {1.0, 0.5}}, cross3{{-1.0, -7.4}, {2.0, -7.0}};
+  const auto a = InA({forward, recessed_piece, cross1, cross2, cross3});
+  const auto b = SeenFrom({recessed, cross1, cross2, cross3}, truth);
+  // Without the test the wrong pairing is accepted, 0.4 m off in x, beyond 3 sigma of its own
+  // covariance.
+  const MapMatch unguarded = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);
+  ASSERT_EQ(unguarded.result, MapMatchResult::kAccepted) << MapMatchReasonName(unguarded.reason);
+  EXPECT_EQ(unguarded.support, 4);
+  const double error_x = unguarded.b_in_a.mean.x - truth.x;
+  EXPECT_GT(error_x, 0.3);
+  EXPECT_GT(error_x, 3.0 * std::sqrt(unguarded.b_in_a.cov(0, 0)));
+  o.alternative_sigmas = 3.0;
+  const MapMatch m = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), nullptr, o);
+  EXPECT_EQ(m.result, MapMatchResult::kAmbiguous);
+  EXPECT_EQ(m.reason, MapMatchReason::kSinglePair) << MapMatchReasonName(m.reason);
+  // A prior that holds both placements (sigma 0.13 m in x, as edge 8-0's) does not help.
+  const UncertainPose loose{Pose2{-9.5, 3.45, -0.19}, Vec3(0.018, 0.068, 0.0008).asDiagonal()};
+  EXPECT_EQ(MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &loose, o).reason,
+            MapMatchReason::kSinglePair);
+  // B sees the forward face (the true pairing): with nothing else fixing x, the recessed piece
+  // is as good an alternative; a prior that excludes it (sigma 0.05 m) or a diagonal wall both
+  // maps saw (it fixes x with the cross walls) settles it, and the match is accepted and true.
+  const auto b_forward = SeenFrom({forward, cross1, cross2, cross3}, truth);
+  EXPECT_EQ(
+      MatchMaps(a, SelfMatchMap(a, o), b_forward, SelfMatchMap(b_forward, o), nullptr, o).reason,
+      MapMatchReason::kSinglePair);
+  const UncertainPose tight{Pose2{-9.72, 3.41, -0.232}, Vec3(0.0025, 0.0025, 0.0004).asDiagonal()};
+  const MapMatch with_prior =
+      MatchMaps(a, SelfMatchMap(a, o), b_forward, SelfMatchMap(b_forward, o), &tight, o);
+  ASSERT_EQ(with_prior.result, MapMatchResult::kAccepted) << MapMatchReasonName(with_prior.reason);
+  EXPECT_NEAR(with_prior.b_in_a.mean.x, truth.x, 0.05);
+  const std::pair<Vec2, Vec2> diagonal{{3, -2}, {5, -4}};
+  const auto a2 = InA({forward, recessed_piece, cross1, cross2, cross3, diagonal});
+  const auto b2 = SeenFrom({forward, cross1, cross2, cross3, diagonal}, truth);
+  const MapMatch both = MatchMaps(a2, SelfMatchMap(a2, o), b2, SelfMatchMap(b2, o), nullptr, o);
+  ASSERT_EQ(both.result, MapMatchResult::kAccepted) << MapMatchReasonName(both.reason);
+  EXPECT_NEAR(both.b_in_a.mean.x, truth.x, 0.05);
+  EXPECT_NEAR(both.b_in_a.mean.y, truth.y, 0.05);
+}
+
 TEST(MapMatch, ParallelOrTooFewLinesAreRejected) {
   MapMatchOptions o;
   const std::vector<std::pair<Vec2, Vec2>> corridor{

@@ -37,6 +37,7 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
     o.match = SonarMapMatchOptions(o.match);
   } else {
     o.match.unknown_line_correlation = true;
+    o.match.alternative_sigmas = 3.0;
   }
   return o;
 }

@@ -8,7 +8,10 @@
 // lines, unknown_line_correlation (t's covariance n times the independent-lines one): on the six
 // corrected logs with 24 frames examined it cut the map-match edges beyond 3 sigma of the
 // reference from 8 of 21 to 2 of 14, none gross (docs/atlas.md, session 5). On the sonar alcove
-// loop it let gross ones through (docs/sonar.md), so sonar keeps it off.
+// loop it let gross ones through (docs/sonar.md), so sonar keeps it off. Laser lines also use
+// alternative_sigmas 3 (a pair whose line has a near-parallel alternative that the other pairs
+// and the prior allow is ambiguous; it refused freiburg-079's false edge 8-0, docs/atlas.md
+// session 6); sonar maps have not been measured with it.
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
 // daemon_setup.cc, so that the replay tools build the same mapper without the configuration
