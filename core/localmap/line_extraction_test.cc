@@ -11,6 +11,21 @@
 namespace atlas {
 namespace {
 
+// Under AddressSanitizer (an unoptimised build, 200 times slower here) the bias test below fits
+// fewer scans: there it checks memory and undefined behaviour; the release run checks the
+// statistics.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
 TEST(LineExtractionTest, EstimatedCovarianceMatchesSampleCovariance) {
   // One oblique wall 4 m long, seen over many beams; 2000 noisy scans.
   const Wall wall{Vec2(3.0, -2.0), Vec2(2.0, 2.0)};
@@ -56,14 +71,17 @@ TEST(LineExtractionTest, EstimatedCovarianceMatchesSampleCovariance) {
 // A feature is observed in thousands of scans, so a bias of a tenth of a sigma per fit makes
 // the map inconsistent within minutes. In the corridor world, the side walls seen at grazing
 // incidence next to door jambs: the mean error of 4000 fits is below 0.04 of a fit's sigma in
-// rho and alpha (the standard error of that mean is 0.011-0.016). The extraction of session 2
-// (point-space fit, no sparse-end trim, corner points kept) gave 0.07-0.08 here.
+// rho and alpha (the standard error of that mean is 0.011-0.016). Sanitized builds fit 400
+// scans and allow the same number of standard errors (0.04 * sqrt(10)). The extraction of
+// session 2 (point-space fit, no sparse-end trim, corner points kept) gave 0.07-0.08 here.
 TEST(LineExtractionTest, UnbiasedAtGrazingIncidenceAndNextToCorners) {
   FakeLaserOptions lo;
   lo.range_sigma = 0.01;
   FakeWallScanner scanner(CorridorWorld(20.0, 2.4), lo, 7);
   LineExtractionOptions eo;
   eo.range_sigma = 0.01;
+  constexpr int kFits = kSanitized ? 400 : 4000;
+  const double max_bias = 0.04 * std::sqrt(4000.0 / kFits);
   for (const Pose2& pose : {Pose2{13.0, -0.2, 0.15}, Pose2{6.0, 0.0, 0.0}}) {
     // The side walls y = +-1.2 in the sensor frame.
     Vec2 truth[2];
@@ -74,7 +92,7 @@ TEST(LineExtractionTest, UnbiasedAtGrazingIncidenceAndNextToCorners) {
     Vec2 mean[2] = {Vec2::Zero(), Vec2::Zero()};
     Mat2 cov[2] = {Mat2::Zero(), Mat2::Zero()};
     int fits[2] = {0, 0};
-    for (int r = 0; r < 4000; ++r) {
+    for (int r = 0; r < kFits; ++r) {
       for (const ObservedLine& l : ExtractLines(scanner.Scan(pose), eo)) {
         for (int side = 0; side < 2; ++side) {
           const Vec2 e(l.rho - truth[side](0), WrapAngle(l.alpha - truth[side](1)));
@@ -86,12 +104,12 @@ TEST(LineExtractionTest, UnbiasedAtGrazingIncidenceAndNextToCorners) {
       }
     }
     for (int side = 0; side < 2; ++side) {
-      ASSERT_GE(fits[side], 4000) << "pose x " << pose.x << " side " << side;
+      ASSERT_GE(fits[side], kFits) << "pose x " << pose.x << " side " << side;
       mean[side] /= fits[side];
       cov[side] /= fits[side];
-      EXPECT_LT(std::abs(mean[side](0)) / std::sqrt(cov[side](0, 0)), 0.04)
+      EXPECT_LT(std::abs(mean[side](0)) / std::sqrt(cov[side](0, 0)), max_bias)
           << "pose x " << pose.x << " side " << side;
-      EXPECT_LT(std::abs(mean[side](1)) / std::sqrt(cov[side](1, 1)), 0.04)
+      EXPECT_LT(std::abs(mean[side](1)) / std::sqrt(cov[side](1, 1)), max_bias)
           << "pose x " << pose.x << " side " << side;
     }
   }
