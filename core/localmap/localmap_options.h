@@ -85,9 +85,9 @@ struct AssociationOptions {
   // runs exactly when the robot has lost its lines (a turn, a corner), where an unmapped
   // segment (door leaf, jamb) lies within the widened gate of a mapped wall 20-40 degrees off.
   // On mit-csail the recovery pass made the heading better as often as worse when it paired
-  // one line (12 and 12 of 34, against the relations' reference), and one such pairing turned
-  // the robot 18 degrees wrong in the step that made the Genesis edge 10-11 (docs/atlas.md,
-  // session 6). 1 = any pairing (the behaviour before 2026-11-23).
+  // one line (9 and 9 of 28 by more than 2 degrees, against the relations' reference), and one
+  // such pairing turned the robot 18 degrees wrong in the step that made the Genesis edge 10-11
+  // (docs/atlas.md, session 6). 1 = any pairing (the behaviour before 2026-11-23).
   int recovery_min_pairings = 2;
   double new_feature_min_length = 1.0;  // metres
   // Nor if, in the map-frame at the estimated pose, it is parallel to a feature's line within
