@@ -18,8 +18,8 @@
 //   Ambiguous observations are neither used nor turned into features. If nothing paired, the
 //   association runs again with the looser recovery_gate (a rare 3.5-4 sigma odometry error
 //   would otherwise reject every pairing, and the pose would never be corrected again); its
-//   result is used only with at least recovery_min_pairings (2) jointly compatible pairings,
-//   since a lone pairing at the wide gate cannot be told from a spurious one.
+//   result is used only with at least recovery_min_pairings jointly compatible pairings (a
+//   lone pairing at the wide gate cannot be told from a spurious one; default 1: any).
 // - New features: an unpaired observation that is not compatible with any feature even at the
 //   looser new_feature_gate (no duplicate lines), long enough, becomes a feature with the
 //   inverse model (LineToParent) and its cross covariances, if the caller allows it (mature

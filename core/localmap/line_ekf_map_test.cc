@@ -154,8 +154,8 @@ TEST(LineEkfMapTest, LineNearAFeatureIsNotAddedAgain) {
 // the odometry is right, but the robot now sees only an unmapped segment turned 2.8 sigma of the
 // heading away from that wall (a door leaf; with the line noises, d2 between the 99 % and the
 // 99.99 % quantiles). Its pairing with the wall fails the 99 % gate and
-// passes the 99.99 % one. Alone, nothing verifies it: with the default recovery_min_pairings (2)
-// it is left unpaired and the heading stays right; with 1 the map pairs it and turns the robot
+// passes the 99.99 % one. Alone, nothing verifies it: with recovery_min_pairings 2 it is left
+// unpaired and the heading stays right; with 1 (the default) the map pairs it and turns the robot
 // by about the segment's angle, while claiming a smaller heading sigma than before.
 TEST(LineEkfMapTest, RecoveryPassLeavesALonePairingUnpaired) {
   const std::vector<Wall> mapped = {{Vec2(3.0, -2.0), Vec2(3.0, 2.0)}};
