@@ -280,10 +280,12 @@ ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed
     jo.joint_gate = ao.recovery_gate;
     JcbbResult recovered = Jcbb(m, wide, cross, jo);
     // A lone pairing at the wide gate is unverified (AssociationOptions::recovery_min_pairings).
-    if (recovered.pairings >= ao.recovery_min_pairings) {
+    // A result that pairs nothing is kept, as before that option: its ambiguities still bar new
+    // features.
+    if (recovered.pairings == 0 || recovered.pairings >= ao.recovery_min_pairings) {
       assoc = std::move(recovered);
       active = &wide;
-      last_recovered_ = true;
+      last_recovered_ = assoc.pairings > 0;
     }
   }
   const std::vector<CandidatePair>& cands = *active;
