@@ -218,7 +218,13 @@ void Atlas::JudgeJuveniles() {
     const JuvenileVerdict v =
         JudgeJuvenile(h, best_mature, bootstrap_failed_[i] != 0, options_.lifecycle);
     if (v == JuvenileVerdict::kMature) {
-      graph_.MutableFrame(h.frame).map = std::move(h.trial_map);
+      MapFrame& f = graph_.MutableFrame(h.frame);
+      if (bootstrapper_ || !options_.keep_frame_map_without_w) {
+        f.map = std::move(h.trial_map);
+      } else {
+        f.map->ResetRobotPose(h.trial_map->RobotPose());
+        h.trial_map.reset();
+      }
       h.state = HypothesisState::kMature;
       h.failing_steps = 0;
       h.z.clear();

@@ -11,6 +11,9 @@
 //     pose is replaced by w's solution, or the juvenile is killed if w fails.
 //  2. Juveniles at the end of probation mature (q beats every mature hypothesis) or are deleted
 //     (Fig. 4). The frame of a deleted juvenile is not reseeded for `seed_cooldown_steps`.
+//     The matured juvenile's trial map replaces the frame's map. Without w (no bootstrapper:
+//     the sonar atlas) `keep_frame_map_without_w` instead keeps the frame's map and gives it
+//     the juvenile's robot pose (an experiment, off: docs/sonar.md, session 7).
 //  3. Failing mature hypotheses (q < q_fail for fail_steps scans, or, other than the dominant
 //     one, q more than retire_margin below the dominant's for lag_steps scans: hypothesis.h) are
 //     retired if another mature hypothesis is healthy. If none is, Genesis (III-C) starts a new
@@ -113,6 +116,14 @@ struct AtlasOptions {
   double refine_gate_chi2 = 16.27;
   // Whether edges made by map-matching are refined too (step 7).
   bool refine_map_match_edges = false;
+  // Step 2 without w: the trial map's features were updated from the seed x_i* of eq. 10-11,
+  // which comes from other frames and the edges but enters the EKF as independent of frame i's
+  // features, so adopting them fuses that seed into the frame's map at each re-entry. On:
+  // the frame keeps its own map and takes the juvenile's robot pose (with no correlation to
+  // the features, so later updates count the map's information twice instead). Measured on the
+  // simulator's sonar atlases (docs/sonar.md, session 7): building NEES 9.59 -> 12.28, alcove
+  // loop 6.91 -> 6.34; so off.
+  bool keep_frame_map_without_w = false;
   double capacity_explanation = 0.8;
   int genesis_min_interval_steps = 5;
   // Matching into unconnected parts of the graph (after ResumeInNewFrame), no prior.

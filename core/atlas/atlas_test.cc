@@ -570,3 +570,51 @@ TEST(Atlas, SonarStepOnAMapWithoutSonarOnlyPredicts) {
 
 }  // namespace
 }  // namespace atlas
+
+namespace atlas {
+namespace {
+
+// Without w (no bootstrapper), keep_frame_map_without_w keeps the frame's own map when a
+// juvenile matures (the features the juvenile updated from its seed are not adopted) and gives
+// it the juvenile's robot pose; by default the trial map replaces it, as with w.
+TEST(Atlas, MaturedJuvenileWithoutWKeepsTheFrameMapWhenAsked) {
+  for (const bool keep : {false, true}) {
+    SCOPED_TRACE(keep ? "keep_frame_map_without_w" : "default");
+    TestWorld w;
+    AtlasOptions o = TestWorld::Options();
+    o.keep_frame_map_without_w = keep;
+    Atlas atlas(o, w.Factory(), nullptr);
+    int matured = 0;
+    for (int i = 0; i < 120; ++i) {
+      const double v = i < 60 ? 0.25 : -0.25;
+      std::vector<std::pair<int64_t, Pose2>> juveniles;
+      for (const Hypothesis& h : atlas.Hypotheses())
+        if (h.state == HypothesisState::kJuvenile)
+          juveniles.emplace_back(h.id, h.trial_map->RobotPose().mean);
+      const StepStats& s = atlas.Step(Pose2{v, 0.0, 0.0}, TestScan());
+      CheckInvariants(atlas);
+      if (s.matured == 0) continue;
+      for (const Hypothesis& h : atlas.Hypotheses()) {
+        const bool was_juvenile = std::any_of(juveniles.begin(), juveniles.end(),
+                                              [&](const auto& j) { return j.first == h.id; });
+        if (!was_juvenile || h.state != HypothesisState::kMature) continue;
+        ++matured;
+        const auto& map = dynamic_cast<const FakeLocalMap&>(*atlas.Graph().Frame(h.frame).map);
+        // The juvenile updated its trial map with allow_new_features = false; the frame's own map
+        // was last updated by the mature hypothesis that had left it.
+        EXPECT_EQ(map.last_allow_new(), keep);
+        EXPECT_EQ(atlas.PoseOf(h).mean.x, map.RobotPose().mean.x);
+        if (keep) {
+          // The kept map carries the juvenile's pose, which moved with the robot.
+          const auto j = std::find_if(juveniles.begin(), juveniles.end(),
+                                      [&](const auto& p) { return p.first == h.id; });
+          EXPECT_NEAR(map.RobotPose().mean.x, j->second.x + v, 1e-9);
+        }
+      }
+    }
+    EXPECT_GE(matured, 1);
+  }
+}
+
+}  // namespace
+}  // namespace atlas
