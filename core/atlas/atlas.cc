@@ -31,6 +31,8 @@ std::string AtlasOptions::Validate() const {
   if (max_refinements_per_step < 0) return "max_refinements_per_step must be non-negative";
   if (refine_interval_steps < 1) return "refine_interval_steps must be at least 1";
   if (!(refine_gate_chi2 > 0)) return "refine_gate_chi2 must be positive";
+  if (!(seed_cov_scale_without_w >= 1.0 && seed_cov_scale_without_w <= 100.0))
+    return "seed_cov_scale_without_w must lie in [1, 100]";
   if (!(capacity_explanation >= 0 && capacity_explanation <= 1))
     return "capacity_explanation must lie in [0, 1]";
   if (genesis_min_interval_steps < 0) return "genesis_min_interval_steps must be non-negative";
@@ -398,7 +400,8 @@ void Atlas::Traverse(int d) {
     const MapFrame& f = graph_.Frame(e.frame);
     if (f.seed_cooldown_until > step_ || HasHypothesis(e.frame)) continue;
     // eq. 10-11: x_i* = T_i^d (+) x_d, T_i^d the pose of the dominant frame in frame i.
-    const UncertainPose seed = Compose(Inverse(e.pose), x_d);
+    UncertainPose seed = Compose(Inverse(e.pose), x_d);
+    if (!bootstrapper_) seed.cov *= options_.seed_cov_scale_without_w;
     if (!WithinReach(*f.map, seed)) {
       ++stats_.seeds_out_of_reach;
       continue;

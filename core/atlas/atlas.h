@@ -124,6 +124,11 @@ struct AtlasOptions {
   // simulator's sonar atlases (docs/sonar.md, session 7): building NEES 9.59 -> 12.28, alcove
   // loop 6.91 -> 6.34; so off.
   bool keep_frame_map_without_w = false;
+  // Without w: traversal seeds (eq. 10-11) get their covariance times this factor. The seed's
+  // correlation with frame i's map is unknown (dropped with the frames' independence); a factor
+  // 1/omega is the seed's side of covariance intersection (eq. 16-18) with weight omega. An
+  // experiment (docs/sonar.md, session 7); 1 = the plain projection.
+  double seed_cov_scale_without_w = 1.0;
   double capacity_explanation = 0.8;
   int genesis_min_interval_steps = 5;
   // Matching into unconnected parts of the graph (after ResumeInNewFrame), no prior.

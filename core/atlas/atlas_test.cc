@@ -618,3 +618,38 @@ TEST(Atlas, MaturedJuvenileWithoutWKeepsTheFrameMapWhenAsked) {
 
 }  // namespace
 }  // namespace atlas
+
+namespace atlas {
+namespace {
+
+// Without w, seed_cov_scale_without_w multiplies the covariance of a traversal seed (eq. 10-11);
+// with w (a bootstrapper) it is not applied.
+TEST(Atlas, SeedCovarianceScaleAppliesOnlyWithoutW) {
+  for (const bool with_w : {false, true}) {
+    SCOPED_TRACE(with_w ? "with w" : "without w");
+    TestWorld w1, w4;
+    AtlasOptions o = TestWorld::Options();
+    Atlas plain(o, w1.Factory(), with_w ? std::make_shared<FakeBootstrapper>() : nullptr);
+    o.seed_cov_scale_without_w = 4.0;
+    Atlas scaled(o, w4.Factory(), with_w ? std::make_shared<FakeBootstrapper>() : nullptr);
+    bool seeded = false;
+    for (int i = 0; i < 60 && !seeded; ++i) {
+      const int a = plain.Step(Pose2{0.25, 0.0, 0.0}, TestScan()).seeded;
+      const int b = scaled.Step(Pose2{0.25, 0.0, 0.0}, TestScan()).seeded;
+      ASSERT_EQ(a, b);
+      if (a == 0) continue;
+      seeded = true;
+      const Hypothesis& jp = plain.Hypotheses().back();
+      const Hypothesis& js = scaled.Hypotheses().back();
+      ASSERT_EQ(jp.state, HypothesisState::kJuvenile);
+      ASSERT_EQ(js.state, HypothesisState::kJuvenile);
+      const Mat3 cp = jp.trial_map->RobotPose().cov, cs = js.trial_map->RobotPose().cov;
+      ASSERT_GT(cp.trace(), 0.0);
+      EXPECT_TRUE(cs.isApprox(with_w ? cp : Mat3(4.0 * cp), 1e-12));
+    }
+    EXPECT_TRUE(seeded);
+  }
+}
+
+}  // namespace
+}  // namespace atlas

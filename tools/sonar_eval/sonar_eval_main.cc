@@ -57,6 +57,7 @@ constexpr char kUsage[] =
     "                             [--delayed-states 0|1 (1)] [--edge-extent 0|1 (1)]\n"
     "                             [--redundancy-sigma S=0.25] [--redundancy-prior H=0.5]\n"
     "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
+    "                             [--seed-cov-scale F=1]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
     "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
@@ -91,6 +92,8 @@ constexpr char kUsage[] =
     "      --keep-frame-map 1: a juvenile that matures leaves the frame's map as it was (not the\n"
     "      features it updated from its seeded pose) and gives it its robot pose\n"
     "      (AtlasOptions::keep_frame_map_without_w, an experiment).\n"
+    "      --seed-cov-scale F: traversal seeds of the sonar atlas get F times the projected\n"
+    "      covariance (AtlasOptions::seed_cov_scale_without_w, an experiment).\n"
     "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
     "      to a feature is checked against the wall the simulator echoed it from (in-cone and\n"
     "      edge-of-cone pairings: the true wall's line, another line, or no wall: multipath);\n"
@@ -640,7 +643,7 @@ struct TraceWriter {
 
 int RunAtlasMode(const Args& args) {
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
-         self_match = 1, delayed = 1, edge_extent = 1, keep_frame_map = 0,
+         self_match = 1, delayed = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1,
          redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
          redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth;
   sonar_eval::AlcoveLoopOptions loop;
@@ -658,6 +661,7 @@ int RunAtlasMode(const Args& args) {
       !GetNumberOption(args, "--redundancy-sigma", 0, 100, redundancy, error) ||
       !GetNumberOption(args, "--line-correlation", 0, 1, line_correlation, error) ||
       !GetNumberOption(args, "--keep-frame-map", 0, 1, keep_frame_map, error) ||
+      !GetNumberOption(args, "--seed-cov-scale", 1, 100, seed_scale, error) ||
       !GetNumberOption(args, "--redundancy-prior", 0, 100, redundancy_prior, error) ||
       !GetNumberOption(args, "--period", 0.5, 100, loop.period, error) ||
       !GetNumberOption(args, "--loop-length", 5, 1000, loop.length, error) ||
@@ -724,6 +728,7 @@ int RunAtlasMode(const Args& args) {
     ao.match.redundancy_prior_halfwidth = redundancy_prior;
     ao.match.unknown_line_correlation = line_correlation != 0;
     ao.keep_frame_map_without_w = keep_frame_map != 0;
+    ao.seed_cov_scale_without_w = seed_scale;
     AtlasOptions laser_ao;
     laser_ao.match.self_match = self_match != 0;
     Atlas sonar_atlas(
@@ -937,12 +942,14 @@ int main(int argc, char** argv) {
     return atlas::RunMonteCarlo(a);
   }
   if (cmd == "atlas") {
+    // clang-format off
     const atlas::Args a = atlas::eval::ParseToolOptions(
         argc, argv, 2,
         {"--world", "--ring", "--seed", "--runs", "--km", "--rooms", "--capacity", "--laser",
          "--trace", "--self-match", "--period", "--loop-length", "--loop-width", "--delayed-states",
          "--edge-extent", "--redundancy-sigma", "--line-correlation", "--redundancy-prior",
-         "--keep-frame-map"});
+         "--keep-frame-map", "--seed-cov-scale"});
+    // clang-format on
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
