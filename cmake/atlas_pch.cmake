@@ -31,7 +31,14 @@
 # instead of being silently skipped.
 #
 # The PCH is force-included ahead of every source: a file that forgets an #include of one of
-# these headers still compiles with ATLAS_PCH=ON. Build with -DATLAS_PCH=OFF to check that.
+# these headers still compiles with ATLAS_PCH=ON. Build with -DATLAS_PCH=OFF to check that (in
+# scripts/test.sh the release tree, which has no PCH, does).
+#
+# Gain (clean ASan+UBSan tree, same source, -j 2, both at load ~1.8): 1035.5 s CPU without
+# (user 847.3 + sys 188.2, wall 8:51), 989.4 s with (user 726.1 + sys 263.3, wall 8:45): -4.5 %.
+# Loading the ~180 MB PCH costs every file ~0.3-0.6 s of sys time, which eats most of the parse
+# time saved; a test file with Eigen + gtest saves ~3 s (line_extraction_test.cc at -O2), a
+# light file loses ~0.6 s.
 
 set(ATLAS_PCH_STD_HEADERS
     <algorithm> <array> <atomic> <chrono> <cmath> <cstddef> <cstdint> <cstdio> <cstdlib>
