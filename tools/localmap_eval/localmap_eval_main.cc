@@ -14,13 +14,16 @@
 //       the odometry at stamp + S).
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -43,6 +46,7 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: atlas-localmap-eval mc   [--runs N=50] [--minutes M=4] [--seed S=1] [--capacity C=20]\n"
+    "                                [--calibration fixed|per-run|off] [--per-run 0|1] [--dump F]\n"
     "       atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
     "C=100]\n"
     "                                [--png F] [--draw-stretch K=3] [--set name=v,...]\n"
@@ -50,7 +54,12 @@ constexpr char kUsage[] =
     "\n"
     "mc:   Monte Carlo consistency of the line EKF in a simulated 20 m corridor (seeded runs of\n"
     "      M minutes each). Prints the 95 %% chi-square band of the average NEES (robot: 3 dof;\n"
-    "      features: joint NEES per dof) and the fraction of steps inside it.\n"
+    "      features: joint NEES per dof) and the fraction of steps inside it, and the\n"
+    "      simulator's odometry errors whitened with the filter's Q (per 50 Hz step and per\n"
+    "      scan interval). --calibration: the base's wheel-radius / track-width errors are the\n"
+    "      simulator's defaults in every run (fixed), drawn per run from the filter's sigmas\n"
+    "      (per-run), or absent and not modelled (off). --per-run 1 prints each run's NEES at\n"
+    "      the first scan, mean, max; --dump F writes every run's per-scan NEES to F.\n"
     "real: mit-csail.clf.gz, one local map per stretch of M metres of travel, restarting at\n"
     "      each stretch (no Genesis). Scores the relations whose two poses lie in one stretch\n"
     "      and dead reckoning on the same relations. --png draws stretch K's map over its scans.\n"
@@ -73,6 +82,23 @@ struct StepNees {
   int feature_dof = 0;
 };
 
+// The simulator's odometry errors against the filter's Q: each 50 Hz increment's true error
+// whitened with Q(u) (OdometryNoise, rank 2: the two wheels), and each scan interval's error
+// against the covariance the filter's own Predict() grows from zero over that interval. A
+// filter whose noise model matches the simulator gives whitened errors of mean 0 and
+// covariance I, and an interval NEES of mean 3.
+struct OdometryCheck {
+  long steps = 0;
+  Eigen::Vector2d step_sum = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d step_ww = Eigen::Matrix2d::Zero();
+  long intervals = 0;
+  double interval_nees = 0.0;
+  Eigen::Vector3d interval_sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d interval_ww = Eigen::Matrix3d::Zero();
+  long interval_above95 = 0, interval_above99 = 0;        // NEES above the chi-square(3) quantiles
+  long first_above95 = 0, first_above99 = 0, firsts = 0;  // the same for each run's first scan
+};
+
 LocalMapOptions SimFilterOptions(int capacity, const WheelOdometryNoiseOptions& wheel,
                                  const sim::LaserOptions& laser) {
   LocalMapOptions o;
@@ -84,8 +110,8 @@ LocalMapOptions SimFilterOptions(int capacity, const WheelOdometryNoiseOptions& 
   o.odometry.xy_var_per_rad = 0.0;
   o.odometry.theta_var_per_m = 0.0;
   o.odometry.theta_var_per_rad = 0.0;
-  // The simulated base's calibration errors (systematic, the same every step): modelled as
-  // per-step noise of the same size.
+  // The simulated base's calibration errors (systematic, the same every step): their sizes are
+  // the standard deviations of the filter's calibration model (OdometryNoiseOptions).
   o.odometry.wheel_scale_sigma =
       std::max(std::abs(wheel.left_scale_error), std::abs(wheel.right_scale_error));
   o.odometry.track_width_sigma = std::abs(wheel.track_width_error);
@@ -116,15 +142,36 @@ bool TrueLineOf(const ObservedLine& z, const Pose2& truth, const LaserScan& scan
   return true;
 }
 
+// The simulated base's calibration errors (wheel radii, track width) in the Monte Carlo.
+enum class Calibration {
+  kFixed,   // the simulator's defaults in every run (a 1-sigma error of the filter's model)
+  kPerRun,  // drawn per run from N(0, sigma^2), sigma the defaults' sizes (the filter's model)
+  kOff,     // none, and none modelled
+};
+
 std::vector<StepNees> RunOnce(uint64_t seed, double minutes, int capacity,
                               const std::vector<sim::Wall>& walls, const sim::RayCaster& caster,
-                              int& features_out) {
-  const WheelOdometryNoiseOptions wheel;  // the simulator's defaults, calibration errors too
+                              Calibration calibration, int& features_out, OdometryCheck& check) {
+  WheelOdometryNoiseOptions wheel;  // the simulator's defaults, calibration errors too
   sim::LaserOptions laser;
   laser.beams = 361;
   laser.range_sigma = 0.01;
   laser.max_range = 30.0;
-  const LocalMapOptions options = SimFilterOptions(capacity, wheel, laser);
+  // The filter models the default errors' sizes as standard deviations.
+  WheelOdometryNoiseOptions modelled = wheel;
+  if (calibration == Calibration::kOff) {
+    modelled.left_scale_error = modelled.right_scale_error = modelled.track_width_error = 0.0;
+  }
+  const LocalMapOptions options = SimFilterOptions(capacity, modelled, laser);
+  if (calibration == Calibration::kPerRun) {
+    std::mt19937_64 rng(seed * 6151 + 11);
+    std::normal_distribution<double> unit(0.0, 1.0);
+    wheel.left_scale_error = options.odometry.wheel_scale_sigma * unit(rng);
+    wheel.right_scale_error = options.odometry.wheel_scale_sigma * unit(rng);
+    wheel.track_width_error = options.odometry.track_width_sigma * unit(rng);
+  } else if (calibration == Calibration::kOff) {
+    wheel.left_scale_error = wheel.right_scale_error = wheel.track_width_error = 0.0;
+  }
   LineEkfMap map(options);
   WheelOdometryModel odometry(wheel, seed * 7919 + 1);
   sim::LaserModel scanner(laser, seed * 104729 + 3);
@@ -148,13 +195,62 @@ std::vector<StepNees> RunOnce(uint64_t seed, double minutes, int capacity,
   const Pose2 origin = follower.pose();
   Pose2 last_odo = odometry.Step(TruthSample{Time{}, origin}).pose;
   std::map<int, Vec2> true_line;  // feature id -> true line, map-frame
+  // Dead reckoning from the last scan's true pose, with the filter's Predict (OdometryCheck).
+  LineEkfMap interval(options);
+  const UncertainPose zero_pose{Pose2{}, Mat3::Zero()};
+  Pose2 last_truth = origin, scan_truth = origin;
   for (int s = 1; s <= steps; ++s) {
     follower.Step(dt);
     const Pose2 truth_world = follower.pose();
     const Pose2 odo = odometry.Step(TruthSample{FromSeconds(s * dt), truth_world}).pose;
-    map.Predict(Between(last_odo, odo));
+    const Pose2 u = Between(last_odo, odo);
+    map.Predict(u);
+    interval.Predict(u);
+    {
+      const Pose2 u_true = Between(last_truth, truth_world);
+      const Vec3 e(u.x - u_true.x, u.y - u_true.y, WrapAngle(u.theta - u_true.theta));
+      const Eigen::SelfAdjointEigenSolver<Mat3> eig(LineEkfMap::OdometryNoise(u, options.odometry));
+      if (eig.eigenvalues()(1) > 0.0) {
+        // Signs fixed by the largest component, not by the solver (whose signs follow the noise).
+        Eigen::Vector2d w;
+        for (int i = 0; i < 2; ++i) {
+          Vec3 v = eig.eigenvectors().col(i + 1);
+          int big = 0;
+          v.cwiseAbs().maxCoeff(&big);
+          if (v(big) < 0.0) v = -v;
+          w(i) = v.dot(e) / std::sqrt(eig.eigenvalues()(i + 1));
+        }
+        ++check.steps;
+        check.step_sum += w;
+        check.step_ww += w * w.transpose();
+      }
+    }
     last_odo = odo;
+    last_truth = truth_world;
     if (s % scan_every != 0) continue;
+    {
+      const Pose2 rel = Between(scan_truth, truth_world);
+      const UncertainPose est = interval.RobotPose();
+      const Vec3 e(rel.x - est.mean.x, rel.y - est.mean.y, WrapAngle(rel.theta - est.mean.theta));
+      const Eigen::LLT<Mat3> llt(est.cov);
+      if (llt.info() == Eigen::Success) {
+        const Vec3 w = llt.matrixL().solve(e);
+        ++check.intervals;
+        check.interval_nees += w.squaredNorm();
+        check.interval_sum += w;
+        check.interval_ww += w * w.transpose();
+        const double nees = w.squaredNorm();
+        check.interval_above95 += nees > ChiSquareQuantile(0.95, 3);
+        check.interval_above99 += nees > ChiSquareQuantile(0.99, 3);
+        if (s == scan_every) {
+          ++check.firsts;
+          check.first_above95 += nees > ChiSquareQuantile(0.95, 3);
+          check.first_above99 += nees > ChiSquareQuantile(0.99, 3);
+        }
+      }
+      interval.ResetRobotPose(zero_pose);
+      scan_truth = truth_world;
+    }
     const LaserScan scan = scanner.Scan(caster, truth_world, FromSeconds(s * dt));
     const ScanUpdate up = map.Update(scan, true);
     const Pose2 truth = Between(origin, truth_world);
@@ -242,14 +338,29 @@ std::vector<sim::Wall> SimCorridor() {
 }
 
 int RunMonteCarlo(const Args& args) {
-  double runs = 50, minutes = 4, seed = 1, capacity = 20;
+  double runs = 50, minutes = 4, seed = 1, capacity = 20, per_run = 0;
   std::string error;
   if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) ||
       !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
       !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumberOption(args, "--capacity", 1, 1000, capacity, error)) {
+      !GetNumberOption(args, "--capacity", 1, 1000, capacity, error) ||
+      !GetNumberOption(args, "--per-run", 0, 1, per_run, error)) {
     std::fprintf(stderr, "atlas-localmap-eval mc: %s\n", error.c_str());
     return 2;
+  }
+  Calibration calibration = Calibration::kFixed;
+  if (auto it = args.values.find("--calibration"); it != args.values.end()) {
+    if (it->second == "per-run") {
+      calibration = Calibration::kPerRun;
+    } else if (it->second == "off") {
+      calibration = Calibration::kOff;
+    } else if (it->second != "fixed") {
+      std::fprintf(stderr,
+                   "atlas-localmap-eval mc: --calibration must be fixed, per-run or off (got "
+                   "'%s')\n",
+                   it->second.c_str());
+      return 2;
+    }
   }
   const std::vector<sim::Wall> walls = SimCorridor();
   const sim::RayCaster caster(walls);
@@ -257,19 +368,57 @@ int RunMonteCarlo(const Args& args) {
   std::vector<std::vector<StepNees>> all;
   double mean_features = 0.0;
   std::vector<std::pair<double, int>> run_mean;  // (mean robot NEES over the run, seed)
+  OdometryCheck check;
+  FILE* dump = nullptr;
+  if (auto it = args.values.find("--dump"); it != args.values.end()) {
+    dump = std::fopen(it->second.c_str(), "w");
+    if (!dump) {
+      std::fprintf(stderr, "atlas-localmap-eval mc: cannot write --dump file %s: %s\n",
+                   it->second.c_str(), std::strerror(errno));
+      return 2;
+    }
+  }
+  if (per_run != 0.0) {
+    std::printf(
+        "per run: seed, robot NEES at the first scan, mean, max (scan), feature "
+        "NEES/dof mean, at the last scan\n");
+  }
   for (int r = 0; r < r_count; ++r) {
     int features = 0;
     all.push_back(RunOnce(static_cast<uint64_t>(seed) + r, minutes, static_cast<int>(capacity),
-                          walls, caster, features));
+                          walls, caster, calibration, features, check));
     mean_features += features;
-    double run_nees = 0.0;
-    for (const StepNees& n : all.back()) run_nees += n.robot;
+    double run_nees = 0.0, run_max = 0.0, run_feat = 0.0;
+    size_t max_at = 0;
+    int feat_steps = 0;
+    for (size_t k = 0; k < all.back().size(); ++k) {
+      const StepNees& n = all.back()[k];
+      run_nees += n.robot;
+      if (n.robot > run_max) run_max = n.robot, max_at = k;
+      if (n.feature_dof > 0) run_feat += n.features / n.feature_dof, ++feat_steps;
+    }
     run_mean.push_back(
         {run_nees / std::max<size_t>(1, all.back().size()), static_cast<int>(seed) + r});
+    if (dump) {
+      std::fprintf(dump, "robot %d", static_cast<int>(seed) + r);
+      for (const StepNees& n : all.back()) std::fprintf(dump, " %.4g", n.robot);
+      std::fprintf(dump, "\nfeatures %d", static_cast<int>(seed) + r);
+      for (const StepNees& n : all.back())
+        std::fprintf(dump, " %.4g:%d", n.features, n.feature_dof);
+      std::fprintf(dump, "\n");
+    }
+    if (per_run != 0.0 && !all.back().empty()) {
+      const StepNees& last = all.back().back();
+      std::printf("run %d: %.3f %.3f %.3f (%zu) %.3f %.3f\n", static_cast<int>(seed) + r,
+                  all.back()[0].robot, run_mean.back().first, run_max, max_at,
+                  run_feat / std::max(1, feat_steps),
+                  last.feature_dof > 0 ? last.features / last.feature_dof : 0.0);
+    }
     std::fprintf(stderr, "\rrun %d/%d done (%zu steps, %d features)   ", r + 1, r_count,
                  all.back().size(), features);
   }
   std::fprintf(stderr, "\n");
+  if (dump) std::fclose(dump);
   size_t steps = all[0].size();
   for (const auto& a : all) steps = std::min(steps, a.size());
   const double lo = ChiSquareQuantile(0.025, 3 * r_count) / r_count;
@@ -313,8 +462,48 @@ int RunMonteCarlo(const Args& args) {
       "last step [%.3f, %.3f] (%d dof per run); mean %.3f; steps inside %d/%d = %.1f%%\n",
       flo, fhi, fd, feat_steps ? feat_mean / feat_steps : 0.0, feat_in, feat_steps,
       feat_steps ? 100.0 * feat_in / feat_steps : 0.0);
+  if (check.steps > 0 && check.intervals > 0) {
+    const Eigen::Vector2d sm = check.step_sum / check.steps;
+    const Eigen::Matrix2d sc = check.step_ww / check.steps - sm * sm.transpose();
+    const Eigen::Vector3d im = check.interval_sum / check.intervals;
+    const Eigen::Matrix3d ic = check.interval_ww / check.intervals - im * im.transpose();
+    std::printf(
+        "odometry vs the filter's Q: %ld steps whitened: mean (%.3f %.3f), covariance "
+        "[%.3f %.3f; %.3f %.3f] (I if Q is right); %ld scan intervals: NEES mean %.3f (3), "
+        "whitened mean (%.3f %.3f %.3f), covariance diagonal (%.3f %.3f %.3f)\n",
+        check.steps, sm(0), sm(1), sc(0, 0), sc(0, 1), sc(1, 0), sc(1, 1), check.intervals,
+        check.interval_nees / check.intervals, im(0), im(1), im(2), ic(0, 0), ic(1, 1), ic(2, 2));
+    std::printf(
+        "  interval NEES above the 95%% / 99%% points: %.2f%% / %.2f%% (first interval of each "
+        "run: %.2f%% / %.2f%% of %ld)\n",
+        100.0 * check.interval_above95 / check.intervals,
+        100.0 * check.interval_above99 / check.intervals,
+        100.0 * check.first_above95 / std::max(1L, check.firsts),
+        100.0 * check.first_above99 / std::max(1L, check.firsts), check.firsts);
+  }
   // Errors that enter the unobservable directions (the map-frame's heading and position, fixed
   // by the first scans) stay for the whole run: a few runs set the average of every step.
+  // How much of each run's mean is set at its first scan (before any feature fixes the frame).
+  {
+    double sf = 0.0, sm = 0.0, sff = 0.0, smm = 0.0, sfm = 0.0;
+    for (int r = 0; r < r_count; ++r) {
+      const double f = all[r].empty() ? 0.0 : all[r][0].robot, m = run_mean[r].first;
+      sf += f, sm += m, sff += f * f, smm += m * m, sfm += f * m;
+    }
+    const double cov = sfm / r_count - sf * sm / (r_count * r_count);
+    const double vf = sff / r_count - sf * sf / (r_count * r_count);
+    const double vm = smm / r_count - sm * sm / (r_count * r_count);
+    std::printf(
+        "robot NEES at the first scan: mean over runs %.3f, above the 99%% point in %d of %d "
+        "runs; correlation with the run's mean NEES %.2f\n",
+        sf / r_count,
+        static_cast<int>(std::count_if(all.begin(), all.end(),
+                                       [](const std::vector<StepNees>& a) {
+                                         return !a.empty() &&
+                                                a[0].robot > ChiSquareQuantile(0.99, 3);
+                                       })),
+        r_count, vf > 0.0 && vm > 0.0 ? cov / std::sqrt(vf * vm) : 0.0);
+  }
   std::sort(run_mean.rbegin(), run_mean.rend());
   std::printf("runs with the largest mean robot NEES (seed: mean):");
   for (size_t i = 0; i < std::min<size_t>(5, run_mean.size()); ++i) {
@@ -705,7 +894,8 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   if (cmd == "mc") {
     const atlas::Args a = atlas::eval::ParseToolOptions(
-        argc, argv, 2, {"--runs", "--minutes", "--seed", "--capacity"});
+        argc, argv, 2,
+        {"--runs", "--minutes", "--seed", "--capacity", "--per-run", "--dump", "--calibration"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-localmap-eval mc: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
