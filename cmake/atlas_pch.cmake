@@ -1,4 +1,4 @@
-# Precompiled headers (ATLAS_PCH, default ON).
+# Precompiled headers (ATLAS_PCH, default OFF: -4.5 % CPU on the ASan+UBSan tree, below).
 #
 # Most translation units parse the same heavy headers: Eigen, and in tests GoogleTest/GoogleMock
 # (about half of a test file's compile time). A few donor targets precompile them once per build
