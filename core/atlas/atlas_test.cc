@@ -310,7 +310,6 @@ TEST(Atlas, SerializeRoundTripsAndRejectsGarbage) {
   EXPECT_TRUE(c.Serialize() == before);
 }
 
-
 // A 16 m square room with a few unique walls. Each fake map reports the walls within 6 m of its
 // own origin, in its own frame (the fake's dead reckoning is exact, so frame origins are known:
 // `frame_in_world`, indexed by frame id, filled by PlaceNewFrames).
@@ -458,7 +457,6 @@ TEST(Atlas, LocalizeThenMaintainGraphIsStepAndKeepsTheDominantPose) {
   EXPECT_TRUE(whole.Serialize() == halves.Serialize());
 }
 
-
 // A restart: the atlas of a whole lap is kept, the robot resumes in a new, unconnected frame
 // somewhere on the square, and map-matching without a prior must join the new part to the old
 // one, with a transform that agrees with the truth.
@@ -558,7 +556,6 @@ TEST(Atlas, SonarStepOnAMapWithoutSonarOnlyPredicts) {
   EXPECT_NEAR(a.Dominant().q, q, 0.05);
 }
 
-
 // Without w (no bootstrapper), keep_frame_map_without_w keeps the frame's own map when a
 // juvenile matures (the features the juvenile updated from its seed are not adopted) and gives
 // it the juvenile's robot pose; by default the trial map replaces it, as with w.
@@ -600,7 +597,6 @@ TEST(Atlas, MaturedJuvenileWithoutWKeepsTheFrameMapWhenAsked) {
     EXPECT_GE(matured, 1);
   }
 }
-
 
 // Without w, seed_cov_scale_without_w multiplies the covariance of a traversal seed (eq. 10-11);
 // with w (a bootstrapper) it is not applied.
