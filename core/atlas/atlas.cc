@@ -95,21 +95,25 @@ AddEdgeResult Atlas::AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, 
 }
 
 const StepStats& Atlas::Step(const Pose2& odometry_delta, const LaserScan& scan) {
-  LocalizeWith(odometry_delta, &scan, nullptr);
+  LocalizeWith(odometry_delta, nullptr, &scan, nullptr);
   return MaintainGraph();
 }
 
 const StepStats& Atlas::Step(const Pose2& odometry_delta, const SonarReading& reading) {
-  LocalizeWith(odometry_delta, nullptr, &reading);
+  LocalizeWith(odometry_delta, nullptr, nullptr, &reading);
   return MaintainGraph();
 }
 
 const StepStats& Atlas::Localize(const Pose2& odometry_delta, const LaserScan& scan) {
-  return LocalizeWith(odometry_delta, &scan, nullptr);
+  return LocalizeWith(odometry_delta, nullptr, &scan, nullptr);
 }
 
 const StepStats& Atlas::Localize(const Pose2& odometry_delta, const SonarReading& reading) {
-  return LocalizeWith(odometry_delta, nullptr, &reading);
+  return LocalizeWith(odometry_delta, nullptr, nullptr, &reading);
+}
+
+const StepStats& Atlas::Localize(const UncertainPose& increment, const LaserScan& scan) {
+  return LocalizeWith(increment.mean, &increment.cov, &scan, nullptr);
 }
 
 FrameId Atlas::StartUnconnectedFrame() {
@@ -135,15 +139,15 @@ FrameId Atlas::ResumeInNewFrame() {
   return f;
 }
 
-const StepStats& Atlas::LocalizeWith(const Pose2& odometry_delta, const LaserScan* scan,
-                                     const SonarReading* sonar) {
+const StepStats& Atlas::LocalizeWith(const Pose2& odometry_delta, const Mat3* increment_cov,
+                                     const LaserScan* scan, const SonarReading* sonar) {
   assert(!graph_pending_);
   graph_pending_ = true;
   stats_ = StepStats{};
   stats_.step = ++step_;
   const bool first = graph_.FrameCount() == 0;
   if (first) StartUnconnectedFrame();
-  UpdateHypotheses(odometry_delta, scan, sonar, first);
+  UpdateHypotheses(odometry_delta, increment_cov, scan, sonar, first);
   JudgeJuveniles();
   HandleFailures();
   int d = FindDominant();
@@ -168,13 +172,17 @@ const StepStats& Atlas::MaintainGraph() {
   return stats_;
 }
 
-void Atlas::UpdateHypotheses(const Pose2& delta, const LaserScan* scan, const SonarReading* sonar,
-                             bool first) {
+void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, const LaserScan* scan,
+                             const SonarReading* sonar, bool first) {
   bootstrap_failed_.assign(hypotheses_.size(), 0);
   for (size_t i = 0; i < hypotheses_.size(); ++i) {
     Hypothesis& h = hypotheses_[i];
     LocalMap& map = MapOf(h);
-    if (!first) map.Predict(delta);
+    if (!first && increment_cov != nullptr) {
+      map.Predict(delta, *increment_cov);
+    } else if (!first) {
+      map.Predict(delta);
+    }
     const bool mature = h.state == HypothesisState::kMature;
     if (scan) {
       h.last_update = map.Update(*scan, mature);

@@ -201,6 +201,9 @@ class Atlas {
   const StepStats& MaintainGraph();
 
   // After Deserialize() of a saved atlas: the robot is somewhere unknown, so every hypothesis
+  // With the increment's covariance given (LocalMap::Predict(u, Q)), e.g. a scan-matched
+  // increment (core/scanmatch/scan_matcher.h), instead of each map's odometry noise model.
+  const StepStats& Localize(const UncertainPose& increment, const LaserScan& scan);
   // is dropped and the robot starts in a new frame, unconnected, at pose exactly zero (as after
   // Genesis). Map-matching then also tries frames of the unconnected old parts, without a prior
   // (`resume_candidates_per_step` per step, a cursor over the frame ids, at most
@@ -228,10 +231,11 @@ class Atlas {
  private:
   LocalMap& MapOf(Hypothesis& h);
   // Exactly one of `scan`, `sonar` is non-null.
-  const StepStats& LocalizeWith(const Pose2& odometry_delta, const LaserScan* scan,
-                                const SonarReading* sonar);
-  void UpdateHypotheses(const Pose2& odometry_delta, const LaserScan* scan,
-                        const SonarReading* sonar, bool first);
+  // `increment_cov`: the increment's covariance, or null for the maps' odometry model.
+  const StepStats& LocalizeWith(const Pose2& odometry_delta, const Mat3* increment_cov,
+                                const LaserScan* scan, const SonarReading* sonar);
+  void UpdateHypotheses(const Pose2& odometry_delta, const Mat3* increment_cov,
+                        const LaserScan* scan, const SonarReading* sonar, bool first);
   void JudgeJuveniles();
   void HandleFailures();
   void GenesisAtCapacity();

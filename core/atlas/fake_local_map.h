@@ -57,14 +57,18 @@ class FakeLocalMap : public LocalMap {
   std::unique_ptr<LocalMap> Clone() const override { return std::make_unique<FakeLocalMap>(*this); }
 
   void Predict(const Pose2& d) override {
-    const Mat3 j1 = ComposeJacobianA(pose_.mean, d);
-    const Mat3 j2 = ComposeJacobianB(pose_.mean);
     const double dist = std::hypot(d.x, d.y);
     const Vec3 q(
         std::pow(o_.sigma_per_metre * dist, 2), std::pow(o_.sigma_per_metre * dist, 2),
         std::pow(o_.sigma_theta_per_radian * std::abs(d.theta) + o_.sigma_theta_per_metre * dist,
                  2));
-    pose_.cov = j1 * pose_.cov * j1.transpose() + j2 * q.asDiagonal() * j2.transpose();
+    Predict(d, Mat3(q.asDiagonal()));
+  }
+
+  void Predict(const Pose2& d, const Mat3& q) override {
+    const Mat3 j1 = ComposeJacobianA(pose_.mean, d);
+    const Mat3 j2 = ComposeJacobianB(pose_.mean);
+    pose_.cov = j1 * pose_.cov * j1.transpose() + j2 * q * j2.transpose();
     pose_.mean = Compose(pose_.mean, d);
     ++predicts_;
   }

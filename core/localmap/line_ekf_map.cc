@@ -182,7 +182,9 @@ Mat3 LineEkfMap::PredictNoise(const Pose2& u) {
 
 void LineEkfMap::ClearCalibrationDrift() { calib_left_ = calib_right_ = calib_turn_ = 0.0; }
 
-void LineEkfMap::Predict(const Pose2& u) {
+void LineEkfMap::Predict(const Pose2& u) { Predict(u, PredictNoise(u)); }
+
+void LineEkfMap::Predict(const Pose2& u, const Mat3& q) {
   const Pose2 r = Robot();
   const Mat3 f = ComposeJacobianA(r, u);
   const Mat3 g = ComposeJacobianB(r);
@@ -191,8 +193,7 @@ void LineEkfMap::Predict(const Pose2& u) {
   x_(1) = moved.y;
   x_(2) = moved.theta;
   const int n = static_cast<int>(x_.size());
-  P_.topLeftCorner<3, 3>() =
-      f * P_.topLeftCorner<3, 3>() * f.transpose() + g * PredictNoise(u) * g.transpose();
+  P_.topLeftCorner<3, 3>() = f * P_.topLeftCorner<3, 3>() * f.transpose() + g * q * g.transpose();
   if (n > 3) {
     P_.topRightCorner(3, n - 3) = f * P_.topRightCorner(3, n - 3);
     P_.bottomLeftCorner(n - 3, 3) = P_.topRightCorner(3, n - 3).transpose();

@@ -46,6 +46,7 @@ class LineEkfMap final : public LocalMap {
 
   std::unique_ptr<LocalMap> Clone() const override;
   void Predict(const Pose2& odometry_delta) override;
+  void Predict(const Pose2& odometry_delta, const Mat3& covariance) override;
   ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override;
   UncertainPose RobotPose() const override;
   void ResetRobotPose(const UncertainPose& pose) override;

@@ -51,6 +51,10 @@ class LocalMap {
   // pose (the difference of two odometry samples, Between(prev, cur)). Covariance grows with
   // distance and turn.
   virtual void Predict(const Pose2& odometry_delta) = 0;
+  // The same with the increment's covariance given (over dx, dy, dtheta in the robot frame at
+  // the previous pose) instead of the map's odometry noise model: for increments measured by
+  // other means, e.g. scan matching (core/scanmatch/scan_matcher.h).
+  virtual void Predict(const Pose2& odometry_delta, const Mat3& covariance) = 0;
 
   // Updates the map and pose with a laser scan taken at the current (predicted) pose.
   virtual ScanUpdate Update(const LaserScan& scan, bool allow_new_features) = 0;

@@ -108,12 +108,21 @@ std::unique_ptr<LocalMap> SonarLocalMap::Clone() const {
   return std::make_unique<SonarLocalMap>(*this);
 }
 
-void SonarLocalMap::Predict(const Pose2& u) {
+void SonarLocalMap::Predict(const Pose2& u) { PredictWith(u, nullptr); }
+
+void SonarLocalMap::Predict(const Pose2& u, const Mat3& covariance) { PredictWith(u, &covariance); }
+
+void SonarLocalMap::PredictWith(const Pose2& u, const Mat3* covariance) {
   const Pose2 before = ekf_.RobotPose().mean;
-  ekf_.Predict(u);
+  if (covariance != nullptr) {
+    ekf_.Predict(u, *covariance);
+  } else {
+    ekf_.Predict(u);
+  }
   if (o_.sensors != RangeSensors::kLaser) {
     vantages_.Predict(ComposeJacobianA(before, u));
-    init_.Predict(u, LineEkfMap::OdometryNoise(u, o_.line_map.odometry));
+    init_.Predict(u, covariance != nullptr ? *covariance
+                                           : LineEkfMap::OdometryNoise(u, o_.line_map.odometry));
     SyncVantages();
   }
 }

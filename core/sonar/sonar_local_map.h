@@ -80,6 +80,7 @@ class SonarLocalMap final : public LocalMap {
 
   std::unique_ptr<LocalMap> Clone() const override;
   void Predict(const Pose2& odometry_delta) override;
+  void Predict(const Pose2& odometry_delta, const Mat3& covariance) override;
   ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override;
   UncertainPose RobotPose() const override { return ekf_.RobotPose(); }
   void ResetRobotPose(const UncertainPose& pose) override;
@@ -115,6 +116,8 @@ class SonarLocalMap final : public LocalMap {
   SonarLocalMapOptions o_;
   LineEkfMap ekf_;
   SonarLineInitializer init_;
+  // Predict with the given covariance, or the odometry noise model when null.
+  void PredictWith(const Pose2& u, const Mat3* covariance);
   // Keeps the vantage points that buffered returns refer to as delayed states (adds new ones,
   // marginalises unused ones).
   void SyncVantages();

@@ -55,6 +55,11 @@ MapperSettings ToMapperSettings(const DaemonOptions& o) {
       break;
   }
   if (s.sensors != RangeSensors::kLaser) s.sonar_ring = SonarRingOf(o);
+  s.scan_match.enabled = o.scan_match.enabled;
+  s.scan_match.max_range = o.scan_match.max_range_m;
+  s.scan_match.point_sigma = o.scan_match.point_sigma_m;
+  s.scan_match.information_scale = o.scan_match.information_scale;
+  s.scan_match.heading_search = o.scan_match.heading_search_deg * kDegToRad;
   return s;
 }
 

@@ -44,7 +44,8 @@ StepLoop::StepLoop(const StepLoopOptions& options, const MapperSettings& setting
       pending_order_(static_cast<size_t>(options.max_pending_scans)),
       sonar_(static_cast<size_t>(options.max_pending_scans)),
       sonar_odometry_(static_cast<size_t>(options.max_pending_scans)),
-      sonar_order_(static_cast<size_t>(options.max_pending_scans)) {
+      sonar_order_(static_cast<size_t>(options.max_pending_scans)),
+      matcher_(settings.scan_match) {
   period_us_.reserve(kPeriodSample);
   scratch_us_.reserve(kPeriodSample);
 }
@@ -104,8 +105,9 @@ bool StepLoop::StepOne(StepSink* sink) {
     atlas_->Localize(delta, sonar_[sonar_head_]);
     sonar_head_ = (sonar_head_ + 1) % sonar_.size();
     --sonar_size_;
+    matcher_.ClearReference();
   } else {
-    atlas_->Localize(delta, scan);
+    LocalizeWithScan(delta, scan);
     pending_head_ = (pending_head_ + 1) % pending_.size();
     --pending_size_;
   }
@@ -128,6 +130,27 @@ bool StepLoop::StepOne(StepSink* sink) {
   ++period_count_;
   sink->OnStep(stamp, *atlas_);
   return true;
+}
+
+void StepLoop::LocalizeWithScan(const Pose2& delta, const LaserScan& scan) {
+  if (!settings_.scan_match.enabled) {
+    atlas_->Localize(delta, scan);
+    return;
+  }
+  bool matched = false;
+  if (have_previous_ && matcher_.HasReference()) {
+    const ScanMatchResult m =
+        matcher_.Match(scan, UncertainPose{delta, OdometryIncrementNoise(delta, settings_)});
+    matched = m.outcome == ScanMatchOutcome::kMatched;
+    if (matched) {
+      ++scan_matches_;
+      atlas_->Localize(m.increment, scan);
+    } else {
+      ++scan_match_fallbacks_;
+    }
+  }
+  if (!matched) atlas_->Localize(delta, scan);
+  matcher_.SetReference(scan);
 }
 
 int StepLoop::StepAll(StepSink* sink) {

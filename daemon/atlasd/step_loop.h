@@ -48,6 +48,12 @@
 //   drivers made it. A positive offset may reach past the odometry known at the scan's
 //   arrival; the lookup then extrapolates briefly as above. Sonar readings are looked up at
 //   their stamps.
+// - Scan matching (MapperSettings::scan_match.enabled): a scan stepped right after another scan
+//   is matched against it (core/scanmatch/scan_matcher.h) with the odometry increment and its
+//   noise (OdometryIncrementNoise) as the prior; when the match succeeds the atlas predicts
+//   with the matched increment and its covariance (Atlas::Localize(UncertainPose, scan)),
+//   otherwise with the odometry as without matching (counted: scan_match_fallbacks). A sonar
+//   step in between drops the reference (the increment would span two sensors' steps).
 // - Deterministic: given the same calls in the same order, the same outputs (replay relies on
 //   it; when the steps are made does not matter, only the order of the calls); only the
 //   measured step times differ.
@@ -114,6 +120,7 @@ class StepLoop {
   void ReplaceAtlas(Atlas* atlas, const MapperSettings& settings) {
     atlas_ = atlas;
     settings_ = settings;
+    matcher_ = ScanMatcher(settings.scan_match);
   }
 
   int64_t steps() const { return steps_; }
@@ -121,6 +128,8 @@ class StepLoop {
   int64_t dropped_scans() const { return dropped_scans_; }
   int64_t dropped_sonar() const { return dropped_sonar_; }
   int64_t scans_without_odometry() const { return scans_without_odometry_; }
+  int64_t scan_matches() const { return scan_matches_; }
+  int64_t scan_match_fallbacks() const { return scan_match_fallbacks_; }
   bool laser_silent() const { return laser_silent_; }
   Time last_scan_stamp() const { return last_scan_stamp_; }
   const Atlas& atlas() const { return *atlas_; }
@@ -128,6 +137,8 @@ class StepLoop {
 
  private:
   void DeadReckon(StepSink* sink);
+  // Atlas::Localize with the odometry increment, or with the scan-matched one (above).
+  void LocalizeWithScan(const Pose2& delta, const LaserScan& scan);
 
   StepLoopOptions options_;
   MapperSettings settings_;
@@ -149,6 +160,8 @@ class StepLoop {
   bool laser_silent_ = false;
   Time last_dead_reckoning_{};
   int64_t steps_ = 0, overruns_ = 0, dropped_scans_ = 0, scans_without_odometry_ = 0;
+  ScanMatcher matcher_;
+  int64_t scan_matches_ = 0, scan_match_fallbacks_ = 0;
   std::vector<float> period_us_, scratch_us_;
   size_t period_count_ = 0;
   float period_min_ = 0, period_max_ = 0;

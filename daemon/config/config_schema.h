@@ -107,6 +107,14 @@ void VisitOptions(V& v, DaemonOptions& o) {
     });
   });
   v.Section("localmap", [&] { v.Enum("sensors", o.localmap.sensors, kLocalMapSensorsNames); });
+  v.Section("scan_match", [&] {
+    ScanMatchConfig& m = o.scan_match;
+    v.Bool("enabled", m.enabled);
+    v.Double("max_range_m", m.max_range_m, 0.5, 81.91);
+    v.Double("point_sigma_m", m.point_sigma_m, 0.001, 1.0);
+    v.Double("information_scale", m.information_scale, 0.001, 1.0);
+    v.Double("heading_search_deg", m.heading_search_deg, 0.0, 45.0);
+  });
   v.Section("atlas", [&] {
     AtlasParameters& a = o.atlas;
     v.Int("map_capacity", a.map_capacity, 1, 1000);

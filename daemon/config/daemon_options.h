@@ -75,6 +75,17 @@ struct LocalMapConfig {
   LocalMapSensors sensors = LocalMapSensors::kLaser;
 };
 
+// Scan-to-scan matching of consecutive laser scans (core/scanmatch/scan_matcher.h): the wheel
+// odometry's increment is the prior; the matched increment and its covariance replace it in
+// the local maps' prediction. The remaining matcher options keep core/scanmatch's defaults.
+struct ScanMatchConfig {
+  bool enabled = true;
+  double max_range_m = 20.0;        // returns beyond are not matched
+  double point_sigma_m = 0.03;      // point-to-line residual noise
+  double information_scale = 0.3;   // the matcher's information is multiplied by this
+  double heading_search_deg = 0.0;  // search either side of the odometry's heading (0: none)
+};
+
 // Odometry error model of the local maps (core/localmap OdometryNoiseOptions): each sigma is
 // the standard deviation after one unit of motion; variances grow linearly with the motion
 // (sigma with its square root). The calibration errors grow with the motion itself. Defaults:
@@ -171,6 +182,7 @@ struct DaemonOptions {
   SonarOptions sonar;
   NoiseOptions noise;
   LocalMapConfig localmap;
+  ScanMatchConfig scan_match;
   AtlasParameters atlas;
   LcmOptions lcm;
   LoopOptions loop;

@@ -219,6 +219,8 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   }
   sum.data_seconds = sum.scans > 0 ? ToSeconds(last_scan - first_scan) : 0.0;
   sum.scans_without_odometry = loop.scans_without_odometry();
+  sum.scan_matches = loop.scan_matches();
+  sum.scan_match_fallbacks = loop.scan_match_fallbacks();
   sum.match_accepted = sink.match_accepted;
   sum.match_rejected = sink.match_rejected;
   sum.match_ambiguous = sink.match_ambiguous;
@@ -384,6 +386,8 @@ std::string SummaryJson(const ReplaySummary& s) {
   Append(t, "\"scans\": %lld, \"odometry_samples\": %lld, \"scans_without_odometry\": %lld, ",
          static_cast<long long>(s.scans), static_cast<long long>(s.odometry_samples),
          static_cast<long long>(s.scans_without_odometry));
+  Append(t, "\"scan_matches\": %lld, \"scan_match_fallbacks\": %lld, ",
+         static_cast<long long>(s.scan_matches), static_cast<long long>(s.scan_match_fallbacks));
   Append(t, "\"frames\": %d, \"edges\": %d, \"genesis_edges\": %d, \"map_match_edges\": %d, ",
          s.frames, s.edges, s.genesis_edges, s.map_match_edges);
   Append(t, "\"refined_edges\": %d, \"map_match_origin_edges\": %d, ", s.refined_edges,
@@ -439,6 +443,9 @@ std::string SummaryText(const ReplaySummary& s) {
   Append(t, "scans stepped        %lld (odometry samples %lld, scans without odometry %lld)\n",
          static_cast<long long>(s.scans), static_cast<long long>(s.odometry_samples),
          static_cast<long long>(s.scans_without_odometry));
+  if (s.scan_matches + s.scan_match_fallbacks > 0)
+    Append(t, "scan matching        %lld increments matched, %lld fell back to the odometry\n",
+           static_cast<long long>(s.scan_matches), static_cast<long long>(s.scan_match_fallbacks));
   Append(t, "frames               %d\n", s.frames);
   Append(t,
          "edges                %d (now: genesis %d, map-match %d, refined %d; made by "

@@ -50,6 +50,9 @@ struct ReplaySummary {
   int64_t scans = 0;  // stepped
   int64_t odometry_samples = 0;
   int64_t scans_without_odometry = 0;
+  // Scan matching (scan_match.enabled): increments matched, and scans that fell back to the
+  // odometry (StepLoop::scan_matches / scan_match_fallbacks).
+  int64_t scan_matches = 0, scan_match_fallbacks = 0;
   int frames = 0;
   int edges = 0;
   int genesis_edges = 0, map_match_edges = 0, refined_edges = 0;  // by current kind

@@ -1,0 +1,285 @@
+#include "core/scanmatch/scan_matcher.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+namespace atlas {
+namespace {
+
+bool Positive(double v) { return v > 0.0 && std::isfinite(v); }
+
+Vec2 Apply(const Pose2& x, const Vec2& q) {
+  const double c = std::cos(x.theta), s = std::sin(x.theta);
+  return Vec2(x.x + c * q.x() - s * q.y(), x.y + s * q.x() + c * q.y());
+}
+
+// atan2 to about 1e-5 rad (a minimax polynomial on [0, 1]); the beam lookup needs far less than
+// a beam's width and this is called for every point in every iteration.
+double FastAtan2(double y, double x) {
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double hi = std::max(ax, ay);
+  if (hi == 0.0) return 0.0;
+  const double a = std::min(ax, ay) / hi;
+  const double s = a * a;
+  double r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+  if (ay > ax) r = 1.57079632679489661923 - r;
+  if (x < 0.0) r = 3.14159265358979323846 - r;
+  return y < 0.0 ? -r : r;
+}
+
+// A pose's rotation and translation, evaluated once for many points.
+struct Rigid {
+  explicit Rigid(const Pose2& x) : c(std::cos(x.theta)), s(std::sin(x.theta)), t(x.x, x.y) {}
+  Vec2 operator*(const Vec2& q) const {
+    return Vec2(t.x() + c * q.x() - s * q.y(), t.y() + s * q.x() + c * q.y());
+  }
+  double c, s;
+  Vec2 t;
+};
+
+}  // namespace
+
+std::string ScanMatchOptions::Validate() const {
+  if (!(min_range >= 0.0) || !(max_range > min_range) || !std::isfinite(max_range))
+    return "scan_match: need 0 <= min_range < max_range (finite)";
+  if (!Positive(point_sigma)) return "scan_match: point_sigma must be > 0";
+  if (!Positive(information_scale) || information_scale > 1.0)
+    return "scan_match: information_scale must be in (0, 1]";
+  if (!Positive(huber_k)) return "scan_match: huber_k must be > 0";
+  if (normal_beams < 1 || normal_beams > 32) return "scan_match: normal_beams must be 1 to 32";
+  if (!Positive(normal_radius)) return "scan_match: normal_radius must be > 0";
+  if (!Positive(max_normal_rms)) return "scan_match: max_normal_rms must be > 0";
+  if (!(min_normal_extent >= 0.0) || min_normal_extent >= normal_radius)
+    return "scan_match: min_normal_extent must be 0 or more and below normal_radius";
+  if (!(min_point_spacing >= 0.0) || min_point_spacing > 1.0)
+    return "scan_match: min_point_spacing must be 0 to 1 m";
+  if (search_beams < 0 || search_beams > 64) return "scan_match: search_beams must be 0 to 64";
+  if (!Positive(final_distance) || !(max_distance >= final_distance))
+    return "scan_match: need 0 < final_distance <= max_distance";
+  if (coarse_iterations < 0 || max_iterations < 1 || coarse_iterations >= max_iterations)
+    return "scan_match: need 0 <= coarse_iterations < max_iterations";
+  if (max_iterations > 100) return "scan_match: max_iterations must be at most 100";
+  if (!(heading_search >= 0.0) || heading_search > 1.0)
+    return "scan_match: heading_search must be 0 to 1 rad";
+  if (heading_search > 0.0 && (!Positive(heading_step) || heading_search / heading_step > 200.0))
+    return "scan_match: heading_step must be > 0 and at least heading_search / 200";
+  if (!Positive(coarse_distance)) return "scan_match: coarse_distance must be > 0";
+  if (min_pairs < 3) return "scan_match: min_pairs must be at least 3";
+  if (!(min_pair_fraction >= 0.0) || min_pair_fraction > 1.0)
+    return "scan_match: min_pair_fraction must be 0 to 1";
+  return "";
+}
+
+const char* ToString(ScanMatchOutcome o) {
+  switch (o) {
+    case ScanMatchOutcome::kMatched:
+      return "matched";
+    case ScanMatchOutcome::kTooFewPoints:
+      return "too few points";
+    case ScanMatchOutcome::kTooFewPairs:
+      return "too few pairs";
+    case ScanMatchOutcome::kNotConverged:
+      return "not converged";
+  }
+  return "?";
+}
+
+void ScanPointsInRobotFrame(const LaserScan& scan, double min_range, double max_range,
+                            std::vector<Vec2>* points) {
+  points->clear();
+  for (size_t i = 0; i < scan.ranges.size(); ++i) {
+    const double r = scan.ranges[i];
+    if (!(r >= min_range && r <= max_range)) continue;
+    const double phi = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+    points->push_back(Apply(scan.sensor_pose, Vec2(r * std::cos(phi), r * std::sin(phi))));
+  }
+}
+
+ScanMatcher::ScanMatcher(const ScanMatchOptions& options) : options_(options) {}
+
+void ScanMatcher::SetReference(const LaserScan& scan) {
+  const size_t n = scan.ranges.size();
+  ref_.assign(n, RefPoint{});
+  const Pose2 sensor_inverse = Inverse(scan.sensor_pose);
+  ref_sensor_c_ = std::cos(sensor_inverse.theta);
+  ref_sensor_s_ = std::sin(sensor_inverse.theta);
+  ref_sensor_t_ = Vec2(sensor_inverse.x, sensor_inverse.y);
+  ref_angle_min_ = scan.angle_min;
+  ref_increment_ = scan.angle_increment;
+  has_reference_ = n > 0 && ref_increment_ != 0.0 && std::isfinite(ref_increment_);
+  for (size_t i = 0; i < n; ++i) {
+    const double r = scan.ranges[i];
+    if (!(r >= options_.min_range && r <= options_.max_range)) continue;
+    const double phi = ref_angle_min_ + static_cast<double>(i) * ref_increment_;
+    ref_[i].p = Apply(scan.sensor_pose, Vec2(r * std::cos(phi), r * std::sin(phi)));
+    ref_[i].valid = true;
+  }
+  const int k = options_.normal_beams;
+  const double r2 = options_.normal_radius * options_.normal_radius;
+  for (size_t i = 0; i < n; ++i) {
+    if (!ref_[i].valid) continue;
+    Vec2 mean = Vec2::Zero();
+    int count = 0;
+    const size_t lo = i >= static_cast<size_t>(k) ? i - k : 0;
+    const size_t hi = std::min(n - 1, i + k);
+    for (size_t j = lo; j <= hi; ++j) {
+      if (!ref_[j].valid || (ref_[j].p - ref_[i].p).squaredNorm() > r2) continue;
+      mean += ref_[j].p;
+      ++count;
+    }
+    if (count < 3) continue;
+    mean /= count;
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (size_t j = lo; j <= hi; ++j) {
+      if (!ref_[j].valid || (ref_[j].p - ref_[i].p).squaredNorm() > r2) continue;
+      const Vec2 d = ref_[j].p - mean;
+      cov += d * d.transpose();
+    }
+    cov /= count;
+    // Eigen-decomposition of the symmetric 2x2 scatter, closed form: the normal is the
+    // eigenvector of the smaller eigenvalue.
+    const double a = cov(0, 0), b = cov(0, 1), d = cov(1, 1);
+    const double half_trace = 0.5 * (a + d);
+    const double root = std::sqrt(0.25 * (a - d) * (a - d) + b * b);
+    const double small = half_trace - root, large = half_trace + root;
+    if (!(std::sqrt(std::max(0.0, small)) <= options_.max_normal_rms)) continue;
+    if (!(std::sqrt(std::max(0.0, large)) >= options_.min_normal_extent)) continue;
+    const Vec2 u1(b, small - a), u2(small - d, b);
+    const Vec2 n = u1.squaredNorm() >= u2.squaredNorm() ? u1 : u2;
+    if (!(n.squaredNorm() > 0.0)) continue;
+    ref_[i].n = n.normalized();
+    ref_[i].has_normal = true;
+  }
+}
+
+const ScanMatcher::RefPoint* ScanMatcher::Nearest(const Vec2& w, double max_distance) const {
+  const Vec2 s(ref_sensor_t_.x() + ref_sensor_c_ * w.x() - ref_sensor_s_ * w.y(),
+               ref_sensor_t_.y() + ref_sensor_s_ * w.x() + ref_sensor_c_ * w.y());
+  const double beam = (FastAtan2(s.y(), s.x()) - ref_angle_min_) / ref_increment_;
+  if (!std::isfinite(beam)) return nullptr;
+  const long n = static_cast<long>(ref_.size());
+  const long centre = std::lround(beam);
+  const long lo = std::max(0L, centre - options_.search_beams);
+  const long hi = std::min(n - 1, centre + options_.search_beams);
+  const RefPoint* best = nullptr;
+  double best_d2 = max_distance * max_distance;
+  for (long j = lo; j <= hi; ++j) {
+    const RefPoint& r = ref_[j];
+    if (!r.has_normal) continue;
+    const double d2 = (w - r.p).squaredNorm();
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = &r;
+    }
+  }
+  return best;
+}
+
+int ScanMatcher::CountPairs(const Pose2& x, const std::vector<Vec2>& points,
+                            double max_distance) const {
+  const Rigid rigid(x);
+  int count = 0;
+  for (size_t i = 0; i < points.size(); i += 2)
+    if (Nearest(rigid * points[i], max_distance) != nullptr) ++count;
+  return count;
+}
+
+ScanMatchResult ScanMatcher::Match(const LaserScan& scan, const UncertainPose& prior) {
+  ScanMatchResult out;
+  out.increment = prior;
+  ScanPointsInRobotFrame(scan, options_.min_range, options_.max_range, &points_);
+  if (options_.min_point_spacing > 0.0 && !points_.empty()) {
+    const double d2 = options_.min_point_spacing * options_.min_point_spacing;
+    size_t kept = 1;
+    for (size_t i = 1; i < points_.size(); ++i)
+      if ((points_[i] - points_[kept - 1]).squaredNorm() >= d2) points_[kept++] = points_[i];
+    points_.resize(kept);
+  }
+  out.points = static_cast<int>(points_.size());
+  if (!has_reference_ || out.points < options_.min_pairs) return out;
+
+  const Pose2& u = prior.mean;
+  Pose2 x = u;
+  if (options_.heading_search > 0.0) {
+    const int steps = static_cast<int>(options_.heading_search / options_.heading_step);
+    int best = -1;
+    for (int k = 0; k <= steps; ++k) {
+      for (int sign : {1, -1}) {
+        if (k == 0 && sign < 0) continue;
+        Pose2 trial = u;
+        trial.theta = WrapAngle(u.theta + sign * k * options_.heading_step);
+        const int count = CountPairs(trial, points_, options_.coarse_distance);
+        if (count > best) {
+          best = count;
+          x = trial;
+        }
+      }
+    }
+  }
+
+  const Mat3 q_inverse = (prior.cov + 1e-12 * Mat3::Identity()).inverse();
+  const double inv_var = 1.0 / (options_.point_sigma * options_.point_sigma);
+  const double huber = options_.huber_k * options_.point_sigma;
+  const double scale = options_.information_scale;
+  Mat3 h_icp = Mat3::Zero();
+  bool converged = false;
+  int pairs = 0;
+  double sum_r2 = 0.0;
+  for (int it = 0; it < options_.max_iterations; ++it) {
+    const bool final_pass = it >= options_.coarse_iterations;
+    const double distance = final_pass ? options_.final_distance : options_.max_distance;
+    const Rigid rigid(x);
+    const double c = rigid.c, s = rigid.s;
+    h_icp.setZero();
+    Vec3 g = Vec3::Zero();
+    pairs = 0;
+    sum_r2 = 0.0;
+    for (const Vec2& q : points_) {
+      const Vec2 w = rigid * q;
+      const RefPoint* ref = Nearest(w, distance);
+      if (ref == nullptr) continue;
+      const double r = ref->n.dot(w - ref->p);
+      const Vec2 dw(-s * q.x() - c * q.y(), c * q.x() - s * q.y());
+      const Vec3 j(ref->n.x(), ref->n.y(), ref->n.dot(dw));
+      const double weight = std::abs(r) <= huber ? 1.0 : huber / std::abs(r);
+      h_icp += weight * inv_var * j * j.transpose();
+      g += weight * inv_var * r * j;
+      ++pairs;
+      sum_r2 += r * r;
+    }
+    const Vec3 e(x.x - u.x, x.y - u.y, WrapAngle(x.theta - u.theta));
+    const Mat3 h = scale * h_icp + q_inverse;
+    const Vec3 dx = -h.ldlt().solve(scale * g + q_inverse * e);
+    if (!dx.allFinite()) break;
+    x.x += dx(0);
+    x.y += dx(1);
+    x.theta = WrapAngle(x.theta + dx(2));
+    out.iterations = it + 1;
+    // A step of a tenth of a sigma or less: done (the pairing may toggle between two sets
+    // one point apart, which moves x by far less than its uncertainty).
+    if (final_pass && dx.dot(h * dx) < 1e-2) {
+      converged = true;
+      break;
+    }
+  }
+  out.pairs = pairs;
+  out.rms = pairs > 0 ? std::sqrt(sum_r2 / pairs) : 0.0;
+  if (!converged) {
+    out.outcome = ScanMatchOutcome::kNotConverged;
+    return out;
+  }
+  if (pairs < options_.min_pairs || pairs < options_.min_pair_fraction * out.points) {
+    out.outcome = ScanMatchOutcome::kTooFewPairs;
+    return out;
+  }
+  Mat3 cov = (scale * h_icp + q_inverse).inverse();
+  cov = 0.5 * (cov + cov.transpose());
+  out.outcome = ScanMatchOutcome::kMatched;
+  out.increment = UncertainPose{x, cov};
+  return out;
+}
+
+}  // namespace atlas

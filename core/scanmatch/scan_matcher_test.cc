@@ -1,0 +1,166 @@
+#include "core/scanmatch/scan_matcher.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <random>
+
+#include "core/localmap/fake_wall_scanner.h"
+
+namespace atlas {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+FakeLaserOptions Laser() {
+  FakeLaserOptions o;
+  o.beams = 361;
+  o.max_range = 30.0;
+  o.range_sigma = 0.01;
+  o.sensor_pose = Pose2{0.1, 0.0, 0.0};
+  return o;
+}
+
+ScanMatchOptions Options() {
+  ScanMatchOptions o;
+  o.enabled = true;
+  return o;
+}
+
+UncertainPose Prior(const Pose2& mean, double sxy, double stheta) {
+  UncertainPose p;
+  p.mean = mean;
+  p.cov = Vec3(sxy * sxy, sxy * sxy, stheta * stheta).asDiagonal();
+  return p;
+}
+
+TEST(ScanMatcher, RecoversTheMotionFromAWrongOdometryHeading) {
+  FakeWallScanner laser(CorridorWorld(), Laser(), 7);
+  const Pose2 a{6.0, 1.0, 0.1}, b{6.25, 1.05, 0.25};
+  const Pose2 truth = Between(a, b);
+  ScanMatchOptions options = Options();
+  options.heading_search = 20.0 * kDeg;
+  ScanMatcher matcher(options);
+  matcher.SetReference(laser.Scan(a));
+  // The wheels say the robot turned 12 degrees less and rolled 5 cm further than it did.
+  const Pose2 odometry{truth.x + 0.05, truth.y, truth.theta - 12.0 * kDeg};
+  const ScanMatchResult r = matcher.Match(laser.Scan(b), Prior(odometry, 0.05, 5.0 * kDeg));
+  ASSERT_EQ(r.outcome, ScanMatchOutcome::kMatched) << ToString(r.outcome);
+  // The heading comes from the scans; the 5 cm along the corridor is weakly observed (the end
+  // walls are 6 and 24 m away) and the prior keeps part of it.
+  EXPECT_NEAR(WrapAngle(r.increment.mean.theta - truth.theta), 0.0, 0.2 * kDeg);
+  EXPECT_NEAR(r.increment.mean.y, truth.y, 0.01);
+  EXPECT_LT(std::abs(r.increment.mean.x - truth.x), 0.6 * 0.05);
+  EXPECT_GT(r.pairs, 100);
+  EXPECT_LT(r.increment.cov(2, 2), (0.5 * kDeg) * (0.5 * kDeg));
+}
+
+TEST(ScanMatcher, KeepsTheOdometryAlongAFeaturelessCorridor) {
+  // Two long parallel walls: the scans fix the heading and the cross-axis offset, not the
+  // position along the axis.
+  const std::vector<Wall> walls = {{Vec2(-100, -1.2), Vec2(100, -1.2)},
+                                   {Vec2(-100, 1.2), Vec2(100, 1.2)}};
+  FakeWallScanner laser(walls, Laser(), 3);
+  const Pose2 a{0.0, 0.0, 0.0}, b{0.3, 0.02, 0.02};
+  const Pose2 truth = Between(a, b);
+  ScanMatcher matcher(Options());
+  matcher.SetReference(laser.Scan(a));
+  const Pose2 odometry{truth.x + 0.04, truth.y - 0.03, truth.theta + 3.0 * kDeg};
+  const UncertainPose prior = Prior(odometry, 0.05, 5.0 * kDeg);
+  const ScanMatchResult r = matcher.Match(laser.Scan(b), prior);
+  ASSERT_EQ(r.outcome, ScanMatchOutcome::kMatched) << ToString(r.outcome);
+  // Across the corridor and in heading: the scans.
+  EXPECT_NEAR(r.increment.mean.y, truth.y, 0.01);
+  EXPECT_NEAR(WrapAngle(r.increment.mean.theta - truth.theta), 0.0, 0.2 * kDeg);
+  EXPECT_LT(r.increment.cov(1, 1), 0.1 * prior.cov(1, 1));
+  // Along the axis: the odometry, with its variance.
+  EXPECT_NEAR(r.increment.mean.x, odometry.x, 0.01);
+  EXPECT_GT(r.increment.cov(0, 0), 0.8 * prior.cov(0, 0));
+}
+
+TEST(ScanMatcher, CovarianceIsNotOverConfidentOverManyPairs) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> along(2.0, 26.0), across(-0.6, 0.6), turn(-0.5, 0.5);
+  FakeWallScanner laser(CorridorWorld(), Laser(), 5);
+  ScanMatcher matcher(Options());
+  const int runs = 200;
+  double nees = 0.0, prior_error = 0.0, match_error = 0.0;
+  int matched = 0;
+  for (int i = 0; i < runs; ++i) {
+    const Pose2 a{along(rng), across(rng), turn(rng)};
+    const Pose2 truth{0.2 + 0.05 * normal(rng), 0.02 * normal(rng), 0.1 * normal(rng)};
+    const Pose2 b = Compose(a, truth);
+    matcher.SetReference(laser.Scan(a));
+    const double sxy = 0.03, st = 3.0 * kDeg;
+    const Pose2 odometry{truth.x + sxy * normal(rng), truth.y + sxy * normal(rng),
+                         truth.theta + st * normal(rng)};
+    const ScanMatchResult r = matcher.Match(laser.Scan(b), Prior(odometry, sxy, st));
+    if (r.outcome != ScanMatchOutcome::kMatched) continue;
+    ++matched;
+    const Vec3 e(r.increment.mean.x - truth.x, r.increment.mean.y - truth.y,
+                 WrapAngle(r.increment.mean.theta - truth.theta));
+    nees += e.dot(r.increment.cov.ldlt().solve(e));
+    prior_error += std::abs(WrapAngle(odometry.theta - truth.theta));
+    match_error += std::abs(e(2));
+  }
+  ASSERT_GT(matched, runs * 9 / 10);
+  nees /= matched;
+  // A consistent estimate has NEES 3; the information scale makes it conservative on these
+  // exact walls. Over-confidence (NEES above 3 by half) would mislead the maps' gates.
+  EXPECT_LT(nees, 4.5);
+  EXPECT_GT(nees, 0.05);
+  EXPECT_LT(match_error, 0.1 * prior_error);
+  std::printf(
+      "scan matcher on %d corridor pairs: NEES %.2f, heading error %.3f deg (odometry "
+      "%.3f deg)\n",
+      matched, nees, match_error / matched / kDeg, prior_error / matched / kDeg);
+}
+
+TEST(ScanMatcher, ReturnsThePriorWhenTheScansHaveNothingToMatch) {
+  LaserScan empty;
+  empty.angle_min = static_cast<float>(-90.0 * kDeg);
+  empty.angle_increment = static_cast<float>(0.5 * kDeg);
+  empty.max_range = 30.0f;
+  empty.ranges.assign(361, kNoReturn);
+  ScanMatcher matcher(Options());
+  const UncertainPose prior = Prior(Pose2{0.2, 0.0, 0.1}, 0.05, 0.1);
+  // No reference yet.
+  EXPECT_EQ(matcher.Match(empty, prior).outcome, ScanMatchOutcome::kTooFewPoints);
+  matcher.SetReference(empty);
+  const ScanMatchResult r = matcher.Match(empty, prior);
+  EXPECT_EQ(r.outcome, ScanMatchOutcome::kTooFewPoints);
+  EXPECT_EQ(r.increment.mean.x, prior.mean.x);
+  EXPECT_EQ(r.increment.cov, prior.cov);
+  // A reference of walls, a current scan of one short wall only: too few pairs.
+  FakeWallScanner laser(CorridorWorld(), Laser(), 1);
+  matcher.SetReference(laser.Scan(Pose2{5.0, 0.0, 0.0}));
+  LaserScan sparse = empty;
+  for (int i = 170; i < 190; ++i) sparse.ranges[i] = 50.0f;  // beyond max_range: unused
+  for (int i = 0; i < 30; ++i) sparse.ranges[i] = 1.2f;
+  EXPECT_EQ(matcher.Match(sparse, prior).outcome, ScanMatchOutcome::kTooFewPoints);
+  // A circle 0.7 m around the sensor in a 2.4 m wide corridor: nothing within reach.
+  LaserScan circle = empty;
+  circle.ranges.assign(361, 0.7f);
+  const ScanMatchResult s = matcher.Match(circle, prior);
+  EXPECT_EQ(s.outcome, ScanMatchOutcome::kTooFewPairs) << ToString(s.outcome);
+  EXPECT_EQ(s.increment.cov, prior.cov);
+}
+
+TEST(ScanMatcher, ValidateNamesTheBadOption) {
+  EXPECT_EQ(ScanMatchOptions{}.Validate(), "");
+  ScanMatchOptions o;
+  o.information_scale = 0.0;
+  EXPECT_NE(o.Validate().find("information_scale"), std::string::npos);
+  o = ScanMatchOptions{};
+  o.final_distance = 0.5;
+  EXPECT_NE(o.Validate().find("final_distance"), std::string::npos);
+  o = ScanMatchOptions{};
+  o.heading_search = 0.3;
+  o.heading_step = 0.0;
+  EXPECT_NE(o.Validate().find("heading_step"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace atlas
