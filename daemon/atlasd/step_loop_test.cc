@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/atlas/atlas_test_world.h"
+#include "core/localmap/fake_wall_scanner.h"
 #include "core/sonar/fake_sonar_ring.h"
 #include "daemon/atlasd/fake_step_sink.h"
 
@@ -198,6 +199,82 @@ TEST_F(StepLoopTest, StepsScansAndSonarReadingsInTheOrderAdded) {
   for (int i = 0; i < 6; ++i) loop.AddSonar(SonarAt(0.4 + 0.01 * i));
   EXPECT_EQ(loop.dropped_sonar(), 2);
   EXPECT_EQ(loop.dropped_scans(), 0);
+}
+
+// scan_match.enabled: each scan after the first is matched against the one before it and the
+// maps predict with the matched increment. The fake maps of TestWorld move the robot by exactly
+// the increment they are given, so the dominant pose shows which increment was used. The
+// wheels here turn 1.5 degrees a step more than the robot (27 degrees over the run): with
+// matching the heading drifts by a fraction of a degree, without it by the whole 27 degrees.
+// A sonar step drops the reference: the next scan is not matched.
+TEST(StepLoopScanMatch, MatchedIncrementsReplaceAWrongOdometryHeading) {
+  FakeLaserOptions laser;
+  laser.sensor_pose = Pose2{0.1, 0.0, 0.0};
+  const std::vector<Wall> world = CorridorWorld();
+  for (const bool enabled : {true, false}) {
+    TestWorld maps;
+    Atlas atlas(TestWorld::Options(), maps.Factory(), nullptr);
+    MapperSettings s;
+    s.scan_match.enabled = enabled;
+    // The heading part of the B21 profile (config/atlasd.toml): 1.5 degrees a step is within
+    // its sigma, as the odometry's prior must allow for the matched increment to prevail.
+    s.odometry.theta_var_per_m = 0.005;
+    s.odometry.theta_var_per_rad = 0.03;
+    ASSERT_EQ(ValidateMapperSettings(s), "");
+    StepLoop loop(StepLoopOptions{}, s, &atlas);
+    FakeStepSink sink;
+    FakeWallScanner scanner(world, laser, 9);
+    const Pose2 start{3.0, 0.0, 0.0};
+    const int scans = 19;
+    Pose2 odometry;
+    for (int i = 0; i < scans; ++i) {
+      const double t = 0.2 * i;
+      const Pose2 robot = Compose(start, Pose2{0.1 * i, 0.0, 0.0});
+      if (i > 0) odometry = Compose(odometry, Pose2{0.1, 0.0, 0.026});
+      loop.AddOdometry({FromSeconds(t), odometry});
+      LaserScan scan = scanner.Scan(robot);
+      scan.stamp = FromSeconds(t);
+      loop.AddScan(std::move(scan));
+      loop.StepAll(&sink);
+    }
+    EXPECT_EQ(loop.steps(), scans);
+    EXPECT_EQ(loop.scan_matches(), enabled ? scans - 1 : 0);
+    EXPECT_EQ(loop.scan_match_fallbacks(), 0);
+    // The robot drives straight: every heading change between two consecutive poses in one
+    // frame is an error.
+    double drift = 0.0;
+    for (size_t i = 1; i < sink.poses.size(); ++i) {
+      const DominantOutput &p = sink.poses[i - 1].pose, &q = sink.poses[i].pose;
+      ASSERT_TRUE(q.valid);
+      if (p.frame == q.frame) drift += WrapAngle(q.pose.mean.theta - p.pose.mean.theta);
+    }
+    if (enabled) {
+      EXPECT_LT(std::abs(drift), 0.5 * 3.14159265358979 / 180.0);
+    } else {
+      EXPECT_NEAR(drift, 0.026 * (scans - 1), 1e-6);
+    }
+  }
+
+  MapperSettings s;
+  s.scan_match.enabled = true;
+  s.sensors = RangeSensors::kBoth;
+  s.sonar_ring = FakeSonarRing24();
+  std::unique_ptr<Atlas> atlas = MakeAtlas(s);
+  StepLoop loop(StepLoopOptions{}, s, atlas.get());
+  FakeStepSink sink;
+  FakeWallScanner scanner(world, laser, 9);
+  loop.AddOdometry({FromSeconds(0.0), Pose2{3.0, 0.0, 0.0}});
+  loop.AddOdometry({FromSeconds(1.0), Pose2{3.0, 0.0, 0.0}});
+  LaserScan a = scanner.Scan(Pose2{3.0, 0.0, 0.0}), b = scanner.Scan(Pose2{3.0, 0.0, 0.0});
+  a.stamp = FromSeconds(0.1);
+  b.stamp = FromSeconds(0.3);
+  SonarReading r;
+  r.stamp = FromSeconds(0.2);
+  loop.AddScan(std::move(a));
+  loop.AddSonar(std::move(r));
+  loop.AddScan(std::move(b));
+  EXPECT_EQ(loop.StepAll(&sink), 3);
+  EXPECT_EQ(loop.scan_matches(), 0);
 }
 
 // localmap.sensors "sonar": MakeAtlas builds sonar-only maps, and a robot driving down a
