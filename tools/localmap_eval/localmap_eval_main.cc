@@ -32,6 +32,7 @@
 #include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
+#include "core/scanmatch/scan_matcher.h"
 #include "daemon/atlasd/odometry_track.h"
 #include "drivers/carmen/carmen_log.h"
 #include "drivers/sim/laser_model.h"
@@ -50,7 +51,8 @@ constexpr char kUsage[] =
     "       atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
     "C=100]\n"
     "                                [--png F] [--draw-stretch K=3] [--set name=v,...]\n"
-    "                                [--laser-x X=0] [--laser-time-offset S=0]\n"
+    "                                [--laser-x X=0] [--laser-time-offset S=0] [--scan-match "
+    "0|1=1]\n"
     "\n"
     "mc:   Monte Carlo consistency of the line EKF in a simulated 20 m corridor (seeded runs of\n"
     "      M minutes each). Prints the 95 %% chi-square band of the average NEES (robot: 3 dof;\n"
@@ -68,6 +70,10 @@ constexpr char kUsage[] =
     "      --laser-time-offset S: a scan was taken at its stamp + S seconds (-1..1; mit-csail:\n"
     "      about -0.1): the filter's odometry is interpolated there. Dead reckoning is the\n"
     "      log's odometry at the scan stamps (with S, also printed at stamp + S).\n"
+    "      --scan-match 1 (default): the filter predicts with each scan matched against the one\n"
+    "      before (core/scanmatch, atlasd's [scan_match] defaults) instead of the odometry\n"
+    "      increment, as atlasd's loop does; 0: the odometry alone. Dead reckoning stays the\n"
+    "      log's odometry.\n"
     "      Defaults: " ATLAS_SHARED_DIR "/datasets/mit-csail/mit-csail.clf.gz and .relations\n";
 
 using Args = eval::ToolOptions;
@@ -617,10 +623,12 @@ int RunReal(const Args& args) {
   if (args.values.count("--log")) log_path = args.values.at("--log");
   if (args.values.count("--relations")) rel_path = args.values.at("--relations");
   double stretch_m = 30, capacity = 100, draw_stretch = 3, laser_x = 0.0, time_offset_s = 0.0;
+  double scan_match = 1.0;
   std::string error;
   if (!GetNumberOption(args, "--stretch", 1, 1e6, stretch_m, error) ||
       !GetNumberOption(args, "--laser-x", -2, 2, laser_x, error) ||
       !GetNumberOption(args, "--laser-time-offset", -1, 1, time_offset_s, error) ||
+      !GetNumberOption(args, "--scan-match", 0, 1, scan_match, error) ||
       !GetNumberOption(args, "--capacity", 1, 10000, capacity, error) ||
       !GetNumberOption(args, "--draw-stretch", 0, 1e6, draw_stretch, error)) {
     std::fprintf(stderr, "atlas-localmap-eval real: %s\n", error.c_str());
@@ -669,6 +677,10 @@ int RunReal(const Args& args) {
   Pose2 last_odo;
   bool have_odo = false;
   int updates = 0, matched = 0, observed = 0, ambiguous = 0, recovered = 0;
+  ScanMatchOptions match_options;
+  match_options.enabled = scan_match > 0.5;
+  ScanMatcher matcher(match_options);
+  int64_t increments_matched = 0, match_fallbacks = 0;
   for (const carmen::CarmenEvent& ev : read.log.events) {
     const LaserScan* scan = std::get_if<LaserScan>(&ev.event);
     if (scan == nullptr || !ev.odometry_pose) continue;
@@ -679,18 +691,29 @@ int RunReal(const Args& args) {
       delta = Between(last_odo, odo);
       travelled += std::hypot(delta.x, delta.y);
     }
+    LaserScan mounted = *scan;
+    mounted.sensor_pose = Compose(Pose2{laser_x, 0.0, 0.0}, scan->sensor_pose);
     if (!map || travelled >= stretch_m) {
       if (map && stretch == static_cast<int>(draw_stretch)) drawn = std::move(map);
       map = std::make_unique<LineEkfMap>(options);
       ++stretch;
       travelled = 0.0;
+    } else if (match_options.enabled && matcher.HasReference()) {
+      const ScanMatchResult m =
+          matcher.Match(mounted, {delta, LineEkfMap::OdometryNoise(delta, options.odometry)});
+      if (m.outcome == ScanMatchOutcome::kMatched) {
+        ++increments_matched;
+        map->Predict(m.increment.mean, m.increment.cov);
+      } else {
+        ++match_fallbacks;
+        map->Predict(delta);
+      }
     } else {
       map->Predict(delta);
     }
+    if (match_options.enabled) matcher.SetReference(mounted);
     last_odo = odo;
     have_odo = true;
-    LaserScan mounted = *scan;
-    mounted.sensor_pose = Compose(Pose2{laser_x, 0.0, 0.0}, scan->sensor_pose);
     const UncertainPose prior = map->RobotPose();
     const ScanUpdate up = map->Update(mounted, true);
     if (std::getenv("LOCALMAP_DEBUG") && up.added > 0) {
@@ -733,6 +756,11 @@ int RunReal(const Args& args) {
                "%d scans with an ambiguous association, %d paired only by the recovery pass\n",
                updates, stretch + 1, stretch_m, observed, matched,
                100.0 * matched / std::max(1, observed), ambiguous, recovered);
+  if (match_options.enabled) {
+    std::fprintf(stderr, "scan matching: %lld increments matched, %lld fell back to the odometry\n",
+                 static_cast<long long>(increments_matched),
+                 static_cast<long long>(match_fallbacks));
+  }
 
   // Relations with both poses in one stretch.
   auto find = [&](Time t) -> const ScanRecord* {
@@ -907,7 +935,7 @@ int main(int argc, char** argv) {
     const atlas::Args a = atlas::eval::ParseToolOptions(
         argc, argv, 2,
         {"--log", "--relations", "--stretch", "--capacity", "--png", "--draw-stretch", "--set",
-         "--laser-x", "--laser-time-offset"});
+         "--laser-x", "--laser-time-offset", "--scan-match"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-localmap-eval real: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
