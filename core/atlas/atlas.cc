@@ -192,28 +192,41 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
       if (h.last_update.observations > 0) h.window.Add(h.last_update);
     }
     ++h.steps;
-    if (!mature && !h.bootstrapped && !scan) {
+    // w's Z holds the steps of the sensor it solves from (laser unless FromSonar()).
+    const bool feeds_w = sonar ? bootstrapper_ && bootstrapper_->FromSonar()
+                               : !bootstrapper_ || !bootstrapper_->FromSonar();
+    if (!mature && !h.bootstrapped && !feeds_w) {
       if (!bootstrapper_ && h.steps >= options_.lifecycle.bootstrap_scans) h.bootstrapped = true;
     } else if (!mature && !h.bootstrapped) {
-      h.z.push_back(JuvenileScan{delta, *scan, h.last_update});
+      h.z.push_back(JuvenileScan{delta, scan ? *scan : LaserScan{}, h.last_update,
+                                 sonar ? *sonar : SonarReading{}});
       if (static_cast<int>(h.z.size()) >= options_.lifecycle.bootstrap_scans) {
+        bool accumulate = false;
         if (bootstrapper_) {
           ++stats_.bootstraps;
-          const PoseBootstrap r = bootstrapper_->Solve(map, h.z);
+          PoseBootstrap r = bootstrapper_->Solve(map, *graph_.Frame(h.frame).map, h.z);
           if (r.outcome == BootstrapOutcome::kSolved) {
-            map.ResetRobotPose(r.pose);
+            if (r.map)
+              h.trial_map = std::move(r.map);  // M_i^new of eq. 12
+            else
+              map.ResetRobotPose(r.pose);
             h.bootstrapped = true;
+          } else if (r.outcome == BootstrapOutcome::kUndetermined &&
+                     h.steps < options_.lifecycle.probation_scans) {
+            accumulate = true;
           } else {
             bootstrap_failed_[i] = 1;
           }
         } else {
           h.bootstrapped = true;
         }
-        h.z.clear();
-        h.z.shrink_to_fit();
+        if (!accumulate) {
+          h.z.clear();
+          h.z.shrink_to_fit();
+        }
       }
     }
-    h.q = HypothesisQuality(map.RobotPose().cov,
+    h.q = HypothesisQuality(MapOf(h).RobotPose().cov,
                             h.window.Explanation(options_.quality.empty_explanation),
                             options_.quality);
   }
@@ -641,6 +654,29 @@ void PutUpdate(ByteWriter* w, const ScanUpdate& u) {
   w->Put<uint8_t>(u.ambiguous);
 }
 
+void PutSonar(ByteWriter* w, const SonarReading& s) {
+  w->Put<int64_t>(s.stamp.time_since_epoch().count());
+  w->Put<uint64_t>(s.returns.size());
+  for (const SonarReturn& ret : s.returns) {
+    w->Put<int32_t>(ret.transducer);
+    w->Put(ret.range);
+  }
+}
+
+bool GetSonar(ByteReader* r, SonarReading* s) {
+  int64_t ns = 0;
+  uint64_t n = 0;
+  if (!r->Get(&ns) || !r->Get(&n) || n > 100000) return false;
+  s->stamp = Time(Duration(ns));
+  s->returns.resize(n);
+  for (SonarReturn& ret : s->returns) {
+    int32_t transducer = 0;
+    if (!r->Get(&transducer) || !r->Get(&ret.range)) return false;
+    ret.transducer = transducer;
+  }
+  return true;
+}
+
 bool GetUpdate(ByteReader* r, ScanUpdate* u) {
   int32_t o, m, a;
   uint8_t amb;
@@ -711,6 +747,7 @@ std::string Atlas::Serialize() const {
       w.PutPose(z.odometry_delta);
       PutScan(&w, z.scan);
       PutUpdate(&w, z.update);
+      PutSonar(&w, z.sonar);
     }
   }
   return std::move(w.bytes());
@@ -789,7 +826,8 @@ bool Atlas::Deserialize(const std::string& bytes) {
     if (!r.Get(&nz) || nz > 1000) return false;
     h.z.resize(nz);
     for (JuvenileScan& z : h.z)
-      if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &z.scan) || !GetUpdate(&r, &z.update))
+      if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &z.scan) || !GetUpdate(&r, &z.update) ||
+          (version >= 3 && !GetSonar(&r, &z.sonar)))
         return false;
     for (const Hypothesis& o : hypotheses)
       if (o.frame == h.frame) return false;  // at most one hypothesis per frame

@@ -8,7 +8,9 @@
 //     (mature: may add features; juvenile: may not, and works on a private clone of its frame's
 //     map). q (eq. 5) is recomputed. A juvenile still bootstrapping keeps its scans; after
 //     `lifecycle.bootstrap_scans` of them, w (eq. 12) solves its pose from the scans alone: the
-//     pose is replaced by w's solution, or the juvenile is killed if w fails.
+//     pose is replaced by w's solution (and the trial map by w's M_i^new when w makes one),
+//     or the juvenile is killed if w fails. While w is undetermined (Z does not fix the pose
+//     yet) Z keeps growing and w is tried at every step until the end of probation.
 //  2. Juveniles at the end of probation mature (q beats every mature hypothesis) or are deleted
 //     (Fig. 4). The frame of a deleted juvenile is not reseeded for `seed_cooldown_steps`.
 //     The matured juvenile's trial map replaces the frame's map. Without w (no bootstrapper:
@@ -183,10 +185,11 @@ class Atlas {
   // previous measurement; ignored on the very first step), `scan` the new scan.
   const StepStats& Step(const Pose2& odometry_delta, const LaserScan& scan);
   // The same step with a sonar ring reading (LocalMap::UpdateWithSonar) instead of a scan, for
-  // sonar-only and laser-and-sonar robots. w (eq. 12) bootstraps juveniles from laser scans
-  // only: sonar steps do not feed it. Without a bootstrapper (sonar-only atlases), a juvenile
-  // counts as bootstrapped after `lifecycle.bootstrap_scans` steps of either kind and is
-  // judged on q alone.
+  // sonar-only and laser-and-sonar robots. w (eq. 12) bootstraps juveniles from the steps of
+  // the sensor it solves from (PoseBootstrapper::FromSonar: sonar readings for the sonar w,
+  // core/sonar/sonar_map_bootstrapper.h; laser scans otherwise). Without a bootstrapper, a
+  // juvenile counts as bootstrapped after `lifecycle.bootstrap_scans` steps of either kind and
+  // is judged on q alone.
   const StepStats& Step(const Pose2& odometry_delta, const SonarReading& reading);
 
   // The same step in two halves, for a daemon that publishes the pose as early as it can:
@@ -198,12 +201,12 @@ class Atlas {
   // complete after MaintainGraph().
   const StepStats& Localize(const Pose2& odometry_delta, const LaserScan& scan);
   const StepStats& Localize(const Pose2& odometry_delta, const SonarReading& reading);
-  const StepStats& MaintainGraph();
-
-  // After Deserialize() of a saved atlas: the robot is somewhere unknown, so every hypothesis
   // With the increment's covariance given (LocalMap::Predict(u, Q)), e.g. a scan-matched
   // increment (core/scanmatch/scan_matcher.h), instead of each map's odometry noise model.
   const StepStats& Localize(const UncertainPose& increment, const LaserScan& scan);
+  const StepStats& MaintainGraph();
+
+  // After Deserialize() of a saved atlas: the robot is somewhere unknown, so every hypothesis
   // is dropped and the robot starts in a new frame, unconnected, at pose exactly zero (as after
   // Genesis). Map-matching then also tries frames of the unconnected old parts, without a prior
   // (`resume_candidates_per_step` per step, a cursor over the frame ids, at most
@@ -224,7 +227,8 @@ class Atlas {
   // Deserialize uses this atlas's factory to make maps; on bytes that are not a valid image it
   // returns false and leaves the atlas unchanged.
   // Version 2 added Hypothesis::lagging_steps; version 1 images are read with it zero.
-  static constexpr uint32_t kImageVersion = 2;
+  // Version 3 added JuvenileScan::sonar; older images are read with it empty.
+  static constexpr uint32_t kImageVersion = 3;
   std::string Serialize() const;
   bool Deserialize(const std::string& bytes);
 

@@ -263,6 +263,34 @@ TEST(Atlas, JuvenileKilledWhenBootstrapFailsAndNeverExtendsItsMap) {
   EXPECT_GT(never->calls(), 0);
 }
 
+TEST(Atlas, UndeterminedJuvenileAccumulatesUntilProbationThenIsKilled) {
+  TestWorld w;
+  auto undetermined = std::make_shared<FakeBootstrapper>(1 << 30, BootstrapOutcome::kUndetermined);
+  const AtlasOptions o = TestWorld::Options();
+  Atlas atlas(o, w.Factory(), undetermined);
+  int killed = 0, matured = 0, seeded = 0;
+  for (int i = 0; i < 120; ++i) {
+    const double v = i < 60 ? 0.25 : -0.25;
+    const StepStats& s = atlas.Step(Pose2{v, 0.0, 0.0}, TestScan());
+    CheckInvariants(atlas);
+    seeded += s.seeded;
+    killed += s.killed_by_w;
+    matured += s.matured;
+    // Z grows by one step per step once w is undetermined.
+    for (const Hypothesis& h : atlas.Hypotheses()) {
+      if (h.state != HypothesisState::kJuvenile) continue;
+      EXPECT_FALSE(h.bootstrapped);
+      EXPECT_EQ(static_cast<int>(h.z.size()), h.steps);
+      EXPECT_LT(h.steps, o.lifecycle.probation_scans);
+    }
+  }
+  ASSERT_GT(seeded, 0);
+  EXPECT_GT(killed, 0);
+  EXPECT_EQ(matured, 0);
+  // w was tried on every Z from bootstrap_scans to the end of probation.
+  EXPECT_EQ(undetermined->max_z(), o.lifecycle.probation_scans);
+}
+
 TEST(Atlas, WorkPerStepIsBoundedOnALongRun) {
   TestWorld w;
   w.radius = 1.0;
@@ -308,6 +336,44 @@ TEST(Atlas, SerializeRoundTripsAndRejectsGarbage) {
   EXPECT_FALSE(c.Deserialize(bad));
   EXPECT_FALSE(c.Deserialize(image + "x"));
   EXPECT_TRUE(c.Serialize() == before);
+}
+
+TEST(Atlas, SonarStepsFeedASonarWAndRoundTripThroughTheImage) {
+  TestWorld w;
+  auto sonar_w = std::make_shared<FakeBootstrapper>(1 << 30, BootstrapOutcome::kUndetermined, true);
+  Atlas a(TestWorld::Options(), w.Factory(), sonar_w);
+  SonarReading reading;
+  reading.returns = {SonarReturn{3, 1.25f}, SonarReturn{7, kNoReturn}};
+  // Laser steps until a juvenile is seeded, then sonar steps: only these enter its Z.
+  int i = 0;
+  const auto juvenile = [&a]() {
+    for (const Hypothesis& h : a.Hypotheses())
+      if (h.state == HypothesisState::kJuvenile) return &h;
+    return static_cast<const Hypothesis*>(nullptr);
+  };
+  for (; i < 60 && juvenile() == nullptr; ++i) a.Step(Pose2{0.25, 0.0, 0.0}, TestScan());
+  ASSERT_NE(juvenile(), nullptr);
+  const int steps_before = juvenile()->steps;
+  EXPECT_TRUE(juvenile()->z.empty());
+  a.Step(Pose2{0.25, 0.0, 0.0}, reading);
+  a.Step(Pose2{0.25, 0.0, 0.0}, reading);
+  ASSERT_NE(juvenile(), nullptr);
+  ASSERT_EQ(juvenile()->steps, steps_before + 2);
+  ASSERT_EQ(juvenile()->z.size(), 2u);
+  EXPECT_EQ(juvenile()->z[1].sonar.returns.size(), 2u);
+  EXPECT_EQ(juvenile()->z[1].odometry_delta.x, 0.25);
+  const std::string image = a.Serialize();
+  Atlas b(TestWorld::Options(), w.Factory(), sonar_w);
+  ASSERT_TRUE(b.Deserialize(image));
+  EXPECT_TRUE(b.Serialize() == image);
+  const Hypothesis* restored = nullptr;
+  for (const Hypothesis& h : b.Hypotheses())
+    if (h.state == HypothesisState::kJuvenile) restored = &h;
+  ASSERT_NE(restored, nullptr);
+  ASSERT_EQ(restored->z.size(), 2u);
+  EXPECT_EQ(restored->z[1].sonar.returns[0].transducer, 3);
+  EXPECT_EQ(restored->z[1].sonar.returns[0].range, 1.25f);
+  EXPECT_FALSE(IsReturn(restored->z[1].sonar.returns[1].range));
 }
 
 // A 16 m square room with a few unique walls. Each fake map reports the walls within 6 m of its

@@ -197,26 +197,40 @@ class FakeLocalMap : public LocalMap {
   std::vector<MapLine> lines_;
 };
 
-// w (eq. 12) for tests: solved when Z holds at least `min_matched` matched observations; the
-// pose is the map's current estimate replaced by `solution` when one is set.
+// w (eq. 12) for tests: solved when Z holds at least `min_matched` matched observations (else
+// `unsolved`: kFailed, or kUndetermined to make the atlas accumulate Z); the pose is the map's
+// current estimate.
 class FakeBootstrapper : public PoseBootstrapper {
  public:
-  explicit FakeBootstrapper(int min_matched = 1) : min_matched_(min_matched) {}
-  PoseBootstrap Solve(const LocalMap& map, const std::vector<JuvenileScan>& z) const override {
+  explicit FakeBootstrapper(int min_matched = 1,
+                            BootstrapOutcome unsolved = BootstrapOutcome::kFailed,
+                            bool from_sonar = false)
+      : min_matched_(min_matched), unsolved_(unsolved), from_sonar_(from_sonar) {}
+  bool FromSonar() const override { return from_sonar_; }
+  PoseBootstrap Solve(const LocalMap& map, const LocalMap& /*frame_map*/,
+                      const std::vector<JuvenileScan>& z) const override {
     ++calls_;
+    max_z_ = std::max(max_z_, static_cast<int>(z.size()));
     int matched = 0;
     for (const JuvenileScan& s : z) matched += s.update.matched;
     PoseBootstrap r;
-    if (matched < min_matched_) return r;
+    if (matched < min_matched_) {
+      r.outcome = unsolved_;
+      return r;
+    }
     r.outcome = BootstrapOutcome::kSolved;
     r.pose = map.RobotPose();
     return r;
   }
   int calls() const { return calls_; }
+  int max_z() const { return max_z_; }  // the largest Z passed to Solve
 
  private:
   int min_matched_;
+  BootstrapOutcome unsolved_;
+  bool from_sonar_;
   mutable int calls_ = 0;
+  mutable int max_z_ = 0;
 };
 
 }  // namespace atlas

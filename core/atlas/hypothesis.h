@@ -12,8 +12,9 @@
 //   retired   a mature hypothesis that failed. Its frame keeps the map; the frame may later be
 //             reactivated by a juvenile.
 // Transitions (pure functions below, applied by the Atlas once per step):
-//   juvenile -> deleted    w (eq. 12) could not be solved after the bootstrap scans, or at the
-//                          end of probation its q does not beat every mature hypothesis;
+//   juvenile -> deleted    w (eq. 12) failed after the bootstrap scans (or was still
+//                          undetermined at the end of probation), or at the end of probation
+//                          its q does not beat every mature hypothesis;
 //   juvenile -> mature     at the end of probation its q beats every mature hypothesis (or no
 //                          mature hypothesis exists);
 //   mature   -> retired    q stayed below q_fail for fail_steps consecutive steps while another
@@ -94,25 +95,38 @@ class QualityWindow {
 enum class HypothesisState : uint8_t { kJuvenile = 0, kMature = 1, kRetired = 2 };
 const char* HypothesisStateName(HypothesisState s);
 
-// One scan kept for the bootstrap function w (eq. 12).
+// One step kept for the bootstrap function w (eq. 12): a laser scan, or a sonar reading when
+// w solves from sonar (PoseBootstrapper::FromSonar; `scan` is then empty).
 struct JuvenileScan {
-  Pose2 odometry_delta;  // motion from the previous scan to this one, robot frame
+  Pose2 odometry_delta;  // motion from the previous step to this one, robot frame
   LaserScan scan;
   ScanUpdate update;  // what the seeded juvenile made of it
+  SonarReading sonar;
 };
 
-enum class BootstrapOutcome { kSolved, kFailed };
+// kUndetermined: Z does not determine the pose yet (too few explained measurements, or a
+// direction they leave free); the atlas keeps accumulating Z and calls w again at the next
+// step, until the end of probation, when the juvenile is killed as for kFailed.
+enum class BootstrapOutcome { kSolved, kFailed, kUndetermined };
 struct PoseBootstrap {
   BootstrapOutcome outcome = BootstrapOutcome::kFailed;
-  UncertainPose pose;  // the robot pose at the last scan of Z, in the map's frame
+  UncertainPose pose;  // the robot pose at the last step of Z, in the map's frame
+  // M_i^new of eq. 12 when w makes one (it then replaces the juvenile's trial map, whose robot
+  // pose is `pose`); null: the trial map is kept and its robot pose is reset to `pose`.
+  std::unique_ptr<LocalMap> map;
 };
 
-// w of eq. 12: solves for the robot pose in `map` from the scans Z alone, independently of the
-// seed. `map` is the juvenile's map (its robot pose is the seed, which w must not rely on).
+// w of eq. 12: solves for the robot pose from the measurements Z alone, independently of the
+// seed. `map` is the juvenile's map (its robot pose is the seed, which w must not rely on
+// beyond proposing correspondences); `frame_map` is M_i, the frame's map as the juvenile found
+// it (the juvenile works on a clone, so it holds nothing of the seed).
 class PoseBootstrapper {
  public:
   virtual ~PoseBootstrapper() = default;
-  virtual PoseBootstrap Solve(const LocalMap& map, const std::vector<JuvenileScan>& z) const = 0;
+  virtual PoseBootstrap Solve(const LocalMap& map, const LocalMap& frame_map,
+                              const std::vector<JuvenileScan>& z) const = 0;
+  // Whether Z holds the juvenile's sonar steps (true) or its laser steps (false, the default).
+  virtual bool FromSonar() const { return false; }
 };
 
 struct Hypothesis {

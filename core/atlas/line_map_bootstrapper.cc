@@ -6,7 +6,7 @@
 
 namespace atlas {
 
-PoseBootstrap LineMapBootstrapper::Solve(const LocalMap& map,
+PoseBootstrap LineMapBootstrapper::Solve(const LocalMap& map, const LocalMap& /*frame_map*/,
                                          const std::vector<JuvenileScan>& z) const {
   PoseBootstrap out;
   if (z.empty()) return out;

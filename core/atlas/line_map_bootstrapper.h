@@ -18,7 +18,9 @@ class LineMapBootstrapper : public PoseBootstrapper {
  public:
   // `options` must be valid (the same options the maps were made with).
   explicit LineMapBootstrapper(const LocalMapOptions& options) : options_(options) {}
-  PoseBootstrap Solve(const LocalMap& map, const std::vector<JuvenileScan>& z) const override;
+  // Solves against `map`'s lines (the juvenile's trial map); `frame_map` is not used.
+  PoseBootstrap Solve(const LocalMap& map, const LocalMap& frame_map,
+                      const std::vector<JuvenileScan>& z) const override;
 
  private:
   LocalMapOptions options_;

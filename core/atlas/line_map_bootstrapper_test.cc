@@ -43,9 +43,9 @@ struct Corridor {
       LaserScan scan = scanner.Scan(truth);
       if (blind) scan.ranges.assign(scan.ranges.size(), kNoReturn);
       const ScanUpdate u = trial->Update(scan, false);
-      z.push_back(JuvenileScan{delta, scan, u});
+      z.push_back(JuvenileScan{delta, scan, u, SonarReading{}});
     }
-    return LineMapBootstrapper(options).Solve(*trial, z);
+    return LineMapBootstrapper(options).Solve(*trial, map, z);
   }
 };
 
@@ -68,7 +68,8 @@ TEST(LineMapBootstrapper, SolvesThePoseFromTheScansNotTheSeed) {
 TEST(LineMapBootstrapper, FailsWithoutExplainedMeasurements) {
   Corridor c;
   EXPECT_EQ(c.Juvenile(Pose2{}, 4, /*blind=*/true).outcome, BootstrapOutcome::kFailed);
-  EXPECT_EQ(LineMapBootstrapper(c.options).Solve(c.map, {}).outcome, BootstrapOutcome::kFailed);
+  EXPECT_EQ(LineMapBootstrapper(c.options).Solve(c.map, c.map, {}).outcome,
+            BootstrapOutcome::kFailed);
 }
 
 }  // namespace

@@ -144,6 +144,14 @@ void SonarLocalMap::ResetRobotPose(const UncertainPose& pose) {
   vantages_.Reanchor(before, p0, ekf_.RobotPose().mean, ekf_.RobotPose().cov);
 }
 
+void SonarLocalMap::SetRobotPoseFromFeatures(
+    const Pose2& pose, const Mat3& observation_cov, const std::vector<int>& feature_index,
+    const Eigen::Matrix<double, 3, Eigen::Dynamic>& d_lines) {
+  init_.Clear();
+  vantages_.Clear();
+  ekf_.SetRobotPoseFromFeatures(pose, observation_cov, feature_index, d_lines);
+}
+
 void SonarLocalMap::SyncVantages() {
   if (!o_.init.delayed_states) return;
   const std::vector<int64_t> in_use = init_.VantagesInUse();

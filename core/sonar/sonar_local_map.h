@@ -101,12 +101,23 @@ class SonarLocalMap final : public LocalMap {
   // eq. 5 over the recent window of the enabled sensors.
   double Quality() const;
 
+  // Sets the robot pose to one solved from the features alone (the sonar w of eq. 12,
+  // sonar_map_bootstrapper.h): LineEkfMap::SetRobotPoseFromFeatures, which keeps the
+  // robot-feature cross covariances. The returns buffered for initialisation and their vantage
+  // states are dropped: they were fired before the robot left this frame, and their poses
+  // relative to the robot now are unknown.
+  void SetRobotPoseFromFeatures(const Pose2& pose, const Mat3& observation_cov,
+                                const std::vector<int>& feature_index,
+                                const Eigen::Matrix<double, 3, Eigen::Dynamic>& d_lines);
+
   const LineEkfMap& Ekf() const { return ekf_; }
   const SonarLineInitializer& Initializer() const { return init_; }
   const DelayedVantages& Vantages() const { return vantages_; }
   const SonarLocalMapOptions& Options() const { return o_; }
 
  private:
+  // Predict with the given covariance, or the odometry noise model when null.
+  void PredictWith(const Pose2& u, const Mat3* covariance);
   bool Duplicate(const ObservedLine& z) const;
   // True when the cone of a return fired from `sensor` (map frame) is blocked by a mapped wall
   // nearer than the range (central and both edge rays meet a feature's extent at least
@@ -116,8 +127,6 @@ class SonarLocalMap final : public LocalMap {
   SonarLocalMapOptions o_;
   LineEkfMap ekf_;
   SonarLineInitializer init_;
-  // Predict with the given covariance, or the odometry noise model when null.
-  void PredictWith(const Pose2& u, const Mat3* covariance);
   // Keeps the vantage points that buffered returns refer to as delayed states (adds new ones,
   // marginalises unused ones).
   void SyncVantages();

@@ -11,6 +11,7 @@
 
 #include "core/sonar/fake_sonar_ring.h"
 #include "core/sonar/sonar_local_map.h"
+#include "core/sonar/sonar_map_bootstrapper.h"
 
 namespace atlas {
 namespace {
@@ -26,6 +27,8 @@ std::vector<FakeSonarWall> Rooms() {
   return w;
 }
 
+constexpr Pose2 kCircleStep{0.05, 0.0, 0.05};  // a circle of 1 m radius
+
 SonarLocalMap MappedCorridor(int capacity) {
   SonarLocalMapOptions o;
   o.line_map.capacity = capacity;
@@ -39,6 +42,24 @@ SonarLocalMap MappedCorridor(int capacity) {
     map.UpdateSonar(FireFakeSonarRing(Rooms(), ring, truth, 0.01, rng), ring, true);
     truth = Compose(truth, u);
     map.Predict(u);
+  }
+  return map;
+}
+
+// The room mapped at capacity 10 through LocalMap::UpdateWithSonar with `ring`, driving 500
+// steps round a 1 m circle; `truth` (the robot's pose in the map) and `rng` go on from there.
+SonarLocalMap MappedRoom(const std::vector<SonarTransducer>& ring, Pose2& truth,
+                         std::mt19937_64& rng) {
+  SonarLocalMapOptions o;
+  o.line_map.capacity = 10;
+  o.ring = ring;
+  SonarLocalMap map(o);
+  truth = Pose2{0.0, -1.0, 0.0};
+  map.ResetRobotPose(UncertainPose{truth, Mat3::Zero()});
+  for (int i = 0; i < 500; ++i) {
+    map.UpdateWithSonar(FireFakeSonarRing(Rooms(), o.ring, truth, 0.01, rng), true);
+    truth = Compose(truth, kCircleStep);
+    map.Predict(kCircleStep);
   }
   return map;
 }
@@ -62,21 +83,11 @@ BENCHMARK(BM_UpdateSonarAtCapacity)->Unit(benchmark::kMicrosecond);
 // the whole ring (16 or 24 transducers), with the map built with that ring and at capacity
 // (10 features): the gated EKF update and one delayed-decision round on the buffer.
 void BM_UpdateWithSonarFullRing(benchmark::State& state) {
-  const int count = static_cast<int>(state.range(0));
-  SonarLocalMapOptions o;
-  o.line_map.capacity = 10;
-  o.ring = FakeSonarRing(count);
-  SonarLocalMap base(o);
   std::mt19937_64 rng(3);
-  Pose2 truth{0.0, -1.0, 0.0};
-  base.ResetRobotPose(UncertainPose{truth, Mat3::Zero()});
-  const Pose2 u{0.05, 0.0, 0.05};
-  for (int i = 0; i < 500; ++i) {
-    base.UpdateWithSonar(FireFakeSonarRing(Rooms(), o.ring, truth, 0.01, rng), true);
-    truth = Compose(truth, u);
-    base.Predict(u);
-  }
-  const SonarReading reading = FireFakeSonarRing(Rooms(), o.ring, truth, 0.01, rng);
+  Pose2 truth;
+  const SonarLocalMap base =
+      MappedRoom(FakeSonarRing(static_cast<int>(state.range(0))), truth, rng);
+  const SonarReading reading = FireFakeSonarRing(Rooms(), base.Options().ring, truth, 0.01, rng);
   int matched = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -136,6 +147,43 @@ void BM_UpdateSonarAllVantagePoints(benchmark::State& state) {
   TimeUpdateWithClutter(state, 11, 2 * SonarInitOptions{}.max_vantage, 2, Pose2{0.01, 0.0, 0.005});
 }
 BENCHMARK(BM_UpdateSonarAllVantagePoints)->Unit(benchmark::kMicrosecond);
+
+// Cost of the sonar w (SonarMapBootstrapper::Solve, eq. 12) on a map at capacity (10 lines of a
+// ten-sided room) for Z of N readings, each of the whole 24-transducer ring (the worst case: a
+// P2OS SIP or the simulator carries about 4 returns); the atlas calls it once per juvenile and
+// step from bootstrap_scans until it solves or probation (kSonarBootstrapProbation) ends.
+// 2026-11-23 (RelWithDebInfo, shared 2-core VM, load 4-6): N = 4, 190 us CPU (undetermined: the
+// heading's sigma 0.11 rad from one place); N = 30 (720 returns), 2.2 ms CPU, solved.
+void BM_SonarWSolve(benchmark::State& state) {
+  const int readings = static_cast<int>(state.range(0));
+  std::mt19937_64 rng(3);
+  Pose2 truth;
+  const SonarLocalMap frame = MappedRoom(FakeSonarRing24(), truth, rng);
+  const Pose2 u = kCircleStep;
+  std::unique_ptr<LocalMap> trial = frame.Clone();
+  trial->ResetRobotPose(
+      UncertainPose{Compose(truth, Pose2{0.1, -0.1, 0.05}), Vec3(0.04, 0.04, 0.01).asDiagonal()});
+  std::vector<JuvenileScan> z;
+  for (int i = 0; i < readings; ++i) {
+    truth = Compose(truth, u);
+    JuvenileScan s;
+    s.odometry_delta = u;
+    s.sonar = FireFakeSonarRing(Rooms(), frame.Options().ring, truth, 0.01, rng);
+    trial->Predict(u);
+    trial->UpdateWithSonar(s.sonar, false);
+    z.push_back(s);
+  }
+  const SonarMapBootstrapper w;
+  int solved = 0;
+  for (auto _ : state) {
+    const PoseBootstrap r = w.Solve(*trial, frame, z);
+    solved = r.outcome == BootstrapOutcome::kSolved ? 1 : 0;
+    benchmark::DoNotOptimize(r.pose);
+  }
+  state.counters["features"] = frame.Complexity();
+  state.counters["solved"] = solved;
+}
+BENCHMARK(BM_SonarWSolve)->Arg(4)->Arg(30)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace atlas

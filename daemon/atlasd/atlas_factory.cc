@@ -4,6 +4,7 @@
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/localmap_options.h"
 #include "core/sonar/sonar_local_map.h"
+#include "core/sonar/sonar_map_bootstrapper.h"
 
 namespace atlas {
 namespace {
@@ -35,6 +36,8 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
   o.match_candidates_per_step = s.match_candidates_per_step;
   if (s.sensors == RangeSensors::kSonar) {
     o.match = SonarMapMatchOptions(o.match);
+    if (s.sonar_bootstrap)
+      o.lifecycle.probation_scans = std::max(o.lifecycle.probation_scans, kSonarBootstrapProbation);
   } else {
     o.match.unknown_line_correlation = true;
     o.match.alternative_sigmas = 3.0;
@@ -73,6 +76,8 @@ std::unique_ptr<Atlas> MakeAtlas(const MapperSettings& s) {
   const SonarLocalMapOptions sonar = ToSonarMapOptions(s);
   std::shared_ptr<const PoseBootstrapper> w;
   if (s.sensors == RangeSensors::kBoth) w = std::make_shared<LineMapBootstrapper>(map_options);
+  if (s.sensors == RangeSensors::kSonar && s.sonar_bootstrap)
+    w = std::make_shared<SonarMapBootstrapper>();
   return std::make_unique<Atlas>(
       ToAtlasOptions(s), [sonar]() { return std::make_unique<SonarLocalMap>(sonar); }, w);
 }

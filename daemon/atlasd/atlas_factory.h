@@ -3,7 +3,9 @@
 // the laser alone (MapperSettings::sensors) they are line-EKF maps (core/localmap), with w
 // (eq. 12) bound by LineMapBootstrapper; with the sonar ring alone or with both they are
 // SonarLocalMaps (core/sonar: the same EKF, fed by Atlas::Step with SonarReadings too), w from
-// the laser scans when there is a laser, none for sonar alone (juveniles judged on q). With
+// the laser scans when there is a laser; for sonar alone the sonar w (SonarMapBootstrapper,
+// core/sonar/sonar_map_bootstrapper.h) unless MapperSettings::sonar_bootstrap is off (then
+// juveniles keep their seeded pose and are judged on q alone: docs/sonar.md, session 8). With
 // sonar alone, map-matching uses SonarMapMatchOptions (core/atlas/map_match.h); with laser
 // lines, unknown_line_correlation (t's covariance n times the independent-lines one): on the six
 // corrected logs with 24 frames examined it cut the map-match edges beyond 3 sigma of the
@@ -50,6 +52,8 @@ struct MapperSettings {
   // they use the sonar; the sonar model keeps core/sonar's defaults.
   RangeSensors sensors = RangeSensors::kLaser;
   std::vector<SonarTransducer> sonar_ring;
+  // Sonar alone: w (eq. 12) from the sonar readings (SonarMapBootstrapper); off for comparison.
+  bool sonar_bootstrap = true;
   // Scan-to-scan matching before each laser step (StepLoop; off by default).
   ScanMatchOptions scan_match;
 };

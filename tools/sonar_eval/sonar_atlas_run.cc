@@ -95,6 +95,10 @@ AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
     r.rejected += st.match_rejected;
     for (int k = 0; k < kMapMatchReasonCount; ++k) r.reasons[k] += st.match_reasons[k];
     r.genesis += st.genesis;
+    r.seeded += st.seeded;
+    r.matured += st.matured;
+    r.deleted += st.deleted;
+    r.killed_by_w += st.killed_by_w;
     r.frames = st.frames;
     for (; edges_seen < atlas.Graph().Edges().size(); ++edges_seen) {
       const AtlasEdge& edge = atlas.Graph().Edges()[edges_seen];

@@ -81,6 +81,8 @@ struct AtlasRunReport {
   std::vector<double> nees;  // of the dominant pose in its frame; < 0 when the origin is unknown
   int steps = 0, frames = 0, genesis = 0;
   int accepted = 0, ambiguous = 0, rejected = 0;
+  // Traversal juveniles (III-E): seeded, matured, deleted (of which killed by w, eq. 12).
+  int seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
   std::array<int, kMapMatchReasonCount> reasons{};
   replay::ClosureReport closures;  // the map-match edges of the final graph vs ground truth
   // The same edges as map-matching made them (before any edge refinement, III-F), in the order

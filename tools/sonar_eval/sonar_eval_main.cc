@@ -31,6 +31,7 @@
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_model.h"
 #include "core/sonar/sonar_local_map.h"
+#include "core/sonar/sonar_map_bootstrapper.h"
 #include "drivers/sim/building_generator.h"
 #include "drivers/sim/laser_model.h"
 #include "drivers/sim/ray_caster.h"
@@ -57,7 +58,8 @@ constexpr char kUsage[] =
     "                             [--delayed-states 0|1 (1)] [--edge-extent 0|1 (1)]\n"
     "                             [--redundancy-sigma S=0.25] [--redundancy-prior H=0.5]\n"
     "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
-    "                             [--seed-cov-scale F=1]\n"
+    "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (1)]\n"
+    "                             [--bootstrap-steps N] [--probation N] [--w-edge-echoes 0|1 (0)]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
     "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
@@ -94,6 +96,11 @@ constexpr char kUsage[] =
     "      (AtlasOptions::keep_frame_map_without_w, an experiment).\n"
     "      --seed-cov-scale F: traversal seeds of the sonar atlas get F times the projected\n"
     "      covariance (AtlasOptions::seed_cov_scale_without_w, an experiment).\n"
+    "      --sonar-w 0: the sonar atlas without w (eq. 12; SonarMapBootstrapper), its juveniles\n"
+    "      keep their seeded pose and trial map. --bootstrap-steps N, --probation N: the sonar\n"
+    "      atlas's lifecycle.bootstrap_scans and probation_scans (default: SonarAtlasOptions',\n"
+    "      with w at least kSonarBootstrapProbation). --w-edge-echoes 1: w pairs edge-of-cone\n"
+    "      echoes too (SonarBootstrapOptions::edge_echoes).\n"
     "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
     "      to a feature is checked against the wall the simulator echoed it from (in-cone and\n"
     "      edge-of-cone pairings: the true wall's line, another line, or no wall: multipath);\n"
@@ -545,11 +552,15 @@ void PrintNeesBand(const char* name, const std::vector<sonar_eval::AtlasRunRepor
 
 void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport>& runs) {
   int frames = 0, genesis = 0, acc = 0, amb = 0, rej = 0, edges = 0, false_chi2 = 0, gross = 0,
-      made_false = 0, made_gross = 0;
+      made_false = 0, made_gross = 0, seeded = 0, matured = 0, deleted = 0, killed = 0;
   std::array<int, kMapMatchReasonCount> reasons{};
   for (const auto& r : runs) {
     frames += r.frames;
     genesis += r.genesis;
+    seeded += r.seeded;
+    matured += r.matured;
+    deleted += r.deleted;
+    killed += r.killed_by_w;
     acc += r.accepted;
     amb += r.ambiguous;
     rej += r.rejected;
@@ -570,6 +581,8 @@ void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport
     if (reasons[k] > 0)
       std::printf(" %s %d", MapMatchReasonName(static_cast<MapMatchReason>(k)), reasons[k]);
   }
+  std::printf("\n    juveniles: %d seeded, %d matured, %d deleted (%d killed by w)", seeded,
+              matured, deleted, killed);
   std::printf(
       "\n    map-match edges vs ground truth: %d edges, %d false closures (chi2 3 dof > 14.16), "
       "%d gross (> 0.5 m or 5 deg); as map-matching made them (before edge refinement): %d "
@@ -630,20 +643,23 @@ struct TraceWriter {
       std::fprintf(
           f,
           "%d\t%.2f\t%lld\t%d\t%s\t%d\t%.3f\t%.2f\t%.3f\t%.3f\t%.4f\t%.3f\t%.3f\t%.4f\t%d\t"
-          "%d\t%d\t%d\n",
+          "%d\t%d\t%d\t%d\n",
           run, ToSeconds(stamp), static_cast<long long>(h.id), h.frame,
           HypothesisStateName(h.state), h.dominant ? 1 : 0, h.q, sonar_eval::PoseNees(p, t),
           p.mean.x - t.x, p.mean.y - t.y, WrapAngle(p.mean.theta - t.theta), std::sqrt(p.cov(0, 0)),
           std::sqrt(p.cov(1, 1)), std::sqrt(p.cov(2, 2)), h.last_update.observations,
           h.last_update.matched, h.last_update.added,
-          atlas.Graph().Frame(h.frame).map->Complexity());
+          atlas.Graph().Frame(h.frame).map->Complexity(), h.bootstrapped ? 1 : 0);
     }
   }
 };
 
 int RunAtlasMode(const Args& args) {
+  const AtlasOptions sonar_defaults = sonar_eval::SonarAtlasOptions();
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
          self_match = 1, delayed = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1,
+         sonar_w = 1, w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
+         bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
          redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
          redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth;
   sonar_eval::AlcoveLoopOptions loop;
@@ -662,6 +678,10 @@ int RunAtlasMode(const Args& args) {
       !GetNumberOption(args, "--line-correlation", 0, 1, line_correlation, error) ||
       !GetNumberOption(args, "--keep-frame-map", 0, 1, keep_frame_map, error) ||
       !GetNumberOption(args, "--seed-cov-scale", 1, 100, seed_scale, error) ||
+      !GetNumberOption(args, "--sonar-w", 0, 1, sonar_w, error) ||
+      !GetNumberOption(args, "--w-edge-echoes", 0, 1, w_edge_echoes, error) ||
+      !GetNumberOption(args, "--bootstrap-steps", 1, 1000, bootstrap_steps, error) ||
+      !GetNumberOption(args, "--probation", 2, 1000, probation, error) ||
       !GetNumberOption(args, "--redundancy-prior", 0, 100, redundancy_prior, error) ||
       !GetNumberOption(args, "--period", 0.5, 100, loop.period, error) ||
       !GetNumberOption(args, "--loop-length", 5, 1000, loop.length, error) ||
@@ -690,7 +710,7 @@ int RunAtlasMode(const Args& args) {
     }
     std::fprintf(trace,
                  "# run\tt\thypothesis\tframe\tstate\tdominant\tq\tnees\tex\tey\tetheta\tsx\tsy\t"
-                 "stheta\tobservations\tmatched\tadded\tlines\n");
+                 "stheta\tobservations\tmatched\tadded\tlines\tbootstrapped\n");
   }
   const int n = static_cast<int>(runs);
   std::vector<sonar_eval::AtlasRunReport> sonar_runs, laser_runs;
@@ -729,10 +749,24 @@ int RunAtlasMode(const Args& args) {
     ao.match.unknown_line_correlation = line_correlation != 0;
     ao.keep_frame_map_without_w = keep_frame_map != 0;
     ao.seed_cov_scale_without_w = seed_scale;
+    ao.lifecycle.bootstrap_scans = static_cast<int>(bootstrap_steps);
+    ao.lifecycle.probation_scans =
+        probation > 0 ? static_cast<int>(probation)
+        : sonar_w != 0
+            ? std::max(sonar_defaults.lifecycle.probation_scans, kSonarBootstrapProbation)
+            : sonar_defaults.lifecycle.probation_scans;
+    if (std::string e = ao.Validate(); !e.empty()) {
+      std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar atlas options: %s\n", e.c_str());
+      return 2;
+    }
     AtlasOptions laser_ao;
     laser_ao.match.self_match = self_match != 0;
+    std::shared_ptr<const PoseBootstrapper> sonar_bootstrapper;
+    SonarBootstrapOptions wo;
+    wo.edge_echoes = w_edge_echoes != 0;
+    if (sonar_w != 0) sonar_bootstrapper = std::make_shared<SonarMapBootstrapper>(wo);
     Atlas sonar_atlas(
-        ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, nullptr);
+        ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, sonar_bootstrapper);
     TraceWriter tw{trace, r + 1};
     sonar_runs.push_back(sonar_eval::RunAtlas(
         sonar_atlas, rec, true,
@@ -948,7 +982,8 @@ int main(int argc, char** argv) {
         {"--world", "--ring", "--seed", "--runs", "--km", "--rooms", "--capacity", "--laser",
          "--trace", "--self-match", "--period", "--loop-length", "--loop-width", "--delayed-states",
          "--edge-extent", "--redundancy-sigma", "--line-correlation", "--redundancy-prior",
-         "--keep-frame-map", "--seed-cov-scale"});
+         "--keep-frame-map", "--seed-cov-scale", "--sonar-w", "--bootstrap-steps", "--probation",
+         "--w-edge-echoes"});
     // clang-format on
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
