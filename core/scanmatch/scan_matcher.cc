@@ -67,6 +67,11 @@ std::string ScanMatchOptions::Validate() const {
   if (heading_search > 0.0 && (!Positive(heading_step) || heading_search / heading_step > 200.0))
     return "scan_match: heading_step must be > 0 and at least heading_search / 200";
   if (!Positive(coarse_distance)) return "scan_match: coarse_distance must be > 0";
+  if (!(recovery_heading_search >= 0.0) || recovery_heading_search > 1.6)
+    return "scan_match: recovery_heading_search must be 0 to 1.6 rad";
+  if (recovery_heading_search > 0.0 && recovery_heading_search / heading_step > 200.0)
+    return "scan_match: recovery_heading_search must be at most 200 heading_steps";
+  if (!Positive(recovery_sigma_xy)) return "scan_match: recovery_sigma_xy must be > 0";
   if (min_pairs < 3) return "scan_match: min_pairs must be at least 3";
   if (!(min_pair_fraction >= 0.0) || min_pair_fraction > 1.0)
     return "scan_match: min_pair_fraction must be 0 to 1";
@@ -187,6 +192,26 @@ int ScanMatcher::CountPairs(const Pose2& x, const std::vector<Vec2>& points,
   return count;
 }
 
+Pose2 ScanMatcher::SearchHeading(const Pose2& u, double half_width) const {
+  Pose2 x = u;
+  if (!(half_width > 0.0)) return x;
+  const int steps = static_cast<int>(half_width / options_.heading_step);
+  int best = -1;
+  for (int k = 0; k <= steps; ++k) {
+    for (int sign : {1, -1}) {
+      if (k == 0 && sign < 0) continue;
+      Pose2 trial = u;
+      trial.theta = WrapAngle(u.theta + sign * k * options_.heading_step);
+      const int count = CountPairs(trial, points_, options_.coarse_distance);
+      if (count > best) {
+        best = count;
+        x = trial;
+      }
+    }
+  }
+  return x;
+}
+
 ScanMatchResult ScanMatcher::Match(const LaserScan& scan, const UncertainPose& prior) {
   ScanMatchResult out;
   out.increment = prior;
@@ -200,26 +225,27 @@ ScanMatchResult ScanMatcher::Match(const LaserScan& scan, const UncertainPose& p
   }
   out.points = static_cast<int>(points_.size());
   if (!has_reference_ || out.points < options_.min_pairs) return out;
-
-  const Pose2& u = prior.mean;
-  Pose2 x = u;
-  if (options_.heading_search > 0.0) {
-    const int steps = static_cast<int>(options_.heading_search / options_.heading_step);
-    int best = -1;
-    for (int k = 0; k <= steps; ++k) {
-      for (int sign : {1, -1}) {
-        if (k == 0 && sign < 0) continue;
-        Pose2 trial = u;
-        trial.theta = WrapAngle(u.theta + sign * k * options_.heading_step);
-        const int count = CountPairs(trial, points_, options_.coarse_distance);
-        if (count > best) {
-          best = count;
-          x = trial;
-        }
-      }
-    }
+  Solve(SearchHeading(prior.mean, options_.heading_search), prior, &out);
+  if (out.outcome == ScanMatchOutcome::kMatched || !(options_.recovery_heading_search > 0.0))
+    return out;
+  // The scans do not pair at the odometry's increment: the wheels are wrong by more than the
+  // prior allows (or the view changed). Search wider, with the odometry as a weak prior.
+  UncertainPose weak = prior;
+  const double sxy = options_.recovery_sigma_xy, st = options_.recovery_heading_search;
+  weak.cov = Vec3(sxy * sxy, sxy * sxy, st * st).asDiagonal();
+  ScanMatchResult retry = out;
+  Solve(SearchHeading(prior.mean, options_.recovery_heading_search), weak, &retry);
+  if (retry.outcome == ScanMatchOutcome::kMatched) {
+    retry.recovered = true;
+    return retry;
   }
+  return out;
+}
 
+void ScanMatcher::Solve(const Pose2& start, const UncertainPose& prior,
+                        ScanMatchResult* out) const {
+  const Pose2& u = prior.mean;
+  Pose2 x = start;
   const Mat3 q_inverse = (prior.cov + 1e-12 * Mat3::Identity()).inverse();
   const double inv_var = 1.0 / (options_.point_sigma * options_.point_sigma);
   const double huber = options_.huber_k * options_.point_sigma;
@@ -257,7 +283,7 @@ ScanMatchResult ScanMatcher::Match(const LaserScan& scan, const UncertainPose& p
     x.x += dx(0);
     x.y += dx(1);
     x.theta = WrapAngle(x.theta + dx(2));
-    out.iterations = it + 1;
+    out->iterations = it + 1;
     // A step of a tenth of a sigma or less: done (the pairing may toggle between two sets
     // one point apart, which moves x by far less than its uncertainty).
     if (final_pass && dx.dot(h * dx) < 1e-2) {
@@ -265,21 +291,20 @@ ScanMatchResult ScanMatcher::Match(const LaserScan& scan, const UncertainPose& p
       break;
     }
   }
-  out.pairs = pairs;
-  out.rms = pairs > 0 ? std::sqrt(sum_r2 / pairs) : 0.0;
+  out->pairs = pairs;
+  out->rms = pairs > 0 ? std::sqrt(sum_r2 / pairs) : 0.0;
   if (!converged) {
-    out.outcome = ScanMatchOutcome::kNotConverged;
-    return out;
+    out->outcome = ScanMatchOutcome::kNotConverged;
+    return;
   }
-  if (pairs < options_.min_pairs || pairs < options_.min_pair_fraction * out.points) {
-    out.outcome = ScanMatchOutcome::kTooFewPairs;
-    return out;
+  if (pairs < options_.min_pairs || pairs < options_.min_pair_fraction * out->points) {
+    out->outcome = ScanMatchOutcome::kTooFewPairs;
+    return;
   }
   Mat3 cov = (scale * h_icp + q_inverse).inverse();
   cov = 0.5 * (cov + cov.transpose());
-  out.outcome = ScanMatchOutcome::kMatched;
-  out.increment = UncertainPose{x, cov};
-  return out;
+  out->outcome = ScanMatchOutcome::kMatched;
+  out->increment = UncertainPose{x, cov};
 }
 
 }  // namespace atlas
