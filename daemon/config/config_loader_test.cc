@@ -198,6 +198,12 @@ TEST(ConfigLoader, LocalMapSensorsChoosesLaserSonarOrBoth) {
   ASSERT_TRUE(both.ok()) << both.errors[0].ToString();
   EXPECT_EQ(both.options.localmap.sensors, LocalMapSensors::kBoth);
   EXPECT_EQ(DaemonOptions{}.localmap.sensors, LocalMapSensors::kLaser);
+  EXPECT_TRUE(DaemonOptions{}.localmap.sonar_bootstrap);
+  const ConfigResult no_w = LoadConfigString(
+      "[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\nsonar_bootstrap = false\n",
+      "test.toml");
+  ASSERT_TRUE(no_w.ok());
+  EXPECT_FALSE(no_w.options.localmap.sonar_bootstrap);
   // An unknown value is rejected with the key, the line and the accepted values.
   ExpectOneError(LoadConfigString("\n[localmap]\nsensors = \"radar\"\n", "test.toml"),
                  "localmap.sensors", 3, "must be one of \"laser\", \"sonar\", \"both\"");
@@ -266,7 +272,7 @@ TEST(ConfigLoader, FlattenOptionsWritesFileSyntax) {
   EXPECT_EQ(flat.at("lcm.channels.pose"), "\"ATLAS_POSE\"");
   EXPECT_EQ(flat.at("scheduling.cpu_affinity"), "[0, 1]");
   EXPECT_EQ(flat.at("sonar.enabled"), "false");
-  EXPECT_EQ(flat.size(), 71u) << "a key was added or removed: update config/atlasd.toml";
+  EXPECT_EQ(flat.size(), 72u) << "a key was added or removed: update config/atlasd.toml";
 }
 
 TEST(ConfigLoader, DiffForReloadSeparatesWhatNeedsARestart) {

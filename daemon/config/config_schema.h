@@ -106,7 +106,10 @@ void VisitOptions(V& v, DaemonOptions& o) {
       v.Double("line_alpha_sigma_min_deg", n.line_alpha_sigma_min_deg, 0.0, 30.0);
     });
   });
-  v.Section("localmap", [&] { v.Enum("sensors", o.localmap.sensors, kLocalMapSensorsNames); });
+  v.Section("localmap", [&] {
+    v.Enum("sensors", o.localmap.sensors, kLocalMapSensorsNames);
+    v.Bool("sonar_bootstrap", o.localmap.sonar_bootstrap);
+  });
   v.Section("scan_match", [&] {
     ScanMatchConfig& m = o.scan_match;
     v.Bool("enabled", m.enabled);
