@@ -2,9 +2,8 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <limits>
 
 namespace atlas {
 namespace {
@@ -164,7 +163,7 @@ const ScanMatcher::RefPoint* ScanMatcher::Nearest(const Vec2& w, double max_dist
   const Vec2 s(ref_sensor_t_.x() + ref_sensor_c_ * w.x() - ref_sensor_s_ * w.y(),
                ref_sensor_t_.y() + ref_sensor_s_ * w.x() + ref_sensor_c_ * w.y());
   const double beam = (FastAtan2(s.y(), s.x()) - ref_angle_min_) / ref_increment_;
-  if (!std::isfinite(beam)) return nullptr;
+  if (!(std::abs(beam) < 1e6)) return nullptr;  // NaN, or an absurd beam spacing
   const long n = static_cast<long>(ref_.size());
   const long centre = std::lround(beam);
   const long lo = std::max(0L, centre - options_.search_beams);

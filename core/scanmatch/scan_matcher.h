@@ -16,10 +16,10 @@
 // with q_i the current scan's points (robot frame), p_i and n_i the reference scan's nearest
 // point and its surface normal (local fit over neighbouring beams), found by projecting x (+) q_i
 // into the reference scan's beam index (bounded: `search_beams` either side), rho a Huber
-// kernel, u the odometry increment with covariance Q (the prior). Before the iterations a
-// bounded search over the heading (`heading_search` either side of u in `heading_step` steps)
-// picks the start with the most point pairs within `coarse_distance`: the B21's odometry turns
-// more than the ICP's basin of convergence between two scans.
+// kernel, u the odometry increment with covariance Q (the prior). Optionally (`heading_search`,
+// off by default: on mit-csail it cost 50 % more time and gained nothing, docs/atlas.md session
+// 8) a bounded search over the heading (either side of u in `heading_step` steps) first picks
+// the start with the most point pairs within `coarse_distance`.
 //
 // Covariance: C = (J^T W J / (sigma^2 s) + Q^-1)^-1 at the solution, s = `information_scale`^-1.
 // The Hessian of ICP is known to be over-confident (Censi 2007: the pairing and the normals'
@@ -128,10 +128,6 @@ class ScanMatcher {
     Vec2 n = Vec2::Zero();
     bool has_normal = false;
     bool valid = false;
-  };
-  struct Pair {
-    Vec2 q;  // current point, robot frame
-    const RefPoint* ref;
   };
   // The reference point nearest to w (reference robot frame) among the beams around its
   // projection, or null.
