@@ -823,7 +823,10 @@ bool Atlas::Deserialize(const std::string& bytes) {
       h.trial_map = factory_();
       if (!h.trial_map->Deserialize(blob)) return false;
     }
-    if (!r.Get(&nz) || nz > 1000) return false;
+    // Z holds at most probation_scans steps (an undetermined w accumulates until then).
+    if (!r.Get(&nz) ||
+        nz > static_cast<uint32_t>(std::max(1000, options_.lifecycle.probation_scans)))
+      return false;
     h.z.resize(nz);
     for (JuvenileScan& z : h.z)
       if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &z.scan) || !GetUpdate(&r, &z.update) ||
