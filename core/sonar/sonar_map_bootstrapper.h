@@ -14,8 +14,9 @@
 //   of reading k is placed in the frame of the last reading, p_k, by composing the increments
 //   backwards, each with the odometry noise Q(u) of the map's Predict (LineEkfMap::OdometryNoise).
 // - Model: return j of reading k, paired with map line l, r_j = h(x (+) p_k, m_j, L_l) + v_j
-//   (PredictSonarRange with the map's own options: cone scale, edge echoes; v_j the map's range
-//   noise, variance var_j), x the robot pose at the last reading in the map frame.
+//   (PredictSonarRange with the map's own cone scale, in-cone echoes unless `edge_echoes`; v_j
+//   the map's range noise, variance var_j), x the robot pose at the last reading in the map
+//   frame.
 // - Solution: Gauss-Newton over x alone, the lines held at M_i's estimates:
 //   x = argmin sum_j (r_j - h_j)^2 / var_j. Linearised at the solution, with H = dh/dx,
 //   W = diag(1 / var_j), A = H^T W H: dx = A^-1 H^T W (dv - H_L dL - H_u du), so
