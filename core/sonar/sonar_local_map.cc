@@ -231,6 +231,24 @@ bool SonarLocalMap::ThroughWall(const Pose2& sensor, double half_cone, double ra
   return false;
 }
 
+bool FootWithinExtent(const MapLine& line, const Vec2& foot, double max_extent_gap) {
+  const double t = PositionAlongLine(line.alpha, foot);
+  const double ta = PositionAlongLine(line.alpha, line.endpoint_a);
+  const double tb = PositionAlongLine(line.alpha, line.endpoint_b);
+  return t >= std::min(ta, tb) - max_extent_gap && t <= std::max(ta, tb) + max_extent_gap;
+}
+
+bool NearestLine::Offer(int k, double d2) {
+  if (best_ < 0 || d2 < best_d2_) {
+    if (best_ >= 0) second_d2_ = best_d2_;
+    best_ = k;
+    best_d2_ = d2;
+    return true;
+  }
+  if (second_d2_ < 0.0 || d2 < second_d2_) second_d2_ = d2;
+  return false;
+}
+
 SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
                                        const std::vector<SonarTransducer>& ring,
                                        bool allow_new_features) {
@@ -268,8 +286,8 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
     mount.beam_width *= o_.model.cone_scale;
     const double sigma = o_.model.range_sigma + o_.model.range_sigma_per_m * range;
     const double var = sigma * sigma + o_.model.model_sigma * o_.model.model_sigma;
-    int best = -1;
-    double best_d2 = 0.0, second_d2 = -1.0, best_nu = 0.0;
+    NearestLine nearest;
+    double best_nu = 0.0;
     Eigen::RowVectorXd best_h(n);
     Vec2 best_foot = Vec2::Zero();
     bool best_edge = false;
@@ -279,14 +297,7 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
       const SonarRangePrediction pr =
           PredictSonarRange(robot, mount, x(ik), x(ik + 1), o_.model.edge_incidence);
       if (!pr.echoes()) continue;
-      const MapLine& l = lines[k];
-      const double t = PositionAlongLine(l.alpha, pr.foot);
-      const double ta = PositionAlongLine(l.alpha, l.endpoint_a);
-      const double tb = PositionAlongLine(l.alpha, l.endpoint_b);
-      if (t < std::min(ta, tb) - o_.update.max_extent_gap ||
-          t > std::max(ta, tb) + o_.update.max_extent_gap) {
-        continue;
-      }
+      if (!FootWithinExtent(lines[k], pr.foot, o_.update.max_extent_gap)) continue;
       hk.setZero();
       hk.head<3>() = pr.d_pose;
       hk.segment<2>(ik) = pr.d_line;
@@ -296,19 +307,15 @@ SonarUpdate SonarLocalMap::UpdateSonar(const SonarReading& reading,
       if (d2 < loose) near = true;
       if (innov > o_.update.behind_sigmas * std::sqrt(s)) behind = true;
       if (!(d2 < gate)) continue;
-      if (best < 0 || d2 < best_d2) {
-        if (best >= 0) second_d2 = best_d2;
-        best = k;
-        best_d2 = d2;
+      if (nearest.Offer(k, d2)) {
         best_nu = innov;
         best_h = hk;
         best_foot = pr.foot;
         best_edge = pr.edge_echo;
-      } else if (second_d2 < 0.0 || d2 < second_d2) {
-        second_d2 = d2;
       }
     }
-    if (best >= 0 && (second_d2 < 0.0 || second_d2 - best_d2 > o_.update.ambiguity_margin)) {
+    const int best = nearest.best();
+    if (nearest.Unambiguous(o_.update.ambiguity_margin)) {
       nu(rows) = best_nu;
       h.row(rows) = best_h;
       r(rows) = var;

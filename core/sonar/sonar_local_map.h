@@ -52,6 +52,26 @@
 
 namespace atlas {
 
+// The pairing rule of a sonar return, shared by SonarLocalMap::UpdateSonar and the sonar w
+// (sonar_map_bootstrapper.h). A line is a candidate when the return's tangent point `foot` lies
+// within `max_extent_gap` of the line's observed extent (FootWithinExtent) and the return's
+// innovation is inside the gate; of the candidates the nearest (Mahalanobis d2) is taken, unless
+// the second nearest is within `ambiguity_margin` of it (NearestLine::Unambiguous).
+bool FootWithinExtent(const MapLine& line, const Vec2& foot, double max_extent_gap);
+class NearestLine {
+ public:
+  // Offers line k at d2 (inside the gate); true when k is now the nearest.
+  bool Offer(int k, double d2);
+  int best() const { return best_; }  // -1: none offered
+  bool Unambiguous(double ambiguity_margin) const {
+    return best_ >= 0 && (second_d2_ < 0.0 || second_d2_ - best_d2_ > ambiguity_margin);
+  }
+
+ private:
+  int best_ = -1;
+  double best_d2_ = 0.0, second_d2_ = -1.0;
+};
+
 // One return applied to a feature by UpdateSonar.
 struct SonarPairing {
   int return_index = -1;    // into the reading's returns

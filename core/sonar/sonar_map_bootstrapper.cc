@@ -103,17 +103,11 @@ SonarBootstrapResult SonarMapBootstrapper::SolvePose(const LocalMap& frame_map,
     for (int j = 0; j < static_cast<int>(returns.size()); ++j) {
       const UsableReturn& r = returns[j];
       const Mat3 ja = ComposeJacobianA(x, p[r.reading]);
-      int best = -1;
-      double best_d2 = 0.0, second_d2 = -1.0;
+      NearestLine nearest;
       for (int l = 0; l < nl; ++l) {
         const SonarRangePrediction pr = predict(x, r, l);
         if (!pr.in_cone && !(o_.edge_echoes && pr.edge_echo)) continue;
-        const double t = PositionAlongLine(lines[l].alpha, pr.foot);
-        const double ta = PositionAlongLine(lines[l].alpha, lines[l].endpoint_a);
-        const double tb = PositionAlongLine(lines[l].alpha, lines[l].endpoint_b);
-        if (t < std::min(ta, tb) - mo.update.max_extent_gap ||
-            t > std::max(ta, tb) + mo.update.max_extent_gap)
-          continue;
+        if (!FootWithinExtent(lines[l], pr.foot, mo.update.max_extent_gap)) continue;
         const Eigen::RowVector3d hx = pr.d_pose * ja, hp = pr.d_pose * jb;
         const double s = (hx * c * hx.transpose())(0, 0) +
                          (pr.d_line * lines[l].cov * pr.d_line.transpose())(0, 0) +
@@ -121,16 +115,9 @@ SonarBootstrapResult SonarMapBootstrapper::SolvePose(const LocalMap& frame_map,
         const double innov = r.range - pr.range;
         const double d2 = innov * innov / s;
         if (!(d2 < gate)) continue;
-        if (best < 0 || d2 < best_d2) {
-          if (best >= 0) second_d2 = best_d2;
-          best = l;
-          best_d2 = d2;
-        } else if (second_d2 < 0.0 || d2 < second_d2) {
-          second_d2 = d2;
-        }
+        nearest.Offer(l, d2);
       }
-      if (best >= 0 && (second_d2 < 0.0 || second_d2 - best_d2 > mo.update.ambiguity_margin))
-        pairs.emplace_back(j, best);
+      if (nearest.Unambiguous(mo.update.ambiguity_margin)) pairs.emplace_back(j, nearest.best());
     }
   };
   const auto gauss_newton = [&](Pose2& x, const Pairing& pairs) {
