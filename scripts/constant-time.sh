@@ -12,7 +12,8 @@
 # Environment: ATLAS_BIN (directory of atlas-sim, atlas-replay, atlas-render; default
 # <repo>/build/release/bin, built if missing), ROOMS (default 2400), KM (default 25), SEED (1),
 # PNG_PREFIX (default OUT/constant-time: writes PREFIX-time.png and PREFIX-frames.png),
-# KEEP_SIM=1 to reuse OUT/sim if it is there; REPEAT (default 2): replays of the same run. The
+# KEEP_SIM=1 to reuse OUT/sim if it is there; REPLAY_ARGS (extra atlas-replay arguments, e.g.
+# "--config FILE"); REPEAT (default 2): replays of the same run. The
 # atlas is deterministic, so a step's own cost is the same in every replay, while the machine
 # (a shared virtual machine: preemption and steal are counted in a thread's CPU time) adds
 # spikes at different steps each time: the maximum over steps of the minimum over the replays
@@ -39,12 +40,14 @@ else
     --out "$OUT/sim" >&2
 fi
 echo "== replaying" >&2
-/usr/bin/time -v -o "$OUT/time-v.txt" "$BIN/atlas-replay" --out "$OUT/replay" "$OUT/sim" \
+# REPLAY_ARGS: extra atlas-replay arguments, e.g. "--config FILE" to map as atlasd would.
+read -r -a replay_args <<<"${REPLAY_ARGS:-}"
+/usr/bin/time -v -o "$OUT/time-v.txt" "$BIN/atlas-replay" "${replay_args[@]}" --out "$OUT/replay" "$OUT/sim" \
   | tee "$OUT/replay.txt"
 REPEAT=${REPEAT:-2}
 for ((r = 2; r <= REPEAT; ++r)); do
   echo "== replaying again ($r of $REPEAT), for the per-step minimum" >&2
-  "$BIN/atlas-replay" --quiet --out "$OUT/replay-$r" "$OUT/sim" >/dev/null
+  "$BIN/atlas-replay" "${replay_args[@]}" --quiet --out "$OUT/replay-$r" "$OUT/sim" >/dev/null
 done
 
 python3 - "$OUT" <<'PY'
