@@ -1,5 +1,7 @@
 #include "tools/sonar_eval/sonar_atlas_run.h"
 
+#include <time.h>
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -69,6 +71,14 @@ void SimRecording::OnSonar(const SonarReading& reading, const Pose2& odometry) {
 
 Pose2 SimRecording::TruthAt(Time t) const { return draw::InterpolateTruth(truth_, t); }
 
+namespace {
+double ThreadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
+
 AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
                         const std::function<void(double)>& progress, const StepObserver& observer) {
   AtlasRunReport r;
@@ -86,7 +96,11 @@ AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
     first = false;
     last_odo = e.odometry;
     const Pose2 truth = run.TruthAt(e.stamp);
+    const double cpu0 = ThreadCpuMs();
     const StepStats& st = sonar ? atlas.Step(u, e.reading) : atlas.Step(u, e.scan);
+    const double step_ms = ThreadCpuMs() - cpu0;
+    r.max_step_cpu_ms = std::max(r.max_step_cpu_ms, step_ms);
+    r.steps_over_10ms += step_ms > 10.0;
     ++r.steps;
     // Frames made this step (the first step's frame 0, or Genesis) have their origin here.
     while (origin.size() < static_cast<size_t>(st.frames)) origin.push_back(truth);

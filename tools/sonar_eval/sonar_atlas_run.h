@@ -83,6 +83,10 @@ struct AtlasRunReport {
   int accepted = 0, ambiguous = 0, rejected = 0;
   // Traversal juveniles (III-E): seeded, matured, deleted (of which killed by w, eq. 12).
   int seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
+  // The stepping thread's CPU time per Atlas::Step (CLOCK_THREAD_CPUTIME_ID): the largest, and
+  // the steps over 10 ms (atlasd's default step budget).
+  double max_step_cpu_ms = 0.0;
+  int steps_over_10ms = 0;
   std::array<int, kMapMatchReasonCount> reasons{};
   replay::ClosureReport closures;  // the map-match edges of the final graph vs ground truth
   // The same edges as map-matching made them (before any edge refinement, III-F), in the order

@@ -552,7 +552,9 @@ void PrintNeesBand(const char* name, const std::vector<sonar_eval::AtlasRunRepor
 
 void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport>& runs) {
   int frames = 0, genesis = 0, acc = 0, amb = 0, rej = 0, edges = 0, false_chi2 = 0, gross = 0,
-      made_false = 0, made_gross = 0, seeded = 0, matured = 0, deleted = 0, killed = 0;
+      made_false = 0, made_gross = 0, seeded = 0, matured = 0, deleted = 0, killed = 0,
+      over_budget = 0;
+  double max_step_ms = 0.0;
   std::array<int, kMapMatchReasonCount> reasons{};
   for (const auto& r : runs) {
     frames += r.frames;
@@ -561,6 +563,8 @@ void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport
     matured += r.matured;
     deleted += r.deleted;
     killed += r.killed_by_w;
+    max_step_ms = std::max(max_step_ms, r.max_step_cpu_ms);
+    over_budget += r.steps_over_10ms;
     acc += r.accepted;
     amb += r.ambiguous;
     rej += r.rejected;
@@ -583,6 +587,7 @@ void PrintMatches(const char* name, const std::vector<sonar_eval::AtlasRunReport
   }
   std::printf("\n    juveniles: %d seeded, %d matured, %d deleted (%d killed by w)", seeded,
               matured, deleted, killed);
+  std::printf("\n    step CPU time: max %.2f ms; %d steps over 10 ms", max_step_ms, over_budget);
   std::printf(
       "\n    map-match edges vs ground truth: %d edges, %d false closures (chi2 3 dof > 14.16), "
       "%d gross (> 0.5 m or 5 deg); as map-matching made them (before edge refinement): %d "
