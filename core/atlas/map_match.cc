@@ -181,16 +181,7 @@ PairResidual Residual(const Line& a, const Line& b, const Pose2& t) {
 }
 
 // A transform with its rotation's cosine and sine computed once.
-struct Rigid {
-  Pose2 t;
-  double c, s;
-  explicit Rigid(const Pose2& pose) : t(pose), c(std::cos(pose.theta)), s(std::sin(pose.theta)) {}
-  Vec2 Apply(const Vec2& p) const {
-    return Vec2(t.x + c * p.x() - s * p.y(), t.y + s * p.x() + c * p.y());
-  }
-};
-
-bool SegmentsOverlap(const Line& a, const Line& b, const Rigid& t, double slack) {
+bool SegmentsOverlap(const Line& a, const Line& b, const RigidTransform& t, double slack) {
   const Vec2 d(-a.sin_alpha, a.cos_alpha);
   double a0 = d.dot(a.p), a1 = d.dot(a.q);
   double b0 = d.dot(t.Apply(b.p)), b1 = d.dot(t.Apply(b.q));
@@ -209,8 +200,8 @@ struct Support {
 };
 
 Support Verify(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
-               uint64_t usable_b, const Rigid& rigid, const MapMatchOptions& o) {
-  const Pose2& t = rigid.t;
+               uint64_t usable_b, const RigidTransform& rigid, const MapMatchOptions& o) {
+  const Pose2& t = rigid.pose;
   Support s;
   for (int k = 0; k < static_cast<int>(b.size()); ++k) {
     if (!(usable_b >> k & 1)) continue;
@@ -315,7 +306,7 @@ Enumeration Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std
             const double sj = std::cos(b[l].alpha + theta - a[j].alpha) >= 0 ? 1.0 : -1.0;
             const Vec2 xy = m_inv * Vec2(a[i].rho - si * b[k].rho, a[j].rho - sj * b[l].rho);
             const Pose2 t{xy.x(), xy.y(), theta};
-            const Rigid rigid(t);
+            const RigidTransform rigid(t);
             if (!SegmentsOverlap(a[i], b[k], rigid, o.overlap_slack) ||
                 !SegmentsOverlap(a[j], b[l], rigid, o.overlap_slack))
               continue;
@@ -376,13 +367,13 @@ bool PairHasAlternative(const std::vector<Line>& a, const std::vector<Line>& b,
                         const std::pair<uint8_t, uint8_t>* pairs, int count, int p, const Pose2& t,
                         const Mat3& cov_t, const UncertainPose* prior, const MapMatchOptions& o) {
   const auto [i, k] = pairs[p];
-  const Rigid rigid(t);
+  const RigidTransform rigid(t);
   const Mat2 info_xy = cov_t.topLeftCorner<2, 2>().inverse();
   // Is t shifted by `shift` an alternative placement, with line ai of A beside line bk of B?
   auto alternative = [&](const Vec2& shift, int ai, int bk) {
     if (!(shift.dot(info_xy * shift) > o.alternative_sigmas * o.alternative_sigmas)) return false;
     const Pose2 moved{t.x + shift.x(), t.y + shift.y(), t.theta};
-    if (!SegmentsOverlap(a[ai], b[bk], Rigid(moved), o.overlap_slack)) return false;
+    if (!SegmentsOverlap(a[ai], b[bk], RigidTransform(moved), o.overlap_slack)) return false;
     if (!InsidePrior(moved, prior, o)) return false;
     for (int q = 0; q < count; ++q) {
       if (q == p) continue;
@@ -503,7 +494,8 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
     int self_rival = 0;
     auto consider = [&](const Pose2& rival) {
       if (SameTransform(rival, best->t, o) || !InsidePrior(rival, prior, o)) return;
-      self_rival = std::max(self_rival, Verify(a, usable_a, b, usable_b, Rigid(rival), o).count);
+      self_rival =
+          std::max(self_rival, Verify(a, usable_a, b, usable_b, RigidTransform(rival), o).count);
     };
     for (const SelfMatch::Repetition& r : self_a.repetitions)
       consider(Compose(r.transform, best->t));

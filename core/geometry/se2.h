@@ -38,6 +38,16 @@ struct Pose2 {
   Vec2 TransformPoint(const Vec2& p) const;
 };
 
+// Pose2::TransformPoint for many points: the pose's cosine and sine evaluated once.
+struct RigidTransform {
+  explicit RigidTransform(const Pose2& p) : pose(p), c(std::cos(p.theta)), s(std::sin(p.theta)) {}
+  Vec2 Apply(const Vec2& q) const {
+    return Vec2(pose.x + c * q.x() - s * q.y(), pose.y + s * q.x() + c * q.y());
+  }
+  Pose2 pose;
+  double c, s;
+};
+
 // a (+) b.
 Pose2 Compose(const Pose2& a, const Pose2& b);
 // (-) a.

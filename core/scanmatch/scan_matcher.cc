@@ -10,11 +10,6 @@ namespace {
 
 bool Positive(double v) { return v > 0.0 && std::isfinite(v); }
 
-Vec2 Apply(const Pose2& x, const Vec2& q) {
-  const double c = std::cos(x.theta), s = std::sin(x.theta);
-  return Vec2(x.x + c * q.x() - s * q.y(), x.y + s * q.x() + c * q.y());
-}
-
 // atan2 to about 1e-5 rad (a minimax polynomial on [0, 1]); the beam lookup needs far less than
 // a beam's width and this is called for every point in every iteration.
 double FastAtan2(double y, double x) {
@@ -28,16 +23,6 @@ double FastAtan2(double y, double x) {
   if (x < 0.0) r = 3.14159265358979323846 - r;
   return y < 0.0 ? -r : r;
 }
-
-// A pose's rotation and translation, evaluated once for many points.
-struct Rigid {
-  explicit Rigid(const Pose2& x) : c(std::cos(x.theta)), s(std::sin(x.theta)), t(x.x, x.y) {}
-  Vec2 operator*(const Vec2& q) const {
-    return Vec2(t.x() + c * q.x() - s * q.y(), t.y() + s * q.x() + c * q.y());
-  }
-  double c, s;
-  Vec2 t;
-};
 
 }  // namespace
 
@@ -94,11 +79,12 @@ const char* ToString(ScanMatchOutcome o) {
 void ScanPointsInRobotFrame(const LaserScan& scan, double min_range, double max_range,
                             std::vector<Vec2>* points) {
   points->clear();
+  const RigidTransform sensor(scan.sensor_pose);
   for (size_t i = 0; i < scan.ranges.size(); ++i) {
     const double r = scan.ranges[i];
     if (!(r >= min_range && r <= max_range)) continue;
     const double phi = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
-    points->push_back(Apply(scan.sensor_pose, Vec2(r * std::cos(phi), r * std::sin(phi))));
+    points->push_back(sensor.Apply(Vec2(r * std::cos(phi), r * std::sin(phi))));
   }
 }
 
@@ -107,10 +93,8 @@ ScanMatcher::ScanMatcher(const ScanMatchOptions& options) : options_(options) {}
 void ScanMatcher::SetReference(const LaserScan& scan) {
   const size_t n = scan.ranges.size();
   ref_.assign(n, RefPoint{});
-  const Pose2 sensor_inverse = Inverse(scan.sensor_pose);
-  ref_sensor_c_ = std::cos(sensor_inverse.theta);
-  ref_sensor_s_ = std::sin(sensor_inverse.theta);
-  ref_sensor_t_ = Vec2(sensor_inverse.x, sensor_inverse.y);
+  ref_sensor_inverse_ = RigidTransform(Inverse(scan.sensor_pose));
+  const RigidTransform sensor(scan.sensor_pose);
   ref_angle_min_ = scan.angle_min;
   ref_increment_ = scan.angle_increment;
   has_reference_ = n > 0 && ref_increment_ != 0.0 && std::isfinite(ref_increment_);
@@ -118,7 +102,7 @@ void ScanMatcher::SetReference(const LaserScan& scan) {
     const double r = scan.ranges[i];
     if (!(r >= options_.min_range && r <= options_.max_range)) continue;
     const double phi = ref_angle_min_ + static_cast<double>(i) * ref_increment_;
-    ref_[i].p = Apply(scan.sensor_pose, Vec2(r * std::cos(phi), r * std::sin(phi)));
+    ref_[i].p = sensor.Apply(Vec2(r * std::cos(phi), r * std::sin(phi)));
     ref_[i].valid = true;
   }
   const int k = options_.normal_beams;
@@ -160,8 +144,7 @@ void ScanMatcher::SetReference(const LaserScan& scan) {
 }
 
 const ScanMatcher::RefPoint* ScanMatcher::Nearest(const Vec2& w, double max_distance) const {
-  const Vec2 s(ref_sensor_t_.x() + ref_sensor_c_ * w.x() - ref_sensor_s_ * w.y(),
-               ref_sensor_t_.y() + ref_sensor_s_ * w.x() + ref_sensor_c_ * w.y());
+  const Vec2 s = ref_sensor_inverse_.Apply(w);
   const double beam = (FastAtan2(s.y(), s.x()) - ref_angle_min_) / ref_increment_;
   if (!(std::abs(beam) < 1e6)) return nullptr;  // NaN, or an absurd beam spacing
   const long n = static_cast<long>(ref_.size());
@@ -184,10 +167,10 @@ const ScanMatcher::RefPoint* ScanMatcher::Nearest(const Vec2& w, double max_dist
 
 int ScanMatcher::CountPairs(const Pose2& x, const std::vector<Vec2>& points,
                             double max_distance) const {
-  const Rigid rigid(x);
+  const RigidTransform rigid(x);
   int count = 0;
   for (size_t i = 0; i < points.size(); i += 2)
-    if (Nearest(rigid * points[i], max_distance) != nullptr) ++count;
+    if (Nearest(rigid.Apply(points[i]), max_distance) != nullptr) ++count;
   return count;
 }
 
@@ -256,14 +239,14 @@ void ScanMatcher::Solve(const Pose2& start, const UncertainPose& prior,
   for (int it = 0; it < options_.max_iterations; ++it) {
     const bool final_pass = it >= options_.coarse_iterations;
     const double distance = final_pass ? options_.final_distance : options_.max_distance;
-    const Rigid rigid(x);
+    const RigidTransform rigid(x);
     const double c = rigid.c, s = rigid.s;
     h_icp.setZero();
     Vec3 g = Vec3::Zero();
     pairs = 0;
     sum_r2 = 0.0;
     for (const Vec2& q : points_) {
-      const Vec2 w = rigid * q;
+      const Vec2 w = rigid.Apply(q);
       const RefPoint* ref = Nearest(w, distance);
       if (ref == nullptr) continue;
       const double r = ref->n.dot(w - ref->p);

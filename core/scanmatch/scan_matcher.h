@@ -141,9 +141,8 @@ class ScanMatcher {
   ScanMatchOptions options_;
   bool has_reference_ = false;
   std::vector<RefPoint> ref_;  // one per beam of the reference
-  // The reference robot frame -> the reference sensor frame: rotation (cos, sin), translation.
-  double ref_sensor_c_ = 1.0, ref_sensor_s_ = 0.0;
-  Vec2 ref_sensor_t_ = Vec2::Zero();
+  // The reference robot frame -> the reference sensor frame.
+  RigidTransform ref_sensor_inverse_{Pose2{}};
   double ref_angle_min_ = 0.0;
   double ref_increment_ = 0.0;
   std::vector<Vec2> points_;  // scratch: current scan's points
