@@ -64,6 +64,44 @@ for name in intel aces freiburg-079 freiburg-101 csail seattle; do
     -o "$dir/odometry.tsv" "$log"
   "$BIN/atlas-eval" --json --reference "$dir/reference.tsv" "$dir/odometry.tsv" \
     >"$dir/eval_odometry.json"
+  # Revisits: where the robot returns. Pose pairs of the reference at most 1.5 m apart with at
+  # least 20 m of travel between them (the nearest earlier pose, one pair per 5 scans at most),
+  # as relations; the atlas's relation is composed along the Dijkstra path between the two
+  # poses' frames (atlas-eval --atlas), so a loop the atlas did not close shows as the error
+  # accumulated around it. Dead reckoning on the same pairs for scale.
+  python3 - "$dir/reference.tsv" "$dir/revisits.relations" <<'PY'
+import math, sys
+ref = [tuple(map(float, l.split()[:4])) for l in open(sys.argv[1]) if not l.startswith("#")]
+travel = [0.0]
+for a, b in zip(ref, ref[1:]):
+    travel.append(travel[-1] + math.hypot(b[1] - a[1], b[2] - a[2]))
+last = -5
+with open(sys.argv[2], "w") as out:
+    for i, (t, x, y, th) in enumerate(ref):
+        if i - last < 5:
+            continue
+        best = None
+        for j in range(i):
+            if travel[i] - travel[j] < 20.0:
+                break
+            d = math.hypot(ref[j][1] - x, ref[j][2] - y)
+            if d < 1.5 and (best is None or d < best[0]):
+                best = (d, j)
+        if best is None:
+            continue
+        tj, xj, yj, thj = ref[best[1]]
+        c, s = math.cos(thj), math.sin(thj)
+        dth = (th - thj + math.pi) % (2 * math.pi) - math.pi
+        out.write("%.6f %.6f %.6f %.6f 0 0 0 %.6f\n" % (
+            tj, t, c * (x - xj) + s * (y - yj), -s * (x - xj) + c * (y - yj), dth))
+        last = i
+PY
+  if [[ -s $dir/revisits.relations ]]; then
+    "$BIN/atlas-eval" --json --relations "$dir/revisits.relations" --atlas "$dir" \
+      --errors "$dir/revisits_errors.tsv" >"$dir/revisits.json"
+    "$BIN/atlas-eval" --json --relations "$dir/revisits.relations" "$dir/odometry.tsv" \
+      >"$dir/revisits_odometry.json"
+  fi
 done
 
 python3 - "$OUT" <<'PY'
@@ -102,6 +140,24 @@ for name in ["intel", "aces", "freiburg-079", "freiburg-101", "csail", "seattle"
     total["chi2"] += s["false_closures_chi2"]
     total["axis"] += s["false_closures_axis"]
     total["gross"] += s["gross_closures"]
+print("revisits: reference pose pairs <= 1.5 m apart with >= 20 m of travel between them; "
+      "relation error composed along the atlas's Dijkstra path (dead reckoning beside it); "
+      "open: pairs more than 0.5 m off")
+print("%-13s %8s %9s %9s %6s %9s %9s" % ("log", "revisits", "atlas m", "atlas deg", "open",
+                                          "odo m", "odo deg"))
+for name in ["intel", "aces", "freiburg-079", "freiburg-101", "csail", "seattle"]:
+    d = os.path.join(out, name)
+    try:
+        rv = json.load(open(os.path.join(d, "revisits.json")))
+        ro = json.load(open(os.path.join(d, "revisits_odometry.json")))
+        errs = [float(l.split()[2]) for l in open(os.path.join(d, "revisits_errors.tsv"))
+                if not l.startswith("#")]
+    except (OSError, ValueError):
+        print("%-13s %8s" % (name, "none"))
+        continue
+    print("%-13s %8d %9.3f %9.2f %6d %9.3f %9.2f" % (
+        name, rv["matched"], rv["translation_m"]["mean"], rv["rotation_deg"]["mean"],
+        sum(e > 0.5 for e in errs), ro["translation_m"]["mean"], ro["rotation_deg"]["mean"]))
 print("all logs: %(checked)d map-match edges checked, %(chi2)d false closures (chi2), "
       "%(axis)d beyond 3 sigma on an axis, %(gross)d gross (> 0.5 m or 5 deg)" % total)
 PY

@@ -2,9 +2,11 @@
 // against a reference trajectory. See --help and docs/formats.md.
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -47,6 +49,8 @@ Options:
   --segment M          reference scoring: RPE pairs M metres of travel apart (default 1.0)
   --step N             reference scoring: RPE pairs N poses apart (instead of --segment)
   --json               print a JSON object instead of text
+  --errors FILE        relations scoring: write each matched relation's error to FILE, one
+                       row "t1 t2 translation_m rotation_deg" in the relations' order
   -h, --help           this text
 
 Exit status: 0 scored, 1 bad input (message on stderr), 2 bad command line.
@@ -62,9 +66,21 @@ int Fail(const std::string& error) {
   return 1;
 }
 
+// --errors FILE: one row per matched relation. Empty path: nothing written.
+std::string WriteRelationErrors(const std::string& path, const std::vector<Relation>& relations,
+                                const RelationsScore& score) {
+  if (path.empty()) return "";
+  const std::string text = FormatRelationErrors(relations, score);
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return "cannot write " + path + ": " + std::strerror(errno);
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !written) return "cannot write " + path + ": " + std::strerror(errno);
+  return "";
+}
+
 // --atlas DIR: relations scored per frame, composed along Dijkstra paths of DIR/graph.tsv.
 int ScoreAtlas(const std::string& dir, const std::string& relations_path, Duration tolerance,
-               bool json) {
+               bool json, const std::string& errors_path) {
   const std::string trajectory_path = dir + "/trajectory.tsv", graph_path = dir + "/graph.tsv";
   TextFile tf = ReadTextFile(trajectory_path);
   if (!tf.error.empty())
@@ -110,6 +126,8 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
   DijkstraComposedPoses lookup(std::move(trajectory.rows), graph, tolerance);
   const RelationsScore s =
       ScoreRelations(relations.relations, [&lookup](Time t1, Time t2) { return lookup(t1, t2); });
+  if (std::string e = WriteRelationErrors(errors_path, relations.relations, s); !e.empty())
+    return Fail(e);
   const CompositionCounts& c = lookup.Counts();
   if (json) {
     std::printf(
@@ -151,7 +169,7 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
 }
 
 int Main(int argc, char** argv) {
-  std::string relations_path, reference_path, log_path, trajectory_path, atlas_dir;
+  std::string relations_path, reference_path, log_path, trajectory_path, atlas_dir, errors_path;
   double tolerance_s = 0.001;
   ReferenceScoreOptions ref_options;
   bool json = false;
@@ -168,7 +186,7 @@ int Main(int argc, char** argv) {
     } else if (a == "--json") {
       json = true;
     } else if (a == "--relations" || a == "--reference" || a == "--dead-reckon" || a == "--atlas" ||
-               a == "--tolerance" || a == "--segment" || a == "--step") {
+               a == "--tolerance" || a == "--segment" || a == "--step" || a == "--errors") {
       const char* v = value(a.c_str());
       if (v == nullptr) return Usage(a + " needs a value");
       double d = 0.0;
@@ -180,6 +198,8 @@ int Main(int argc, char** argv) {
         log_path = v;
       } else if (a == "--atlas") {
         atlas_dir = v;
+      } else if (a == "--errors") {
+        errors_path = v;
       } else if (!ParseArgumentNumber(v, d)) {
         return Usage(a + " needs a number, got '" + v + "'");
       } else if (a == "--tolerance") {
@@ -207,13 +227,14 @@ int Main(int argc, char** argv) {
     return Usage("give exactly one of a trajectory file, --dead-reckon LOG and --atlas DIR");
   }
   if (!atlas_dir.empty() && relations_path.empty()) return Usage("--atlas needs --relations");
+  if (!errors_path.empty() && relations_path.empty()) return Usage("--errors needs --relations");
   if (!(tolerance_s >= 0.0)) return Usage("--tolerance must be >= 0");
   ref_options.match_tolerance = Duration(static_cast<int64_t>(tolerance_s * 1e9));
   if (std::string bad = ref_options.Validate(); !bad.empty()) return Usage(bad);
 
   if (!atlas_dir.empty()) {
     return ScoreAtlas(atlas_dir, relations_path, Duration(static_cast<int64_t>(tolerance_s * 1e9)),
-                      json);
+                      json, errors_path);
   }
 
   // The estimate.
@@ -241,6 +262,8 @@ int Main(int argc, char** argv) {
     if (!p.error.empty()) return Fail(p.error);
     const RelationsScore s =
         ScoreRelations(p.relations, BetweenPosesOf(estimate, ref_options.match_tolerance));
+    if (std::string e = WriteRelationErrors(errors_path, p.relations, s); !e.empty())
+      return Fail(e);
     if (json) {
       std::printf(
           "{\"estimate\": %s, \"relations\": %s, \"poses\": %zu, \"matched\": %lld, "

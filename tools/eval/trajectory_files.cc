@@ -176,6 +176,19 @@ std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::strin
   return out;
 }
 
+std::string FormatRelationErrors(const std::vector<Relation>& relations,
+                                 const RelationsScore& score) {
+  std::string out = "# atlas-eval relation errors: t1 t2 translation_m rotation_deg\n";
+  char buf[128];
+  for (const RelationError& e : score.errors) {
+    const Relation& r = relations[e.relation];
+    std::snprintf(buf, sizeof buf, "%.6f %.6f %.6f %.6f\n", ToSeconds(r.t1), ToSeconds(r.t2),
+                  e.translation_m, e.rotation_deg);
+    out += buf;
+  }
+  return out;
+}
+
 TimedTrajectory OdometryAtScans(const std::vector<carmen::CarmenEvent>& events) {
   std::vector<OdometrySample> odometry;
   for (const carmen::CarmenEvent& e : events) {

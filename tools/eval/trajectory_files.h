@@ -57,6 +57,11 @@ EdgeRowsParse ParseGraphEdges(std::string_view text, const std::string& source);
 // "timestamp x y theta" lines with a header comment; timestamps to the microsecond.
 std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::string& comment);
 
+// atlas-eval --errors: "t1 t2 translation_m rotation_deg" per matched relation of `score`
+// (scored from `relations`), in the relations' order, with a header comment.
+std::string FormatRelationErrors(const std::vector<Relation>& relations,
+                                 const RelationsScore& score);
+
 // The odometry pose at the stamp of every laser scan among `events` (time-ordered), linearly
 // interpolated between the odometry samples around it (heading along the shorter arc). Scans
 // before the first or after the last odometry sample are left out.

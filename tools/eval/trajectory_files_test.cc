@@ -58,6 +58,24 @@ TEST(TrajectoryFilesTest, FormatRoundTrips) {
   }
 }
 
+TEST(TrajectoryFilesTest, RelationErrorsOnePerMatchedRelationInOrder) {
+  // Three relations; the estimate has poses for the first and last only.
+  const std::vector<Relation> relations = {
+      {FromSeconds(10.0), FromSeconds(11.0), Pose2{1.0, 0.0, 0.0}},
+      {FromSeconds(10.0), FromSeconds(99.0), Pose2{1.0, 0.0, 0.0}},
+      {FromSeconds(11.0), FromSeconds(12.0), Pose2{0.0, 0.0, 0.1}}};
+  const TimedTrajectory t({{FromSeconds(10.0), {0.0, 0.0, 0.0}},
+                           {FromSeconds(11.0), {1.0, 0.3, 0.0}},
+                           {FromSeconds(12.0), {1.0, 0.3, 0.0}}});
+  const RelationsScore s = ScoreRelations(relations, BetweenPosesOf(t));
+  ASSERT_EQ(s.matched, 2);
+  const std::string text = FormatRelationErrors(relations, s);
+  EXPECT_EQ(text,
+            "# atlas-eval relation errors: t1 t2 translation_m rotation_deg\n"
+            "10.000000 11.000000 0.300000 0.000000\n"
+            "11.000000 12.000000 0.000000 5.729578\n");
+}
+
 LaserScan ScanAt(double s) {
   LaserScan scan;
   scan.stamp = FromSeconds(s);
