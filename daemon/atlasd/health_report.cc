@@ -32,6 +32,8 @@ atlas::health_t MakeHealthMessage(const HealthInputs& in) {
   h.step_budget_us = static_cast<float>(in.step_budget_ms * 1000.0);
   h.overruns = loop.overruns();
   h.dropped_scans = loop.dropped_scans();
+  h.scan_matches = loop.scan_matches();
+  h.scan_match_fallbacks = loop.scan_match_fallbacks();
   for (const DriverEntry& d : in.drivers)
     h.drivers.push_back(ToDriverHealthMessage(d.name, d.health, d.queue_depth, d.queue_capacity));
   h.num_drivers = static_cast<int32_t>(h.drivers.size());
@@ -74,6 +76,11 @@ atlas::health_t MakeHealthMessage(const HealthInputs& in) {
     }
   }
   if (loop.laser_silent()) status += " | LASER FAULT: pose on odometry alone";
+  if (const int64_t tried = h.scan_matches + h.scan_match_fallbacks; tried > 0) {
+    std::snprintf(buf, sizeof(buf), " | scan-matched %.0f%%",
+                  100.0 * static_cast<double>(h.scan_matches) / static_cast<double>(tried));
+    status += buf;
+  }
   std::snprintf(buf, sizeof(buf), " | pose f%d (%.2f, %.2f, %.2f) q %.2f | rss %.1f MB",
                 h.dominant_frame_id, d.pose.mean.x, d.pose.mean.y, d.pose.mean.theta, d.q,
                 static_cast<double>(h.resident_memory_bytes) / 1e6);

@@ -1,0 +1,62 @@
+#include "daemon/atlasd/health_report.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "core/atlas/atlas_test_world.h"
+#include "core/localmap/fake_wall_scanner.h"
+#include "daemon/atlasd/fake_step_sink.h"
+
+namespace atlas {
+namespace {
+
+TEST(HealthReport, CountsScanMatchesAndFallbacks) {
+  for (const bool enabled : {true, false}) {
+    TestWorld maps;
+    Atlas atlas(TestWorld::Options(), maps.Factory(), nullptr);
+    MapperSettings s;
+    s.scan_match.enabled = enabled;
+    ASSERT_EQ(ValidateMapperSettings(s), "");
+    StepLoop loop(StepLoopOptions{}, s, &atlas);
+    FakeStepSink sink;
+    FakeWallScanner scanner(CorridorWorld(), FakeLaserOptions{}, 3);
+    const int scans = 6;
+    for (int i = 0; i < scans; ++i) {
+      const Time t = FromSeconds(0.2 * i);
+      loop.AddOdometry({t, Pose2{0.1 * i, 0.0, 0.0}});
+      LaserScan scan = scanner.Scan(Pose2{3.0 + 0.1 * i, 0.0, 0.0});
+      scan.stamp = t;
+      loop.AddScan(std::move(scan));
+      loop.StepAll(&sink);
+    }
+    // A scan with no returns: nothing to match against the one before it.
+    LaserScan blind = scanner.Scan(Pose2{3.6, 0.0, 0.0});
+    for (float& r : blind.ranges) r = kNoReturn;
+    blind.stamp = FromSeconds(0.2 * scans);
+    loop.AddOdometry({blind.stamp, Pose2{0.1 * scans, 0.0, 0.0}});
+    loop.AddScan(std::move(blind));
+    loop.StepAll(&sink);
+    ASSERT_EQ(loop.steps(), scans + 1);
+
+    HealthInputs in;
+    in.start = FromSeconds(0.0);
+    in.now = FromSeconds(2.0);
+    in.loop = &loop;
+    in.step_budget_ms = 10.0;
+    const health_t h = MakeHealthMessage(in);
+    EXPECT_EQ(h.steps, scans + 1);
+    if (enabled) {
+      EXPECT_EQ(h.scan_matches, scans - 1);
+      EXPECT_EQ(h.scan_match_fallbacks, 1);
+      EXPECT_NE(h.status.find(" | scan-matched 83%"), std::string::npos) << h.status;
+    } else {
+      EXPECT_EQ(h.scan_matches, 0);
+      EXPECT_EQ(h.scan_match_fallbacks, 0);
+      EXPECT_EQ(h.status.find("scan-matched"), std::string::npos) << h.status;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace atlas
