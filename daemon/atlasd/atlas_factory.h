@@ -52,8 +52,9 @@ struct MapperSettings {
   // they use the sonar; the sonar model keeps core/sonar's defaults.
   RangeSensors sensors = RangeSensors::kLaser;
   std::vector<SonarTransducer> sonar_ring;
-  // Sonar alone: w (eq. 12) from the sonar readings (SonarMapBootstrapper); off for comparison.
-  bool sonar_bootstrap = true;
+  // Sonar alone: w (eq. 12) from the sonar readings (SonarMapBootstrapper). Off by default: it
+  // made gross false loop closures on the simulator's alcove loop (docs/sonar.md, session 9).
+  bool sonar_bootstrap = false;
   // Scan-to-scan matching before each laser step (StepLoop; off by default).
   ScanMatchOptions scan_match;
 };

@@ -198,12 +198,12 @@ TEST(ConfigLoader, LocalMapSensorsChoosesLaserSonarOrBoth) {
   ASSERT_TRUE(both.ok()) << both.errors[0].ToString();
   EXPECT_EQ(both.options.localmap.sensors, LocalMapSensors::kBoth);
   EXPECT_EQ(DaemonOptions{}.localmap.sensors, LocalMapSensors::kLaser);
-  EXPECT_TRUE(DaemonOptions{}.localmap.sonar_bootstrap);
-  const ConfigResult no_w = LoadConfigString(
-      "[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\nsonar_bootstrap = false\n",
+  EXPECT_FALSE(DaemonOptions{}.localmap.sonar_bootstrap);
+  const ConfigResult with_w = LoadConfigString(
+      "[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\nsonar_bootstrap = true\n",
       "test.toml");
-  ASSERT_TRUE(no_w.ok());
-  EXPECT_FALSE(no_w.options.localmap.sonar_bootstrap);
+  ASSERT_TRUE(with_w.ok());
+  EXPECT_TRUE(with_w.options.localmap.sonar_bootstrap);
   // An unknown value is rejected with the key, the line and the accepted values.
   ExpectOneError(LoadConfigString("\n[localmap]\nsensors = \"radar\"\n", "test.toml"),
                  "localmap.sensors", 3, "must be one of \"laser\", \"sonar\", \"both\"");

@@ -58,7 +58,7 @@ constexpr char kUsage[] =
     "                             [--delayed-states 0|1 (1)] [--edge-extent 0|1 (1)]\n"
     "                             [--redundancy-sigma S=0.25] [--redundancy-prior H=0.5]\n"
     "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
-    "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (1)]\n"
+    "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (0)]\n"
     "                             [--bootstrap-steps N] [--probation N] [--w-edge-echoes 0|1 (0)]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
@@ -96,9 +96,10 @@ constexpr char kUsage[] =
     "      (AtlasOptions::keep_frame_map_without_w, an experiment).\n"
     "      --seed-cov-scale F: traversal seeds of the sonar atlas get F times the projected\n"
     "      covariance (AtlasOptions::seed_cov_scale_without_w, an experiment).\n"
-    "      --sonar-w 0: the sonar atlas without w (eq. 12; SonarMapBootstrapper), its juveniles\n"
-    "      keep their seeded pose and trial map. --bootstrap-steps N, --probation N: the sonar\n"
-    "      atlas's lifecycle.bootstrap_scans and probation_scans (default: SonarAtlasOptions',\n"
+    "      --sonar-w 1: the sonar atlas with w (eq. 12; SonarMapBootstrapper); 0 (default, as\n"
+    "      atlasd): its juveniles keep their seeded pose and trial map. --bootstrap-steps N,\n"
+    "      --probation N: the sonar atlas's lifecycle.bootstrap_scans and probation_scans\n"
+    "      (default: SonarAtlasOptions',\n"
     "      with w at least kSonarBootstrapProbation). --w-edge-echoes 1: w pairs edge-of-cone\n"
     "      echoes too (SonarBootstrapOptions::edge_echoes).\n"
     "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
@@ -663,7 +664,7 @@ int RunAtlasMode(const Args& args) {
   const AtlasOptions sonar_defaults = sonar_eval::SonarAtlasOptions();
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
          self_match = 1, delayed = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1,
-         sonar_w = 1, w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
+         sonar_w = 0, w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
          bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
          redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
          redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth;
