@@ -5,7 +5,9 @@
 # trajectory against the reference (atlas-eval --reference; dead reckoning of the same
 # synthesised odometry beside it), and check every map-match edge against the reference
 # (closures.tsv: chi-square 3 dof > 14.16 = false loop closure; per-axis 3 sigma and gross
-# errors also counted). Also draws Fig. 7 (step time, dominant frame id) for one log.
+# errors also counted), and score the robot's returns (revisits: reference pose pairs <= 1.5 m
+# apart with >= 20 m of travel between them, composed along the atlas's Dijkstra path; "open"
+# = more than 0.5 m off). Also draws Fig. 7 (step time, dominant frame id) for one log.
 #
 # Usage: scripts/eval-corrected.sh [OUT]      (default OUT: /tmp/atlas-eval-corrected)
 # Environment: ATLAS_BIN (directory of atlas-replay, atlas-eval, atlas-carmen, atlas-render;
