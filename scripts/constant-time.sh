@@ -40,9 +40,9 @@ else
     --out "$OUT/sim" >&2
 fi
 echo "== replaying" >&2
-# REPLAY_ARGS: extra atlas-replay arguments, e.g. "--config FILE" to map as atlasd would.
 read -r -a replay_args <<<"${REPLAY_ARGS:-}"
-/usr/bin/time -v -o "$OUT/time-v.txt" "$BIN/atlas-replay" "${replay_args[@]}" --out "$OUT/replay" "$OUT/sim" \
+/usr/bin/time -v -o "$OUT/time-v.txt" "$BIN/atlas-replay" "${replay_args[@]}" \
+  --out "$OUT/replay" "$OUT/sim" \
   | tee "$OUT/replay.txt"
 REPEAT=${REPEAT:-2}
 for ((r = 2; r <= REPEAT; ++r)); do

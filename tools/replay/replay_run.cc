@@ -83,13 +83,6 @@ int64_t CurrentRssKb() {
   return n == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) : 0;
 }
 
-// CPU time of this thread (ns): a step's cost without the time other processes took the core.
-int64_t ThreadCpuNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-}
-
 double Median(std::vector<int64_t> v) {
   if (v.empty()) return 0.0;
   std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
@@ -111,6 +104,12 @@ const Pose2* ReferenceAt(const std::vector<TruthSample>& reference, Time stamp) 
 }
 
 }  // namespace
+
+int64_t ThreadCpuNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
 
 std::string CreateOutputDir(const std::string& dir) {
   if (mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST)

@@ -1,12 +1,11 @@
 #include "tools/sonar_eval/sonar_atlas_run.h"
 
-#include <time.h>
-
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
 #include "tools/render/run_data.h"
+#include "tools/replay/replay_run.h"
 
 namespace atlas::sonar_eval {
 
@@ -71,14 +70,6 @@ void SimRecording::OnSonar(const SonarReading& reading, const Pose2& odometry) {
 
 Pose2 SimRecording::TruthAt(Time t) const { return draw::InterpolateTruth(truth_, t); }
 
-namespace {
-double ThreadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
-}
-}  // namespace
-
 AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
                         const std::function<void(double)>& progress, const StepObserver& observer) {
   AtlasRunReport r;
@@ -96,9 +87,9 @@ AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
     first = false;
     last_odo = e.odometry;
     const Pose2 truth = run.TruthAt(e.stamp);
-    const double cpu0 = ThreadCpuMs();
+    const int64_t cpu0 = replay::ThreadCpuNs();
     const StepStats& st = sonar ? atlas.Step(u, e.reading) : atlas.Step(u, e.scan);
-    const double step_ms = ThreadCpuMs() - cpu0;
+    const double step_ms = 1e-6 * static_cast<double>(replay::ThreadCpuNs() - cpu0);
     r.max_step_cpu_ms = std::max(r.max_step_cpu_ms, step_ms);
     r.steps_over_10ms += step_ms > 10.0;
     ++r.steps;
