@@ -25,6 +25,7 @@ PoseBootstrap LineMapBootstrapper::Solve(const LocalMap& map, const LocalMap& /*
   }
   const BootstrapResult r =
       Bootstrap(map.Lines(), scans, map.RobotPose(), options_.bootstrap, options_.association);
+  if (r.status == BootstrapStatus::kUnderconstrained) out.outcome = BootstrapOutcome::kUndetermined;
   if (r.status != BootstrapStatus::kSolved) return out;
   out.outcome = BootstrapOutcome::kSolved;
   out.pose = r.pose;

@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
+#include <vector>
 
 #include "core/atlas/atlas.h"
 #include "core/localmap/fake_wall_scanner.h"
@@ -14,12 +16,13 @@ namespace {
 
 struct Corridor {
   LocalMapOptions options;
-  FakeWallScanner scanner{CorridorWorld(30.0, 2.4), FakeLaserOptions{}, 11};
+  FakeWallScanner scanner;
   Pose2 start{2.0, 0.0, 0.0};  // the map-frame origin, in the world
   LineEkfMap map{options};
   Pose2 truth = start;  // robot in the world
 
-  Corridor() {
+  explicit Corridor(std::vector<Wall> walls = CorridorWorld(30.0, 2.4))
+      : scanner(std::move(walls), FakeLaserOptions{}, 11) {
     map.Update(scanner.Scan(truth), true);
     for (int i = 0; i < 6; ++i) Move(Pose2{0.2, 0.0, 0.0}, &map, true);
   }
@@ -63,6 +66,16 @@ TEST(LineMapBootstrapper, SolvesThePoseFromTheScansNotTheSeed) {
   EXPECT_NEAR(ra.pose.mean.x, rb.pose.mean.x, 0.03);
   EXPECT_NEAR(ra.pose.mean.y, rb.pose.mean.y, 0.03);
   EXPECT_GT(ra.pose.cov.determinant(), 0.0);
+}
+
+// Two parallel walls and nothing else: the scans fix the heading and the distance to the walls
+// but not the position along them. w cannot tell yet (kUndetermined: the atlas keeps the
+// juvenile and tries again with more scans), which is not a contradiction (kFailed).
+TEST(LineMapBootstrapper, UndeterminedWhenOnlyParallelWallsMatch) {
+  Corridor c(
+      {Wall{Vec2(-100.0, 1.2), Vec2(100.0, 1.2)}, Wall{Vec2(-100.0, -1.2), Vec2(100.0, -1.2)}});
+  ASSERT_EQ(c.map.Complexity(), 2);
+  EXPECT_EQ(c.Juvenile(Pose2{0.05, 0.0, 0.0}, 4).outcome, BootstrapOutcome::kUndetermined);
 }
 
 TEST(LineMapBootstrapper, FailsWithoutExplainedMeasurements) {
