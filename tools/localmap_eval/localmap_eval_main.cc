@@ -170,22 +170,31 @@ enum class Calibration {
 
 std::string ApplyOverrides(const std::string& spec, LocalMapOptions& o);
 
-std::vector<StepNees> RunOnce(uint64_t seed, double minutes, int capacity,
-                              const std::vector<sim::Wall>& walls, const sim::RayCaster& caster,
-                              Calibration calibration, const std::string& overrides,
-                              int& features_out, OdometryCheck& check) {
-  WheelOdometryNoiseOptions wheel;  // the simulator's defaults, calibration errors too
+// The Monte Carlo's simulated laser.
+sim::LaserOptions McLaser() {
   sim::LaserOptions laser;
   laser.beams = 361;
   laser.range_sigma = kSimRangeSigma;
   laser.max_range = 30.0;
-  // The filter models the default errors' sizes as standard deviations.
-  WheelOdometryNoiseOptions modelled = wheel;
+  return laser;
+}
+
+// The Monte Carlo's filter: it models the simulator's default calibration errors' sizes as
+// standard deviations (none with Calibration::kOff).
+LocalMapOptions McFilterOptions(int capacity, Calibration calibration) {
+  WheelOdometryNoiseOptions modelled;
   if (calibration == Calibration::kOff) {
     modelled.left_scale_error = modelled.right_scale_error = modelled.track_width_error = 0.0;
   }
-  LocalMapOptions options = SimFilterOptions(capacity, modelled, laser);
-  ApplyOverrides(overrides, options);  // checked by RunMonteCarlo
+  return SimFilterOptions(capacity, modelled, McLaser());
+}
+
+// One run with the filter `options` (McFilterOptions, valid).
+std::vector<StepNees> RunOnce(uint64_t seed, double minutes, const LocalMapOptions& options,
+                              const std::vector<sim::Wall>& walls, const sim::RayCaster& caster,
+                              Calibration calibration, int& features_out, OdometryCheck& check) {
+  WheelOdometryNoiseOptions wheel;  // the simulator's defaults, calibration errors too
+  const sim::LaserOptions laser = McLaser();
   if (calibration == Calibration::kPerRun) {
     std::mt19937_64 rng(seed * 6151 + 11);
     std::normal_distribution<double> unit(0.0, 1.0);
@@ -388,10 +397,7 @@ int RunMonteCarlo(const Args& args) {
   }
   std::string overrides;
   if (auto it = args.values.find("--set"); it != args.values.end()) overrides = it->second;
-  sim::LaserOptions sim_laser;
-  sim_laser.range_sigma = kSimRangeSigma;
-  LocalMapOptions filter =
-      SimFilterOptions(static_cast<int>(capacity), WheelOdometryNoiseOptions(), sim_laser);
+  LocalMapOptions filter = McFilterOptions(static_cast<int>(capacity), calibration);
   if (const std::string bad = ApplyOverrides(overrides, filter); !bad.empty()) {
     std::fprintf(stderr, "atlas-localmap-eval mc: %s\n", bad.c_str());
     return 2;
@@ -419,8 +425,8 @@ int RunMonteCarlo(const Args& args) {
   }
   for (int r = 0; r < r_count; ++r) {
     int features = 0;
-    all.push_back(RunOnce(static_cast<uint64_t>(seed) + r, minutes, static_cast<int>(capacity),
-                          walls, caster, calibration, overrides, features, check));
+    all.push_back(RunOnce(static_cast<uint64_t>(seed) + r, minutes, filter, walls, caster,
+                          calibration, features, check));
     mean_features += features;
     double run_nees = 0.0, run_max = 0.0, run_feat = 0.0;
     size_t max_at = 0;

@@ -109,11 +109,11 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
 // of its laser lines, at their stamps.
 std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log);
 
-// Creates `dir` unless it exists; returns an error message ("cannot create DIR: why") or "".
 // CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID), ns: a step's cost without the time
 // other processes took the core.
 int64_t ThreadCpuNs();
 
+// Creates `dir` unless it exists; returns an error message ("cannot create DIR: why") or "".
 std::string CreateOutputDir(const std::string& dir);
 
 // Writes `text` to dir/name; returns an error message ("cannot write PATH: why") or "".
