@@ -50,6 +50,7 @@ const char* MapMatchResultName(MapMatchResult r) {
 MapMatchOptions SonarMapMatchOptions(MapMatchOptions o) {
   o.redundancy_sigma = 0.25;
   o.redundancy_prior_halfwidth = 0.5;
+  o.alternative_sigmas = 3.0;
   return o;
 }
 

@@ -53,8 +53,8 @@
 //   with the 4.8 m line. That pair alone fixed t's x (sigma 0.105 m with it, 0.44 m without:
 //   "redundant" by the 1 m test), and t came out 0.40 m off the reference (d2 18.7); the three
 //   other pairs and the prior allowed the true placement as well. atlasd turns it on (3 sigma)
-//   for laser lines (daemon/atlasd/atlas_factory.cc); off by default, so sonar atlases are as
-//   they were measured (docs/sonar.md).
+//   for laser lines (daemon/atlasd/atlas_factory.cc), SonarMapMatchOptions for sonar lines;
+//   off by default.
 // - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
 //   pairs, Sigma = (sum H^T S^-1 H)^-1. The lines of one local map are correlated (they share
 //   the robot's errors when they were seen) and MapLine carries only each line's marginal, so
@@ -119,10 +119,13 @@ struct MapMatchOptions {
 };
 
 // The Condition 2 settings for maps of wide-beam sonar lines: `o` with redundancy_sigma 0.25 m
-// and redundancy_prior_halfwidth 0.5 m (laser defaults 1 m / 2 m). A sonar atlas's priors are
-// less consistent (robot NEES mean 6-8 on the alcove loop): with the laser's values the alcove
-// loop had gross false closures (docs/sonar.md, session 5). Used by atlasd (sensors = "sonar")
-// and by tools/sonar_eval.
+// and redundancy_prior_halfwidth 0.5 m (laser defaults 1 m / 2 m), and alternative_sigmas 3. A
+// sonar atlas's priors are less consistent (robot NEES mean 6-8 on the alcove loop): with the
+// laser's values the alcove loop had gross false closures (docs/sonar.md, session 5). Sonar
+// maps initialised without edge echoes (SonarInitOptions, session 11) hold few lines across a
+// corridor, and a match pairing a corridor wall with the back wall of an alcove 1 m deeper was
+// accepted 0.8 m off: the alternative-lines test refuses it (docs/sonar.md, session 11). Used
+// by atlasd (sensors = "sonar") and by tools/sonar_eval.
 MapMatchOptions SonarMapMatchOptions(MapMatchOptions o = {});
 
 enum class MapMatchResult { kAccepted, kRejected, kAmbiguous };

@@ -141,6 +141,62 @@ bool SonarLineInitializer::Refine(Vec2& line, const std::vector<char>& mask, Mat
   return std::isfinite(line(0)) && std::isfinite(line(1));
 }
 
+int SonarLineInitializer::PointSupport(const std::vector<char>& mask, Vec2 point) const {
+  const double k2 = o_.inlier_sigmas * o_.inlier_sigmas;
+  std::vector<char> use = mask;
+  int count = 0;
+  for (int round = 0; round < 2; ++round) {
+    for (int it = 0; it < 8; ++it) {
+      Mat2 a = Mat2::Zero();
+      Vec2 b = Vec2::Zero();
+      for (size_t j = 0; j < returns_.size(); ++j) {
+        if (!use[j]) continue;
+        const BufferedReturn& r = returns_[j];
+        const Pose2 s = Compose(vantage_[r.vantage].pose, r.mount.pose);
+        const Vec2 d = point - Vec2(s.x, s.y);
+        const double range = d.norm();
+        if (!(range > 1e-6)) continue;
+        const Eigen::RowVector2d jac = d.transpose() / range;
+        a += jac.transpose() * jac;
+        b += jac.transpose() * (r.range - range);
+      }
+      if (!(std::abs(a.determinant()) > 1e-12)) return 0;
+      const Vec2 step = a.ldlt().solve(b);
+      point += step;
+      if (!std::isfinite(point(0)) || !std::isfinite(point(1))) return 0;
+      if (step.norm() < 1e-6) break;
+    }
+    count = 0;
+    for (size_t j = 0; j < returns_.size(); ++j) {
+      if (!mask[j]) continue;
+      use[j] = 0;
+      const BufferedReturn& r = returns_[j];
+      const SonarVantage& v = vantage_[r.vantage];
+      const Pose2 s = Compose(v.pose, r.mount.pose);
+      const Vec2 d = point - Vec2(s.x, s.y);
+      const double range = d.norm();
+      if (!(range > 1e-6)) continue;
+      if (std::abs(WrapAngle(std::atan2(d.y(), d.x()) - s.theta)) > 0.5 * r.mount.beam_width) {
+        continue;
+      }
+      const Vec2 u = -d / range;
+      const double c = std::cos(v.pose.theta), sn = std::sin(v.pose.theta);
+      const double mx = r.mount.pose.x, my = r.mount.pose.y;
+      const Eigen::RowVector3d jv(u.x(), u.y(),
+                                  u.x() * (-sn * mx - c * my) + u.y() * (c * mx - sn * my));
+      const double sigma = m_.range_sigma + m_.range_sigma_per_m * r.range;
+      const double var =
+          sigma * sigma + m_.model_sigma * m_.model_sigma + (jv * v.cov * jv.transpose())(0, 0);
+      const double e = r.range - range;
+      if (e * e > k2 * var) continue;
+      use[j] = 1;
+      ++count;
+    }
+    if (count < 3) break;
+  }
+  return count;
+}
+
 GroupingDecision SonarLineInitializer::Decide() {
   GroupingDecision out;
   struct Hypothesis {
@@ -230,6 +286,12 @@ GroupingDecision SonarLineInitializer::Decide() {
       hi = std::max(hi, t);
     }
     if (hi - lo < o_.min_extent_ratio * baseline) return out;  // point-like reflector
+    if (o_.point_rival) {
+      Vec2 centre = Vec2::Zero();
+      for (const Vec2& f : init.tangent_points) centre += f;
+      centre /= static_cast<double>(init.tangent_points.size());
+      if (PointSupport(best.mask, centre) >= o_.rival_ratio * best.support) return out;
+    }
     init.line.endpoint_a = PointOnLine(best.line(0), best.line(1), lo);
     init.line.endpoint_b = PointOnLine(best.line(0), best.line(1), hi);
     init.line.num_points = best.support;

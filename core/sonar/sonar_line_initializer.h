@@ -20,6 +20,9 @@
 //   - support >= min_support returns from >= min_vantage vantage points spanning >= min_baseline;
 //   - the tangent points span >= min_extent_ratio of that baseline (arcs through one corner or
 //     edge are tangent to many lines: a point reflector, not a wall);
+//   - no point rival (SonarInitOptions::point_rival): one point reflector, fitted to the
+//     inliers' ranges, does not explain rival_ratio of them (a head-on wall and a corner give
+//     the same ranges: the decision waits until the vantage points tell them apart);
 //   - no rival: no other hypothesis with a clearly different line claims rival_overlap of the
 //     same returns with rival_ratio of the support (else kAmbiguous: wait for more returns).
 // An accepted line leaves the buffer with its inliers and is returned in the ROBOT frame with
@@ -116,6 +119,9 @@ class SonarLineInitializer {
   void DropOld();
   int CountInliers(const Vec2& line, std::vector<char>& mask) const;
   bool Refine(Vec2& line, const std::vector<char>& mask, Mat2& cov) const;
+  // How many of the returns in `mask` one point reflector, fitted to them from `start`,
+  // explains (in its transducer's cone, range within inlier_sigmas).
+  int PointSupport(const std::vector<char>& mask, Vec2 start) const;
 
   SonarInitOptions o_;
   SonarModelOptions m_;

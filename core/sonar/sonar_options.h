@@ -83,17 +83,28 @@ struct SonarInitOptions {
   // their tangent points stay close together while the vantage points move. A line whose
   // tangent points span less than this fraction of its vantage baseline is not accepted.
   double min_extent_ratio = 0.4;
+  // Delayed decision between a wall and a point reflector (a corner, a jamb's edge, or the
+  // virtual source of a multipath echo: the range is the distance to one point, wherever it
+  // lies in the cone). The best line's inliers are also fitted with one point (Gauss-Newton
+  // on the ranges); when the point explains at least rival_ratio of them, the returns do not
+  // tell a wall from a point and no line is made from them. Off: only min_extent_ratio. In the
+  // simulated corridor (atlas-sonar-eval mc, 20 runs, 24 transducers, edge echoes off) it
+  // removes 105 of the 123 initialisations farther than 0.25 m or 10 deg from every wall and
+  // none of the 40 on a wall (docs/sonar.md, session 11).
+  bool point_rival = true;
   // Whether grouping counts edge-of-cone echoes (SonarModelOptions::edge_incidence) as inliers.
   // Off: RANSAC, the refinement and the line's covariance use the tangent model alone (in-cone
   // echoes). With edge echoes admitted, a group of returns fits lines over another
   // 2 x edge_incidence of angles, and the edge terms' strong d range / d alpha make a wrong
   // angle look certain: diagonal phantom lines at corners and end walls approached head-on
-  // were initialised some 15 degrees off (sonar-only NEES 348 on the alcove loop, 9.5 without).
-  // Edge echoes of mapped features are still used by the updates. Default on nevertheless
-  // (2026-11-23): with it off, the seeded sonar-only atlas run on the alcove loop
-  // (tools/sonar_eval SonarAtlasCondition2) accepted a loop closure 2.4 m off and refused
-  // nothing as ambiguous; with it on, it refuses and adds no false edge.
-  bool edge_echoes = true;
+  // were initialised some 15 degrees off (line NEES at initialisation 9.8 against 2 expected).
+  // Edge echoes of mapped features are still used by the updates. Off by default since session
+  // 11, together with point_rival and the sonar atlas's alternative_sigmas
+  // (SonarMapMatchOptions): over 50 seeded runs each of the building and of the alcove loop
+  // (docs/sonar.md) the sonar-only atlas makes fewer false closures (5, 1 gross, against 13, 3
+  // gross with edge echoes on) and its robot NEES is inside the band on 57 % of the building's
+  // steps (25 %); it closes fewer loops on the alcove loop.
+  bool edge_echoes = false;
   int max_new_per_decision = 2;
   // Delayed decision making with consistent covariance (SonarLocalMap, delayed_vantages.h): the
   // vantage points are delayed states of the EKF and an accepted line is added with its

@@ -13,7 +13,7 @@
 // loop it let gross ones through (docs/sonar.md), so sonar keeps it off. Laser lines also use
 // alternative_sigmas 3 (a pair whose line has a near-parallel alternative that the other pairs
 // and the prior allow is ambiguous; it refused freiburg-079's false edge 8-0, docs/atlas.md
-// session 6); sonar maps have not been measured with it.
+// session 6); so do sonar maps, through SonarMapMatchOptions (docs/sonar.md, session 11).
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
 // daemon_setup.cc, so that the replay tools build the same mapper without the configuration

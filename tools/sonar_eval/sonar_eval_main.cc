@@ -50,13 +50,16 @@ namespace {
 constexpr char kUsage[] =
     "usage: atlas-sonar-eval mc   [--runs N=20] [--minutes M=3] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--capacity C=20] [--delayed-states 0|1 (1)]\n"
+    "                             [--point-rival 0|1 (1)] [--init-edge-echoes 0|1 (0)]\n"
     "       atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--lines K=4]\n"
     "       atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
     "                             [--seed S=1] [--runs N=1] [--km K=0.4] [--capacity C=10]\n"
     "                             [--laser 0|1 (1)] [--self-match 0|1 (1)] [--trace FILE]\n"
     "                             [--delayed-states 0|1 (1)] [--edge-extent 0|1 (1)]\n"
+    "                             [--point-rival 0|1 (1)] [--init-edge-echoes 0|1 (0)]\n"
     "                             [--redundancy-sigma S=0.25] [--redundancy-prior H=0.5]\n"
+    "                             [--alternative-sigmas A=3]\n"
     "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
     "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (0)]\n"
     "                             [--bootstrap-steps N] [--probation N] [--w-edge-echoes 0|1 (0)]\n"
@@ -73,6 +76,9 @@ constexpr char kUsage[] =
     "      --delayed-states 0 (mc, atlas): new sonar lines with the earlier approximation "
     "(vantage\n"
     "      points independent of the map, SonarInitOptions::delayed_states) for comparison.\n"
+    "      --point-rival 0 (mc, atlas): new sonar lines without the point-reflector rival test\n"
+    "      (SonarInitOptions::point_rival); --init-edge-echoes 1: RANSAC with edge-of-cone\n"
+    "      echoes (SonarInitOptions::edge_echoes). Both for comparison.\n"
     "      --edge-extent 0 (atlas): edge echoes grow extents to where the edge ray meets the line\n"
     "      (SonarUpdateOptions::edge_extent_footprint off) for comparison.\n"
     "atlas: N simulated runs (noise seeds S..S+N-1) with laser and sonar through a world: the\n"
@@ -88,8 +94,9 @@ constexpr char kUsage[] =
     "      (what Condition 2's refusals protect against). --redundancy-sigma S: the sonar atlas's\n"
     "      map_match redundancy_sigma (0: a direction of t may rest on one line pair),\n"
     "      --redundancy-prior H its redundancy_prior_halfwidth (0: never; SonarAtlasOptions);\n"
-    "      --line-correlation\n"
-    "      1: map_match's unknown_line_correlation (t's covariance times the pairs). Each edge is\n"
+    "      --alternative-sigmas A its alternative_sigmas (0: off; SonarAtlasOptions).\n"
+    "      --line-correlation 1: map_match's unknown_line_correlation (t's covariance times the "
+    "pairs). Each edge is\n"
     "      also judged as map-matching made it (before edge refinement).\n"
     "      --keep-frame-map 1: a juvenile that matures leaves the frame's map as it was (not the\n"
     "      features it updated from its seeded pose) and gives it its robot pose\n"
@@ -226,13 +233,32 @@ InitNees NeesAtInitialisation(const SonarLocalMap& map, int k, const Pose2& trut
   return out;
 }
 
+// The initialiser switches the tools take for comparison (--delayed-states, --point-rival,
+// --init-edge-echoes).
+struct InitSwitches {
+  double delayed_states = SonarInitOptions().delayed_states ? 1 : 0,
+         point_rival = SonarInitOptions().point_rival ? 1 : 0,
+         edge_echoes = SonarInitOptions().edge_echoes ? 1 : 0;
+
+  bool Parse(const Args& args, std::string& error) {
+    return GetNumberOption(args, "--delayed-states", 0, 1, delayed_states, error) &&
+           GetNumberOption(args, "--point-rival", 0, 1, point_rival, error) &&
+           GetNumberOption(args, "--init-edge-echoes", 0, 1, edge_echoes, error);
+  }
+  void Apply(SonarInitOptions& init) const {
+    init.delayed_states = delayed_states != 0;
+    init.point_rival = point_rival != 0;
+    init.edge_echoes = edge_echoes != 0;
+  }
+};
+
 std::vector<Step> RunOnce(uint64_t seed, double minutes, int ring, int capacity,
-                          bool delayed_states, int& sonar_lines, int& laser_lines,
+                          const InitSwitches& switches, int& sonar_lines, int& laser_lines,
                           std::vector<InitNees>& init_nees) {
   CorridorRun run(seed, ring);
   SonarLocalMapOptions sonar_o =
       sonar_eval::SimulatedMapOptions(RangeSensors::kSonar, capacity, run.wheel, run.sonar);
-  sonar_o.init.delayed_states = delayed_states;
+  switches.Apply(sonar_o.init);
   SonarLocalMap sonar(sonar_o);
   SonarLocalMap laser(
       sonar_eval::SimulatedMapOptions(RangeSensors::kLaser, capacity, run.wheel, run.sonar));
@@ -283,10 +309,10 @@ void AddRelativeErrors(const std::vector<Step>& steps, int gap, Pose2 Step::*whi
 }
 
 int RunMonteCarlo(const Args& args) {
-  double runs = 20, minutes = 3, ring = 24, seed = 1, capacity = 20, delayed = 1;
+  double runs = 20, minutes = 3, ring = 24, seed = 1, capacity = 20;
+  InitSwitches switches;
   std::string error;
-  if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) ||
-      !GetNumberOption(args, "--delayed-states", 0, 1, delayed, error) ||
+  if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) || !switches.Parse(args, error) ||
       !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
       !GetNumberOption(args, "--ring", 16, 24, ring, error) ||
       !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
@@ -305,7 +331,7 @@ int RunMonteCarlo(const Args& args) {
   for (int r = 0; r < n; ++r) {
     int sl = 0, ll = 0;
     all.push_back(RunOnce(static_cast<uint64_t>(seed) + r, minutes, static_cast<int>(ring),
-                          static_cast<int>(capacity), delayed != 0, sl, ll, init_nees));
+                          static_cast<int>(capacity), switches, sl, ll, init_nees));
     sonar_lines += sl;
     laser_lines += ll;
     std::fprintf(stderr, "\rrun %d/%d done (%d sonar lines, %d laser lines)   ", r + 1, n, sl, ll);
@@ -366,8 +392,8 @@ int RunMonteCarlo(const Args& args) {
         "  sonar lines at initialisation (%s): %zu within 0.25 m and 10 deg of their nearest "
         "wall (+%d farther); line NEES (2 dof) mean %.2f, above the 95%% bound %.1f%%; robot+line "
         "NEES (5 dof) mean %.2f, above the 95%% bound %.1f%%\n",
-        delayed != 0 ? "delayed states" : "independent vantage points", line.size(), gross, ls.mean,
-        100.0 * line_out / k, js.mean, 100.0 * joint_out / k);
+        switches.delayed_states != 0 ? "delayed states" : "independent vantage points", line.size(),
+        gross, ls.mean, 100.0 * line_out / k, js.mean, 100.0 * joint_out / k);
   }
   for (const int gap_s : {5, 30, 90}) {
     if (static_cast<size_t>(gap_s * 10) >= steps) break;
@@ -663,12 +689,14 @@ struct TraceWriter {
 int RunAtlasMode(const Args& args) {
   const AtlasOptions sonar_defaults = sonar_eval::SonarAtlasOptions();
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
-         self_match = 1, delayed = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1,
-         sonar_w = 0, w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
+         self_match = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1, sonar_w = 0,
+         w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
          bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
          redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
-         redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth;
+         redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth,
+         alternative = sonar_eval::SonarAtlasOptions().match.alternative_sigmas;
   sonar_eval::AlcoveLoopOptions loop;
+  InitSwitches switches;
   std::string error;
   if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
       !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
@@ -678,7 +706,7 @@ int RunAtlasMode(const Args& args) {
       !GetNumberOption(args, "--runs", 1, 1000, runs, error) ||
       !GetNumberOption(args, "--laser", 0, 1, laser, error) ||
       !GetNumberOption(args, "--self-match", 0, 1, self_match, error) ||
-      !GetNumberOption(args, "--delayed-states", 0, 1, delayed, error) ||
+      !switches.Parse(args, error) ||
       !GetNumberOption(args, "--edge-extent", 0, 1, edge_extent, error) ||
       !GetNumberOption(args, "--redundancy-sigma", 0, 100, redundancy, error) ||
       !GetNumberOption(args, "--line-correlation", 0, 1, line_correlation, error) ||
@@ -689,6 +717,7 @@ int RunAtlasMode(const Args& args) {
       !GetNumberOption(args, "--bootstrap-steps", 1, 1000, bootstrap_steps, error) ||
       !GetNumberOption(args, "--probation", 2, 1000, probation, error) ||
       !GetNumberOption(args, "--redundancy-prior", 0, 100, redundancy_prior, error) ||
+      !GetNumberOption(args, "--alternative-sigmas", 0, 100, alternative, error) ||
       !GetNumberOption(args, "--period", 0.5, 100, loop.period, error) ||
       !GetNumberOption(args, "--loop-length", 5, 1000, loop.length, error) ||
       !GetNumberOption(args, "--loop-width", 5, 1000, loop.width, error)) {
@@ -742,7 +771,7 @@ int RunAtlasMode(const Args& args) {
     }
     SonarLocalMapOptions sonar_o = sonar_eval::SimulatedMapOptions(
         RangeSensors::kSonar, static_cast<int>(capacity), so.odometry_options, so.sonar_options);
-    sonar_o.init.delayed_states = delayed != 0;
+    switches.Apply(sonar_o.init);
     sonar_o.update.edge_extent_footprint = edge_extent != 0;
     if (std::string e = sonar_o.Validate(); !e.empty()) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
@@ -752,6 +781,7 @@ int RunAtlasMode(const Args& args) {
     ao.match.self_match = self_match != 0;
     ao.match.redundancy_sigma = redundancy;
     ao.match.redundancy_prior_halfwidth = redundancy_prior;
+    ao.match.alternative_sigmas = alternative;
     ao.match.unknown_line_correlation = line_correlation != 0;
     ao.keep_frame_map_without_w = keep_frame_map != 0;
     ao.seed_cov_scale_without_w = seed_scale;
@@ -972,9 +1002,10 @@ int main(int argc, char** argv) {
   }
   const std::string cmd = argv[1];
   if (cmd == "mc") {
-    const atlas::Args a = atlas::eval::ParseToolOptions(
-        argc, argv, 2,
-        {"--runs", "--minutes", "--ring", "--seed", "--capacity", "--delayed-states"});
+    const atlas::Args a =
+        atlas::eval::ParseToolOptions(argc, argv, 2,
+                                      {"--runs", "--minutes", "--ring", "--seed", "--capacity",
+                                       "--delayed-states", "--point-rival", "--init-edge-echoes"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval mc: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
@@ -989,7 +1020,7 @@ int main(int argc, char** argv) {
          "--trace", "--self-match", "--period", "--loop-length", "--loop-width", "--delayed-states",
          "--edge-extent", "--redundancy-sigma", "--line-correlation", "--redundancy-prior",
          "--keep-frame-map", "--seed-cov-scale", "--sonar-w", "--bootstrap-steps", "--probation",
-         "--w-edge-echoes"});
+         "--w-edge-echoes", "--point-rival", "--init-edge-echoes", "--alternative-sigmas"});
     // clang-format on
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
