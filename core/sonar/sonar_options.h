@@ -100,10 +100,11 @@ struct SonarInitOptions {
   // were initialised some 15 degrees off (line NEES at initialisation 9.8 against 2 expected).
   // Edge echoes of mapped features are still used by the updates. Off by default since session
   // 11, together with point_rival and the sonar atlas's alternative_sigmas
-  // (SonarMapMatchOptions): over 50 seeded runs each of the building and of the alcove loop
-  // (docs/sonar.md) the sonar-only atlas makes fewer false closures (5, 1 gross, against 13, 3
-  // gross with edge echoes on) and its robot NEES is inside the band on 57 % of the building's
-  // steps (25 %); it closes fewer loops on the alcove loop.
+  // (SonarMapMatchOptions): over 100 seeded runs each of the building and of the alcove loop
+  // (docs/sonar.md, session 11) the sonar-only atlas makes half the false closures (11, 5
+  // gross, against 25, 9 gross with edge echoes on) and its robot NEES is inside the band on
+  // 49 % of the building's steps (37 %); on the alcove loop it closes fewer loops and is inside
+  // the band less often (45 %, 51 %).
   bool edge_echoes = false;
   int max_new_per_decision = 2;
   // Delayed decision making with consistent covariance (SonarLocalMap, delayed_vantages.h): the
