@@ -91,11 +91,16 @@ std::vector<int64_t> SonarLineInitializer::VantagesInUse() const {
 
 double SonarLineInitializer::ReturnVariance(const BufferedReturn& r, double rho,
                                             double alpha) const {
-  const SonarVantage& v = vantage_[r.vantage];
-  const SonarRangePrediction p = PredictSonarRange(v.pose, r.mount, rho, alpha, m_.edge_incidence);
+  const SonarRangePrediction p =
+      PredictSonarRange(vantage_[r.vantage].pose, r.mount, rho, alpha, m_.edge_incidence);
+  return RangeVariance(r, p.d_pose);
+}
+
+double SonarLineInitializer::RangeVariance(const BufferedReturn& r,
+                                           const Eigen::RowVector3d& d_vantage) const {
   const double sigma = m_.range_sigma + m_.range_sigma_per_m * r.range;
   return sigma * sigma + m_.model_sigma * m_.model_sigma +
-         (p.d_pose * v.cov * p.d_pose.transpose())(0, 0);
+         (d_vantage * vantage_[r.vantage].cov * d_vantage.transpose())(0, 0);
 }
 
 int SonarLineInitializer::CountInliers(const Vec2& line, std::vector<char>& mask) const {
@@ -179,16 +184,12 @@ int SonarLineInitializer::PointSupport(const std::vector<char>& mask, Vec2 point
       if (std::abs(WrapAngle(std::atan2(d.y(), d.x()) - s.theta)) > 0.5 * r.mount.beam_width) {
         continue;
       }
-      const Vec2 u = -d / range;
-      const double c = std::cos(v.pose.theta), sn = std::sin(v.pose.theta);
-      const double mx = r.mount.pose.x, my = r.mount.pose.y;
-      const Eigen::RowVector3d jv(u.x(), u.y(),
-                                  u.x() * (-sn * mx - c * my) + u.y() * (c * mx - sn * my));
-      const double sigma = m_.range_sigma + m_.range_sigma_per_m * r.range;
-      const double var =
-          sigma * sigma + m_.model_sigma * m_.model_sigma + (jv * v.cov * jv.transpose())(0, 0);
+      // d range / d vantage: the range's gradient in the sensor position (-d / range) through
+      // the sensor position's Jacobian in the vantage pose.
+      const Eigen::RowVector3d d_vantage =
+          (-d / range).transpose() * ComposeJacobianA(v.pose, r.mount.pose).topRows<2>();
       const double e = r.range - range;
-      if (e * e > k2 * var) continue;
+      if (e * e > k2 * RangeVariance(r, d_vantage)) continue;
       use[j] = 1;
       ++count;
     }

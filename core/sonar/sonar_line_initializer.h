@@ -122,6 +122,9 @@ class SonarLineInitializer {
   // How many of the returns in `mask` one point reflector, fitted to them from `start`,
   // explains (in its transducer's cone, range within inlier_sigmas).
   int PointSupport(const std::vector<char>& mask, Vec2 start) const;
+  // Variance of return r's range: its noise, model_sigma, and its vantage pose's covariance
+  // through d_vantage = d range / d vantage pose.
+  double RangeVariance(const BufferedReturn& r, const Eigen::RowVector3d& d_vantage) const;
 
   SonarInitOptions o_;
   SonarModelOptions m_;
