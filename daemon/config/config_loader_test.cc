@@ -198,12 +198,12 @@ TEST(ConfigLoader, LocalMapSensorsChoosesLaserSonarOrBoth) {
   ASSERT_TRUE(both.ok()) << both.errors[0].ToString();
   EXPECT_EQ(both.options.localmap.sensors, LocalMapSensors::kBoth);
   EXPECT_EQ(DaemonOptions{}.localmap.sensors, LocalMapSensors::kLaser);
-  EXPECT_FALSE(DaemonOptions{}.localmap.sonar_bootstrap);
-  const ConfigResult with_w = LoadConfigString(
-      "[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\nsonar_bootstrap = true\n",
+  EXPECT_TRUE(DaemonOptions{}.localmap.sonar_bootstrap);
+  const ConfigResult without_w = LoadConfigString(
+      "[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\nsonar_bootstrap = false\n",
       "test.toml");
-  ASSERT_TRUE(with_w.ok());
-  EXPECT_TRUE(with_w.options.localmap.sonar_bootstrap);
+  ASSERT_TRUE(without_w.ok());
+  EXPECT_FALSE(without_w.options.localmap.sonar_bootstrap);
   // An unknown value is rejected with the key, the line and the accepted values.
   ExpectOneError(LoadConfigString("\n[localmap]\nsensors = \"radar\"\n", "test.toml"),
                  "localmap.sensors", 3, "must be one of \"laser\", \"sonar\", \"both\"");

@@ -74,9 +74,9 @@ enum class LocalMapSensors { kLaser, kSonar, kBoth };
 struct LocalMapConfig {
   LocalMapSensors sensors = LocalMapSensors::kLaser;
   // With the sonar alone: the sonar w of eq. 12 (core/sonar/sonar_map_bootstrapper.h) solves
-  // traversal juveniles' poses from their readings; false (the default): they keep their
-  // seeded pose. w made gross false loop closures on the simulator (docs/sonar.md, session 9).
-  bool sonar_bootstrap = false;
+  // traversal juveniles' poses from their readings (the default since session 12); false: they
+  // keep their seeded pose (docs/sonar.md, sessions 9 and 12).
+  bool sonar_bootstrap = true;
 };
 
 // Scan-to-scan matching of consecutive laser scans (core/scanmatch/scan_matcher.h): the wheel

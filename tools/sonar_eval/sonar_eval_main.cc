@@ -51,6 +51,7 @@ constexpr char kUsage[] =
     "usage: atlas-sonar-eval mc   [--runs N=20] [--minutes M=3] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--capacity C=20] [--delayed-states 0|1 (1)]\n"
     "                             [--point-rival 0|1 (1)] [--init-edge-echoes 0|1 (0)]\n"
+    "                             [--extent-gap G=1.5]\n"
     "       atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--lines K=4]\n"
     "       atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
@@ -61,8 +62,9 @@ constexpr char kUsage[] =
     "                             [--redundancy-sigma S=0.25] [--redundancy-prior H=0.5]\n"
     "                             [--alternative-sigmas A=3]\n"
     "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
-    "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (0)]\n"
+    "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (1)]\n"
     "                             [--bootstrap-steps N] [--probation N] [--w-edge-echoes 0|1 (0)]\n"
+    "                             [--extent-gap G=1.5]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
     "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
@@ -73,12 +75,14 @@ constexpr char kUsage[] =
     "      95 % band, the NEES of each sonar line at its initialisation against the nearest true\n"
     "      wall (2 dof, and 5 dof with the robot pose), and relative-pose errors over pairs 5, 30\n"
     "      and 90 s apart for sonar, laser and dead reckoning.\n"
-    "      --delayed-states 0 (mc, atlas): new sonar lines with the earlier approximation "
-    "(vantage\n"
-    "      points independent of the map, SonarInitOptions::delayed_states) for comparison.\n"
+    "      --delayed-states 0 (mc, atlas): new sonar lines with the earlier approximation\n"
+    "      (vantage points independent of the map, SonarInitOptions::delayed_states) for\n"
+    "      comparison.\n"
     "      --point-rival 0 (mc, atlas): new sonar lines without the point-reflector rival test\n"
     "      (SonarInitOptions::point_rival); --init-edge-echoes 1: RANSAC with edge-of-cone\n"
     "      echoes (SonarInitOptions::edge_echoes). Both for comparison.\n"
+    "      --extent-gap G (mc, atlas): how far beyond a line's seen extent a return may still\n"
+    "      update it (SonarUpdateOptions::max_extent_gap, metres).\n"
     "      --edge-extent 0 (atlas): edge echoes grow extents to where the edge ray meets the line\n"
     "      (SonarUpdateOptions::edge_extent_footprint off) for comparison.\n"
     "atlas: N simulated runs (noise seeds S..S+N-1) with laser and sonar through a world: the\n"
@@ -103,8 +107,9 @@ constexpr char kUsage[] =
     "      (AtlasOptions::keep_frame_map_without_w, an experiment).\n"
     "      --seed-cov-scale F: traversal seeds of the sonar atlas get F times the projected\n"
     "      covariance (AtlasOptions::seed_cov_scale_without_w, an experiment).\n"
-    "      --sonar-w 1: the sonar atlas with w (eq. 12; SonarMapBootstrapper); 0 (default, as\n"
-    "      atlasd): its juveniles keep their seeded pose and trial map. --bootstrap-steps N,\n"
+    "      --sonar-w 1 (default, as atlasd): the sonar atlas with w (eq. 12;\n"
+    "      SonarMapBootstrapper); 0: its juveniles keep their seeded pose and trial map.\n"
+    "      --bootstrap-steps N,\n"
     "      --probation N: the sonar atlas's lifecycle.bootstrap_scans and probation_scans\n"
     "      (default: SonarAtlasOptions', with w at least kSonarBootstrapProbation).\n"
     "      --w-edge-echoes 1: w pairs edge-of-cone echoes too (SonarBootstrapOptions::\n"
@@ -233,32 +238,35 @@ InitNees NeesAtInitialisation(const SonarLocalMap& map, int k, const Pose2& trut
   return out;
 }
 
-// The initialiser switches the tools take for comparison (--delayed-states, --point-rival,
-// --init-edge-echoes).
-struct InitSwitches {
+// The sonar map switches the tools take for comparison (--delayed-states, --point-rival,
+// --init-edge-echoes, --extent-gap).
+struct MapSwitches {
   double delayed_states = SonarInitOptions().delayed_states ? 1 : 0,
          point_rival = SonarInitOptions().point_rival ? 1 : 0,
-         edge_echoes = SonarInitOptions().edge_echoes ? 1 : 0;
+         edge_echoes = SonarInitOptions().edge_echoes ? 1 : 0,
+         extent_gap = SonarUpdateOptions().max_extent_gap;
 
   bool Parse(const Args& args, std::string& error) {
     return GetNumberOption(args, "--delayed-states", 0, 1, delayed_states, error) &&
            GetNumberOption(args, "--point-rival", 0, 1, point_rival, error) &&
-           GetNumberOption(args, "--init-edge-echoes", 0, 1, edge_echoes, error);
+           GetNumberOption(args, "--init-edge-echoes", 0, 1, edge_echoes, error) &&
+           GetNumberOption(args, "--extent-gap", 0, 100, extent_gap, error);
   }
-  void Apply(SonarInitOptions& init) const {
-    init.delayed_states = delayed_states != 0;
-    init.point_rival = point_rival != 0;
-    init.edge_echoes = edge_echoes != 0;
+  void Apply(SonarLocalMapOptions& o) const {
+    o.init.delayed_states = delayed_states != 0;
+    o.init.point_rival = point_rival != 0;
+    o.init.edge_echoes = edge_echoes != 0;
+    o.update.max_extent_gap = extent_gap;
   }
 };
 
 std::vector<Step> RunOnce(uint64_t seed, double minutes, int ring, int capacity,
-                          const InitSwitches& switches, int& sonar_lines, int& laser_lines,
+                          const MapSwitches& switches, int& sonar_lines, int& laser_lines,
                           std::vector<InitNees>& init_nees) {
   CorridorRun run(seed, ring);
   SonarLocalMapOptions sonar_o =
       sonar_eval::SimulatedMapOptions(RangeSensors::kSonar, capacity, run.wheel, run.sonar);
-  switches.Apply(sonar_o.init);
+  switches.Apply(sonar_o);
   SonarLocalMap sonar(sonar_o);
   SonarLocalMap laser(
       sonar_eval::SimulatedMapOptions(RangeSensors::kLaser, capacity, run.wheel, run.sonar));
@@ -310,7 +318,7 @@ void AddRelativeErrors(const std::vector<Step>& steps, int gap, Pose2 Step::*whi
 
 int RunMonteCarlo(const Args& args) {
   double runs = 20, minutes = 3, ring = 24, seed = 1, capacity = 20;
-  InitSwitches switches;
+  MapSwitches switches;
   std::string error;
   if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) || !switches.Parse(args, error) ||
       !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
@@ -689,14 +697,14 @@ struct TraceWriter {
 int RunAtlasMode(const Args& args) {
   const AtlasOptions sonar_defaults = sonar_eval::SonarAtlasOptions();
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
-         self_match = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1, sonar_w = 0,
+         self_match = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1, sonar_w = 1,
          w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
          bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
          redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
          redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth,
          alternative = sonar_eval::SonarAtlasOptions().match.alternative_sigmas;
   sonar_eval::AlcoveLoopOptions loop;
-  InitSwitches switches;
+  MapSwitches switches;
   std::string error;
   if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
       !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
@@ -771,7 +779,7 @@ int RunAtlasMode(const Args& args) {
     }
     SonarLocalMapOptions sonar_o = sonar_eval::SimulatedMapOptions(
         RangeSensors::kSonar, static_cast<int>(capacity), so.odometry_options, so.sonar_options);
-    switches.Apply(sonar_o.init);
+    switches.Apply(sonar_o);
     sonar_o.update.edge_extent_footprint = edge_extent != 0;
     if (std::string e = sonar_o.Validate(); !e.empty()) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
@@ -1002,10 +1010,10 @@ int main(int argc, char** argv) {
   }
   const std::string cmd = argv[1];
   if (cmd == "mc") {
-    const atlas::Args a =
-        atlas::eval::ParseToolOptions(argc, argv, 2,
-                                      {"--runs", "--minutes", "--ring", "--seed", "--capacity",
-                                       "--delayed-states", "--point-rival", "--init-edge-echoes"});
+    const atlas::Args a = atlas::eval::ParseToolOptions(
+        argc, argv, 2,
+        {"--runs", "--minutes", "--ring", "--seed", "--capacity", "--delayed-states",
+         "--point-rival", "--init-edge-echoes", "--extent-gap"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval mc: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
@@ -1020,7 +1028,8 @@ int main(int argc, char** argv) {
          "--trace", "--self-match", "--period", "--loop-length", "--loop-width", "--delayed-states",
          "--edge-extent", "--redundancy-sigma", "--line-correlation", "--redundancy-prior",
          "--keep-frame-map", "--seed-cov-scale", "--sonar-w", "--bootstrap-steps", "--probation",
-         "--w-edge-echoes", "--point-rival", "--init-edge-echoes", "--alternative-sigmas"});
+         "--w-edge-echoes", "--point-rival", "--init-edge-echoes", "--alternative-sigmas",
+         "--extent-gap"});
     // clang-format on
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
