@@ -3,7 +3,10 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
+#include "core/localmap/line_model.h"
 #include "tools/render/run_data.h"
 #include "tools/replay/replay_run.h"
 
@@ -49,6 +52,55 @@ double PoseNees(const UncertainPose& est, const Pose2& truth) {
                                  .asDiagonal()
                                  .toDenseMatrix();
   return e.dot(cov.ldlt().solve(e));
+}
+
+Vec2 WallLine(const sim::Wall& wall) {
+  const Vec2 d = (wall.b - wall.a).normalized();
+  double alpha = std::atan2(d.x(), -d.y());  // normal
+  double rho = wall.a.x() * std::cos(alpha) + wall.a.y() * std::sin(alpha);
+  CanonicalizeLine(rho, alpha);
+  return Vec2(rho, alpha);
+}
+
+std::vector<Vec2> WallLinesInFrame(const std::vector<sim::Wall>& walls, const Pose2& origin) {
+  const Pose2 to_frame = Inverse(origin);
+  std::vector<Vec2> out;
+  out.reserve(walls.size());
+  for (const sim::Wall& w : walls)
+    out.push_back(WallLine(sim::Wall{to_frame.TransformPoint(w.a), to_frame.TransformPoint(w.b)}));
+  return out;
+}
+
+namespace {
+// (rho, alpha) of `line` minus the wall line `w` taken with rho of the same sign (flip) or the
+// opposite one.
+Vec2 LineDifference(const Vec2& line, const Vec2& w, bool flip) {
+  return Vec2(line.x() - (flip ? -w.x() : w.x()),
+              WrapAngle(line.y() - w.y() - (flip ? std::numbers::pi : 0.0)));
+}
+}  // namespace
+
+double NeesAgainstNearestWall(const MapLine& line, const std::vector<Vec2>& wall_lines) {
+  double best = std::numeric_limits<double>::infinity();
+  const Vec2 l(line.rho, line.alpha);
+  for (const Vec2& w : wall_lines) {
+    for (const bool flip : {false, true}) {
+      const Vec2 d = LineDifference(l, w, flip);
+      best = std::min(best, d.dot(line.cov.ldlt().solve(d)));
+    }
+  }
+  return best;
+}
+
+bool FarFromEveryWall(const Vec2& line, const std::vector<Vec2>& wall_lines) {
+  for (const Vec2& w : wall_lines) {
+    for (const bool flip : {false, true}) {
+      const Vec2 d = LineDifference(line, w, flip);
+      if (std::abs(d.x()) <= 0.25 && std::abs(d.y()) <= 10.0 * std::numbers::pi / 180.0)
+        return false;
+    }
+  }
+  return true;
 }
 
 void SimRecording::OnLaser(const LaserScan& scan, const Pose2& odometry) {

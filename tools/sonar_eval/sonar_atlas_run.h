@@ -48,6 +48,19 @@ AtlasOptions SonarAtlasOptions();
 inline constexpr double kNeesFloorM = 1e-3, kNeesFloorRad = 1e-3;
 double PoseNees(const UncertainPose& estimate, const Pose2& truth);
 
+// Line features against the simulator's walls. Lines are canonical (rho, alpha)
+// (CanonicalizeLine) in a map frame whose true origin is `origin`.
+// The infinite line through a wall, in the coordinates its endpoints are given in.
+Vec2 WallLine(const sim::Wall& wall);
+// Every wall's line in the frame whose true origin is `origin`.
+std::vector<Vec2> WallLinesInFrame(const std::vector<sim::Wall>& walls, const Pose2& origin);
+// The smallest NEES (2 dof, the line's own covariance) of `line` against any of `wall_lines`
+// (either orientation of each): above the 99.9 % point (13.8) the line fits no wall.
+double NeesAgainstNearestWall(const MapLine& line, const std::vector<Vec2>& wall_lines);
+// True when the line (rho, alpha) is farther than 0.25 m in rho or 10 degrees in alpha from
+// every wall line: a phantom (the count atlas-sonar-eval mc prints at initialisation).
+bool FarFromEveryWall(const Vec2& line, const std::vector<Vec2>& wall_lines);
+
 // A whole simulated run in memory: ground truth, and every laser scan and sonar reading with
 // the odometry pose at its stamp, in stamp order.
 class SimRecording final : public sim::SimulationSink {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
@@ -53,6 +54,36 @@ TEST(AlcoveLoopWorld, ValidateNamesTheBadOption) {
   o = AlcoveLoopOptions{};
   o.width = 4.0;
   EXPECT_NE(o.Validate().find("width"), std::string::npos);
+}
+
+TEST(WallLines, LinesInTheFrameAndTheirDistanceToAMappedLine) {
+  // A wall along y = 2 (normal +y) and one along x = -1, seen from a frame whose true origin
+  // is at (1, 0) turned by 90 degrees: in that frame the first lies at x = 2 (rho 2, alpha 0),
+  // the second at y = 2 (rho 2, alpha 90 deg).
+  const std::vector<sim::Wall> walls = {{Vec2(-5, 2), Vec2(5, 2)}, {Vec2(-1, -5), Vec2(-1, 5)}};
+  EXPECT_NEAR(WallLine(walls[0]).x(), 2.0, 1e-12);
+  EXPECT_NEAR(std::abs(WrapAngle(WallLine(walls[0]).y())), std::numbers::pi / 2, 1e-12);
+  const std::vector<Vec2> in_frame = WallLinesInFrame(walls, Pose2{1.0, 0.0, std::numbers::pi / 2});
+  ASSERT_EQ(in_frame.size(), 2u);
+  EXPECT_NEAR(in_frame[0].x(), 2.0, 1e-12);
+  EXPECT_NEAR(in_frame[0].y(), 0.0, 1e-12);
+  EXPECT_NEAR(in_frame[1].x(), 2.0, 1e-12);
+  EXPECT_NEAR(in_frame[1].y(), std::numbers::pi / 2, 1e-12);
+
+  MapLine l;
+  l.rho = 2.1;
+  l.alpha = 0.02;
+  l.cov = Vec2(0.05 * 0.05, 0.01 * 0.01).asDiagonal();
+  EXPECT_NEAR(NeesAgainstNearestWall(l, in_frame), 4.0 + 4.0,
+              1e-9);  // (0.1/0.05)^2 + (0.02/0.01)^2
+  // The same line written with the opposite normal is the same distance away.
+  l.rho = -2.1;
+  l.alpha = 0.02 + std::numbers::pi;
+  EXPECT_NEAR(NeesAgainstNearestWall(l, in_frame), 8.0, 1e-9);
+  EXPECT_FALSE(FarFromEveryWall(Vec2(2.2, 0.1), in_frame));
+  EXPECT_TRUE(FarFromEveryWall(Vec2(2.3, 0.0), in_frame));   // 0.3 m off
+  EXPECT_TRUE(FarFromEveryWall(Vec2(2.0, 0.25), in_frame));  // 14 degrees off
+  EXPECT_FALSE(FarFromEveryWall(Vec2(-2.0, -std::numbers::pi / 2), in_frame));
 }
 
 TEST(PoseNees, FloorKeepsASingularCovarianceFinite) {

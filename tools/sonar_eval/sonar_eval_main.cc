@@ -53,7 +53,7 @@ constexpr char kUsage[] =
     "                             [--point-rival 0|1 (1)] [--init-edge-echoes 0|1 (0)]\n"
     "                             [--extent-gap G=1.5]\n"
     "       atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
-    "                             [--lines K=4]\n"
+    "                             [--lines K=4] [--phantoms 0|1 (0)] [--minutes M=3]\n"
     "       atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
     "                             [--seed S=1] [--runs N=1] [--km K=0.4] [--capacity C=10]\n"
     "                             [--laser 0|1 (1)] [--self-match 0|1 (1)] [--trace FILE]\n"
@@ -93,7 +93,8 @@ constexpr char kUsage[] =
     "      as ambiguous / rejected), every map-match edge against the ground truth (chi-square\n"
     "      3 dof > 14.16: false closure), the robot NEES of the dominant pose in its frame\n"
     "      averaged over the runs against its 95 % band, and relative-pose errors (5 s, 30 s)\n"
-    "      next to dead reckoning. --trace FILE: one row per step and live hypothesis.\n"
+    "      next to dead reckoning. --trace FILE: one row per step and live hypothesis (its\n"
+    "      pose error, and its map's lines against the true walls).\n"
     "      --self-match 0: map-matching without the self-match test of repetitive structure\n"
     "      (what Condition 2's refusals protect against). --redundancy-sigma S: the sonar atlas's\n"
     "      map_match redundancy_sigma (0: a direction of t may rest on one line pair),\n"
@@ -119,7 +120,9 @@ constexpr char kUsage[] =
     "      edge-of-cone pairings: the true wall's line, another line, or no wall: multipath);\n"
     "      the first N wrong pairings are listed; NEES every 10 s.\n"
     "fig9: the returns, vantage points and lines of the first K sonar feature initialisations\n"
-    "      (map-frame, estimated poses) over the true walls, like the paper's Fig. 9.\n";
+    "      (map-frame, estimated poses) over the true walls, like the paper's Fig. 9, in the\n"
+    "      corridor of mc. --phantoms 1: only lines farther than 0.25 m or 10 deg from every\n"
+    "      wall (mc's count); --minutes M: how long to drive for them.\n";
 
 using Args = eval::ToolOptions;
 using eval::GetNumberOption;
@@ -203,18 +206,13 @@ InitNees NeesAtInitialisation(const SonarLocalMap& map, int k, const Pose2& trut
   const int ik = 3 + 2 * k;
   double rho = x(ik), alpha = x(ik + 1);
   CanonicalizeLine(rho, alpha);
-  const Pose2 to_map = Inverse(origin);
   Vec2 best(0.0, 0.0);
   double best_d = 1e300;
-  for (const sim::Wall& w : walls) {
-    const Vec2 a = to_map.TransformPoint(w.a), b = to_map.TransformPoint(w.b);
-    const Vec2 d = (b - a).normalized();
-    double wr = a.x() * -d.y() + a.y() * d.x(), wa = std::atan2(d.x(), -d.y());
-    CanonicalizeLine(wr, wa);
-    const double dist = std::abs(wr - rho) + std::abs(WrapAngle(wa - alpha));
+  for (const Vec2& w : sonar_eval::WallLinesInFrame(walls, origin)) {
+    const double dist = std::abs(w.x() - rho) + std::abs(WrapAngle(w.y() - alpha));
     if (dist < best_d) {
       best_d = dist;
-      best = Vec2(wr, wa);
+      best = w;
     }
   }
   Eigen::Matrix<double, 5, 1> e;
@@ -432,11 +430,13 @@ void Arc(draw::Canvas& c, const Pose2& sensor, double range, double half, const 
 }
 
 int RunFig9(const Args& args) {
-  double ring = 24, seed = 1, lines = 4;
+  double ring = 24, seed = 1, lines = 4, phantoms = 0, minutes = 3;
   std::string error;
   if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
       !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumberOption(args, "--lines", 1, 20, lines, error)) {
+      !GetNumberOption(args, "--lines", 1, 20, lines, error) ||
+      !GetNumberOption(args, "--phantoms", 0, 1, phantoms, error) ||
+      !GetNumberOption(args, "--minutes", 0.1, 600, minutes, error)) {
     std::fprintf(stderr, "atlas-sonar-eval fig9: %s\n", error.c_str());
     return 2;
   }
@@ -458,7 +458,8 @@ int RunFig9(const Args& args) {
   const Pose2 origin = run.follower.pose();
   Pose2 last_odo = run.odometry.Step(TruthSample{Time{}, origin}).pose;
   const double dt = 0.02;
-  for (int s = 1; s <= 3 * 60 * 50 && static_cast<int>(drawn.size()) < lines; ++s) {
+  const std::vector<Vec2> wall_lines = sonar_eval::WallLinesInFrame(run.walls, origin);
+  for (int s = 1; s <= minutes * 60 * 50 && static_cast<int>(drawn.size()) < lines; ++s) {
     run.follower.Step(dt);
     const Pose2 world = run.follower.pose();
     const Pose2 odo = run.odometry.Step(TruthSample{FromSeconds(s * dt), world}).pose;
@@ -471,10 +472,16 @@ int RunFig9(const Args& args) {
     path.push_back(Vec2(est.x, est.y));
     const Pose2 t = Between(origin, world);
     true_path.push_back(Vec2(t.x, t.y));
-    for (const InitialisedLine& l : up.initialised) drawn.push_back(Drawn{est, l});
+    for (const InitialisedLine& l : up.initialised) {
+      const Vec2 seen = sonar_eval::WallLine(
+          sim::Wall{est.TransformPoint(l.line.endpoint_a), est.TransformPoint(l.line.endpoint_b)});
+      if (phantoms == 0 || sonar_eval::FarFromEveryWall(seen, wall_lines))
+        drawn.push_back(Drawn{est, l});
+    }
   }
   if (drawn.empty()) {
-    std::fprintf(stderr, "atlas-sonar-eval fig9: no line was initialised in 3 minutes\n");
+    std::fprintf(stderr, "atlas-sonar-eval fig9: no %s was initialised in %.1f minutes\n",
+                 phantoms != 0 ? "phantom line" : "line", minutes);
     return 1;
   }
   Vec2 lo(-1, -2.5), hi(21, 2.5);
@@ -516,8 +523,9 @@ int RunFig9(const Args& args) {
   char title[200];
   std::snprintf(title, sizeof(title),
                 "Sonar feature initialisation from several vantage points (%d-transducer ring, "
-                "seed %d): first %zu lines",
-                static_cast<int>(ring), static_cast<int>(seed), drawn.size());
+                "seed %d): first %zu %s",
+                static_cast<int>(ring), static_cast<int>(seed), drawn.size(),
+                phantoms != 0 ? "phantom lines (0.25 m or 10 deg off every wall)" : "lines");
   canvas->TextPx(Vec2(12, 28), title, 20, draw::Color{}, true);
   canvas->ScaleBar();
   canvas->Legend(
@@ -670,26 +678,40 @@ void PrintAtlasErrors(const char* name, const std::vector<sonar_eval::AtlasRunRe
 }
 
 // --trace: one row per step and live hypothesis (the dominant marked), its pose error in its
-// frame and what its map made of the reading.
+// frame, what its map made of the reading, and its map's lines against the true walls: the
+// largest NEES against the nearest wall and how many lines fit no wall (NEES above
+// kLineOffNees).
+inline constexpr double kLineOffNees = 13.82;  // chi-square, 2 dof, 99.9 %
 struct TraceWriter {
   std::FILE* f = nullptr;
   int run = 0;
+  const std::vector<sim::Wall>* walls = nullptr;
   void Row(const Atlas& atlas, Time stamp, const Pose2& truth,
            const std::vector<std::optional<Pose2>>& origin) const {
     for (const Hypothesis& h : atlas.Hypotheses()) {
       if (h.frame < 0 || static_cast<size_t>(h.frame) >= origin.size()) continue;
       const UncertainPose p = atlas.PoseOf(h);
       const Pose2 t = Between(*origin[h.frame], truth);
+      // The hypothesis's map (a juvenile's trial map) against the true walls.
+      const LocalMap& map = h.trial_map ? *h.trial_map : *atlas.Graph().Frame(h.frame).map;
+      const std::vector<Vec2> wall_lines = sonar_eval::WallLinesInFrame(*walls, *origin[h.frame]);
+      double worst = 0.0;
+      int off = 0;
+      for (const MapLine& l : map.Lines()) {
+        const double nees = sonar_eval::NeesAgainstNearestWall(l, wall_lines);
+        worst = std::max(worst, nees);
+        off += nees > kLineOffNees ? 1 : 0;
+      }
       std::fprintf(
           f,
           "%d\t%.2f\t%lld\t%d\t%s\t%d\t%.3f\t%.2f\t%.3f\t%.3f\t%.4f\t%.3f\t%.3f\t%.4f\t%d\t"
-          "%d\t%d\t%d\t%d\n",
+          "%d\t%d\t%d\t%d\t%.1f\t%d\n",
           run, ToSeconds(stamp), static_cast<long long>(h.id), h.frame,
           HypothesisStateName(h.state), h.dominant ? 1 : 0, h.q, sonar_eval::PoseNees(p, t),
           p.mean.x - t.x, p.mean.y - t.y, WrapAngle(p.mean.theta - t.theta), std::sqrt(p.cov(0, 0)),
           std::sqrt(p.cov(1, 1)), std::sqrt(p.cov(2, 2)), h.last_update.observations,
           h.last_update.matched, h.last_update.added,
-          atlas.Graph().Frame(h.frame).map->Complexity(), h.bootstrapped ? 1 : 0);
+          atlas.Graph().Frame(h.frame).map->Complexity(), h.bootstrapped ? 1 : 0, worst, off);
     }
   }
 };
@@ -753,7 +775,8 @@ int RunAtlasMode(const Args& args) {
     }
     std::fprintf(trace,
                  "# run\tt\thypothesis\tframe\tstate\tdominant\tq\tnees\tex\tey\tetheta\tsx\tsy\t"
-                 "stheta\tobservations\tmatched\tadded\tlines\tbootstrapped\n");
+                 "stheta\tobservations\tmatched\tadded\tlines\tbootstrapped\tline_nees_max\t"
+                 "lines_off\n");
   }
   const int n = static_cast<int>(runs);
   std::vector<sonar_eval::AtlasRunReport> sonar_runs, laser_runs;
@@ -811,7 +834,7 @@ int RunAtlasMode(const Args& args) {
     if (sonar_w != 0) sonar_bootstrapper = std::make_shared<SonarMapBootstrapper>(wo);
     Atlas sonar_atlas(
         ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, sonar_bootstrapper);
-    TraceWriter tw{trace, r + 1};
+    TraceWriter tw{trace, r + 1, &world.walls};
     sonar_runs.push_back(sonar_eval::RunAtlas(
         sonar_atlas, rec, true,
         [&](double f) {
@@ -888,15 +911,6 @@ int EchoingWall(const sim::RayCaster& caster, const sim::SonarOptions& so, const
   return wall;
 }
 
-// Canonical (rho, alpha) of the infinite line through a wall.
-Vec2 WallLine(const sim::Wall& w) {
-  const Vec2 d = (w.b - w.a).normalized();
-  double alpha = std::atan2(d.x(), -d.y());  // normal
-  double rho = w.a.x() * std::cos(alpha) + w.a.y() * std::sin(alpha);
-  CanonicalizeLine(rho, alpha);
-  return Vec2(rho, alpha);
-}
-
 int RunAssocMode(const Args& args) {
   double ring = 24, seed = 1, km = 0.15, capacity = 40, show = 10;
   sonar_eval::AlcoveLoopOptions loop;
@@ -965,7 +979,8 @@ int RunAssocMode(const Args& args) {
       if (wall >= 0) {
         const Pose2 to_map = Inverse(origin);
         const sim::Wall& w = caster.wall(wall);
-        tw = WallLine(sim::Wall{to_map.TransformPoint(w.a), to_map.TransformPoint(w.b)});
+        tw =
+            sonar_eval::WallLine(sim::Wall{to_map.TransformPoint(w.a), to_map.TransformPoint(w.b)});
         LinePrediction truth_seen = PredictLine(at, tw.x(), tw.y());
         const Vec2 d = LineInnovation(seen.z, truth_seen);
         kind = std::abs(d.y()) < 0.1 && std::abs(d.x()) < 0.15 ? 0 : 1;
@@ -1047,8 +1062,8 @@ int main(int argc, char** argv) {
     return atlas::RunAssocMode(a);
   }
   if (cmd == "fig9") {
-    const atlas::Args a =
-        atlas::eval::ParseToolOptions(argc, argv, 2, {"--png", "--ring", "--seed", "--lines"});
+    const atlas::Args a = atlas::eval::ParseToolOptions(
+        argc, argv, 2, {"--png", "--ring", "--seed", "--lines", "--phantoms", "--minutes"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval fig9: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
