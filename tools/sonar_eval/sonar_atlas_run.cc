@@ -83,10 +83,11 @@ Vec2 LineDifference(const Vec2& line, const Vec2& w, bool flip) {
 double NeesAgainstNearestWall(const MapLine& line, const std::vector<Vec2>& wall_lines) {
   double best = std::numeric_limits<double>::infinity();
   const Vec2 l(line.rho, line.alpha);
+  const Eigen::LDLT<Mat2> cov = line.cov.ldlt();
   for (const Vec2& w : wall_lines) {
     for (const bool flip : {false, true}) {
       const Vec2 d = LineDifference(l, w, flip);
-      best = std::min(best, d.dot(line.cov.ldlt().solve(d)));
+      best = std::min(best, d.dot(cov.solve(d)));
     }
   }
   return best;

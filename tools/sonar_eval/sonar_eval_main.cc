@@ -473,9 +473,10 @@ int RunFig9(const Args& args) {
     const Pose2 t = Between(origin, world);
     true_path.push_back(Vec2(t.x, t.y));
     for (const InitialisedLine& l : up.initialised) {
-      const Vec2 seen = sonar_eval::WallLine(
-          sim::Wall{est.TransformPoint(l.line.endpoint_a), est.TransformPoint(l.line.endpoint_b)});
-      if (phantoms == 0 || sonar_eval::FarFromEveryWall(seen, wall_lines))
+      if (phantoms == 0 || sonar_eval::FarFromEveryWall(sonar_eval::WallLine(sim::Wall{
+                                                            est.TransformPoint(l.line.endpoint_a),
+                                                            est.TransformPoint(l.line.endpoint_b)}),
+                                                        wall_lines))
         drawn.push_back(Drawn{est, l});
     }
   }
@@ -686,6 +687,8 @@ struct TraceWriter {
   std::FILE* f = nullptr;
   int run = 0;
   const std::vector<sim::Wall>* walls = nullptr;
+  // The walls' lines in each frame (index = frame id), made when the frame is first traced.
+  mutable std::vector<std::vector<Vec2>> wall_lines;
   void Row(const Atlas& atlas, Time stamp, const Pose2& truth,
            const std::vector<std::optional<Pose2>>& origin) const {
     for (const Hypothesis& h : atlas.Hypotheses()) {
@@ -694,11 +697,13 @@ struct TraceWriter {
       const Pose2 t = Between(*origin[h.frame], truth);
       // The hypothesis's map (a juvenile's trial map) against the true walls.
       const LocalMap& map = h.trial_map ? *h.trial_map : *atlas.Graph().Frame(h.frame).map;
-      const std::vector<Vec2> wall_lines = sonar_eval::WallLinesInFrame(*walls, *origin[h.frame]);
+      if (wall_lines.size() <= static_cast<size_t>(h.frame)) wall_lines.resize(h.frame + 1);
+      std::vector<Vec2>& in_frame = wall_lines[h.frame];
+      if (in_frame.empty()) in_frame = sonar_eval::WallLinesInFrame(*walls, *origin[h.frame]);
       double worst = 0.0;
       int off = 0;
       for (const MapLine& l : map.Lines()) {
-        const double nees = sonar_eval::NeesAgainstNearestWall(l, wall_lines);
+        const double nees = sonar_eval::NeesAgainstNearestWall(l, in_frame);
         worst = std::max(worst, nees);
         off += nees > kLineOffNees ? 1 : 0;
       }
@@ -834,7 +839,7 @@ int RunAtlasMode(const Args& args) {
     if (sonar_w != 0) sonar_bootstrapper = std::make_shared<SonarMapBootstrapper>(wo);
     Atlas sonar_atlas(
         ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, sonar_bootstrapper);
-    TraceWriter tw{trace, r + 1, &world.walls};
+    TraceWriter tw{trace, r + 1, &world.walls, {}};
     sonar_runs.push_back(sonar_eval::RunAtlas(
         sonar_atlas, rec, true,
         [&](double f) {
@@ -948,7 +953,8 @@ int RunAssocMode(const Args& args) {
   const auto& ring_mounts = so.sonar_options.ring;
   bool first = true;
   Pose2 last_odo, origin;
-  int counts[2][3] = {};  // [edge][correct, wrong line, no echo]
+  std::vector<Vec2> wall_lines;  // in the map frame, index = the caster's wall index
+  int counts[2][3] = {};         // [edge][correct, wrong line, no echo]
   int shown = 0;
   double next_print = 0.0;
   for (const sonar_eval::SimRecording::Event& e : rec.Events()) {
@@ -957,6 +963,7 @@ int RunAssocMode(const Args& args) {
     if (first) {
       origin = truth;
       last_odo = e.odometry;
+      wall_lines = sonar_eval::WallLinesInFrame(world.walls, origin);
       first = false;
     }
     map.Predict(Between(last_odo, e.odometry));
@@ -977,10 +984,7 @@ int RunAssocMode(const Args& args) {
       Vec2 tw(0, 0);
       int kind = 2;
       if (wall >= 0) {
-        const Pose2 to_map = Inverse(origin);
-        const sim::Wall& w = caster.wall(wall);
-        tw =
-            sonar_eval::WallLine(sim::Wall{to_map.TransformPoint(w.a), to_map.TransformPoint(w.b)});
+        tw = wall_lines[wall];
         LinePrediction truth_seen = PredictLine(at, tw.x(), tw.y());
         const Vec2 d = LineInnovation(seen.z, truth_seen);
         kind = std::abs(d.y()) < 0.1 && std::abs(d.x()) < 0.15 ? 0 : 1;
