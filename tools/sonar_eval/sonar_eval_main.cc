@@ -51,7 +51,7 @@ constexpr char kUsage[] =
     "usage: atlas-sonar-eval mc   [--runs N=20] [--minutes M=3] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--capacity C=20] [--delayed-states 0|1 (1)]\n"
     "                             [--point-rival 0|1 (1)] [--init-edge-echoes 0|1 (0)]\n"
-    "                             [--extent-gap G=1.5]\n"
+    "                             [--extent-gap G=1.5] [--model-sigma M=0.02]\n"
     "       atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--lines K=4] [--phantoms 0|1 (0)] [--minutes M=3]\n"
     "       atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
@@ -64,7 +64,7 @@ constexpr char kUsage[] =
     "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
     "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (1)]\n"
     "                             [--bootstrap-steps N] [--probation N] [--w-edge-echoes 0|1 (0)]\n"
-    "                             [--extent-gap G=1.5]\n"
+    "                             [--extent-gap G=1.5] [--model-sigma M=0.02]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
     "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
@@ -83,6 +83,8 @@ constexpr char kUsage[] =
     "      echoes (SonarInitOptions::edge_echoes). Both for comparison.\n"
     "      --extent-gap G (mc, atlas): how far beyond a line's seen extent a return may still\n"
     "      update it (SonarUpdateOptions::max_extent_gap, metres).\n"
+    "      --model-sigma M (mc, atlas): the sonar model's misfit noise per return\n"
+    "      (SonarModelOptions::model_sigma, metres; default atlasd's).\n"
     "      --edge-extent 0 (atlas): edge echoes grow extents to where the edge ray meets the line\n"
     "      (SonarUpdateOptions::edge_extent_footprint off) for comparison.\n"
     "atlas: N simulated runs (noise seeds S..S+N-1) with laser and sonar through a world: the\n"
@@ -237,24 +239,27 @@ InitNees NeesAtInitialisation(const SonarLocalMap& map, int k, const Pose2& trut
 }
 
 // The sonar map switches the tools take for comparison (--delayed-states, --point-rival,
-// --init-edge-echoes, --extent-gap).
+// --init-edge-echoes, --extent-gap, --model-sigma).
 struct MapSwitches {
   double delayed_states = SonarInitOptions().delayed_states ? 1 : 0,
          point_rival = SonarInitOptions().point_rival ? 1 : 0,
          edge_echoes = SonarInitOptions().edge_echoes ? 1 : 0,
-         extent_gap = SonarUpdateOptions().max_extent_gap;
+         extent_gap = SonarUpdateOptions().max_extent_gap,
+         model_sigma = SonarModelOptions().model_sigma;
 
   bool Parse(const Args& args, std::string& error) {
     return GetNumberOption(args, "--delayed-states", 0, 1, delayed_states, error) &&
            GetNumberOption(args, "--point-rival", 0, 1, point_rival, error) &&
            GetNumberOption(args, "--init-edge-echoes", 0, 1, edge_echoes, error) &&
-           GetNumberOption(args, "--extent-gap", 0, 100, extent_gap, error);
+           GetNumberOption(args, "--extent-gap", 0, 100, extent_gap, error) &&
+           GetNumberOption(args, "--model-sigma", 0, 1, model_sigma, error);
   }
   void Apply(SonarLocalMapOptions& o) const {
     o.init.delayed_states = delayed_states != 0;
     o.init.point_rival = point_rival != 0;
     o.init.edge_echoes = edge_echoes != 0;
     o.update.max_extent_gap = extent_gap;
+    o.model.model_sigma = model_sigma;
   }
 };
 
@@ -1032,7 +1037,7 @@ int main(int argc, char** argv) {
     const atlas::Args a = atlas::eval::ParseToolOptions(
         argc, argv, 2,
         {"--runs", "--minutes", "--ring", "--seed", "--capacity", "--delayed-states",
-         "--point-rival", "--init-edge-echoes", "--extent-gap"});
+         "--point-rival", "--init-edge-echoes", "--extent-gap", "--model-sigma"});
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval mc: %s\n%s", a.error.c_str(), atlas::kUsage);
       return 2;
@@ -1048,7 +1053,7 @@ int main(int argc, char** argv) {
          "--edge-extent", "--redundancy-sigma", "--line-correlation", "--redundancy-prior",
          "--keep-frame-map", "--seed-cov-scale", "--sonar-w", "--bootstrap-steps", "--probation",
          "--w-edge-echoes", "--point-rival", "--init-edge-echoes", "--alternative-sigmas",
-         "--extent-gap"});
+         "--extent-gap", "--model-sigma"});
     // clang-format on
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
