@@ -478,11 +478,12 @@ int RunFig9(const Args& args) {
     const Pose2 t = Between(origin, world);
     true_path.push_back(Vec2(t.x, t.y));
     for (const InitialisedLine& l : up.initialised) {
-      if (phantoms == 0 || sonar_eval::FarFromEveryWall(sonar_eval::WallLine(sim::Wall{
-                                                            est.TransformPoint(l.line.endpoint_a),
-                                                            est.TransformPoint(l.line.endpoint_b)}),
-                                                        wall_lines))
-        drawn.push_back(Drawn{est, l});
+      if (phantoms != 0) {
+        const Vec2 seen = sonar_eval::WallLine(sim::Wall{est.TransformPoint(l.line.endpoint_a),
+                                                         est.TransformPoint(l.line.endpoint_b)});
+        if (!sonar_eval::FarFromEveryWall(seen, wall_lines)) continue;
+      }
+      drawn.push_back(Drawn{est, l});
     }
   }
   if (drawn.empty()) {
@@ -693,9 +694,9 @@ struct TraceWriter {
   int run = 0;
   const std::vector<sim::Wall>* walls = nullptr;
   // The walls' lines in each frame (index = frame id), made when the frame is first traced.
-  mutable std::vector<std::vector<Vec2>> wall_lines;
+  std::vector<std::vector<Vec2>> wall_lines;
   void Row(const Atlas& atlas, Time stamp, const Pose2& truth,
-           const std::vector<std::optional<Pose2>>& origin) const {
+           const std::vector<std::optional<Pose2>>& origin) {
     for (const Hypothesis& h : atlas.Hypotheses()) {
       if (h.frame < 0 || static_cast<size_t>(h.frame) >= origin.size()) continue;
       const UncertainPose p = atlas.PoseOf(h);
