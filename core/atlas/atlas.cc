@@ -204,7 +204,7 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
         bool accumulate = false;
         if (bootstrapper_) {
           ++stats_.bootstraps;
-          PoseBootstrap r = bootstrapper_->Solve(map, *graph_.Frame(h.frame).map, h.z);
+          PoseBootstrap r = bootstrapper_->Solve(map, *graph_.Frame(h.frame).map, h.z, h.seed);
           if (r.outcome == BootstrapOutcome::kSolved) {
             if (r.map)
               h.trial_map = std::move(r.map);  // M_i^new of eq. 12
@@ -435,6 +435,7 @@ void Atlas::Traverse(int d) {
     h.window = QualityWindow(options_.quality.window);
     h.trial_map = f.map->Clone();
     h.trial_map->ResetRobotPose(seed);
+    h.seed = seed;
     h.q = HypothesisQuality(seed.cov, options_.quality.empty_explanation, options_.quality);
     h.z.reserve(options_.lifecycle.bootstrap_scans);
     hypotheses_.push_back(std::move(h));
@@ -741,7 +742,12 @@ std::string Atlas::Serialize() const {
     PutUpdate(&w, h.last_update);
     w.Put<uint8_t>(h.bootstrapped);
     w.Put<uint8_t>(h.trial_map != nullptr);
-    if (h.trial_map) w.PutString(h.trial_map->Serialize());
+    if (h.trial_map) {
+      w.PutString(h.trial_map->Serialize());
+      w.PutPose(h.seed.mean);
+      for (int r = 0; r < 3; ++r)
+        for (int c = r; c < 3; ++c) w.Put(h.seed.cov(r, c));
+    }
     w.Put<uint32_t>(h.z.size());
     for (const JuvenileScan& z : h.z) {
       w.PutPose(z.odometry_delta);
@@ -822,6 +828,14 @@ bool Atlas::Deserialize(const std::string& bytes) {
       if (!r.GetString(&blob, kMaxBlob)) return false;
       h.trial_map = factory_();
       if (!h.trial_map->Deserialize(blob)) return false;
+      if (version >= 4) {
+        if (!r.GetPose(&h.seed.mean)) return false;
+        for (int row = 0; row < 3; ++row)
+          for (int col = row; col < 3; ++col) {
+            if (!r.Get(&h.seed.cov(row, col))) return false;
+            h.seed.cov(col, row) = h.seed.cov(row, col);
+          }
+      }
     }
     // Z holds at most probation_scans steps (an undetermined w accumulates until then).
     if (!r.Get(&nz) ||
@@ -832,6 +846,11 @@ bool Atlas::Deserialize(const std::string& bytes) {
       if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &z.scan) || !GetUpdate(&r, &z.update) ||
           (version >= 3 && !GetSonar(&r, &z.sonar)))
         return false;
+    if (has_trial && version < 4) {
+      // No seed saved: w's Z starts again from the juvenile's current pose.
+      h.seed = h.trial_map->RobotPose();
+      h.z.clear();
+    }
     for (const Hypothesis& o : hypotheses)
       if (o.frame == h.frame) return false;  // at most one hypothesis per frame
     hypotheses.push_back(std::move(h));

@@ -228,7 +228,9 @@ class Atlas {
   // returns false and leaves the atlas unchanged.
   // Version 2 added Hypothesis::lagging_steps; version 1 images are read with it zero.
   // Version 3 added JuvenileScan::sonar; older images are read with it empty.
-  static constexpr uint32_t kImageVersion = 3;
+  // Version 4 added Hypothesis::seed; an older image's juvenile takes its current pose as the
+  // seed and starts its Z again.
+  static constexpr uint32_t kImageVersion = 4;
   std::string Serialize() const;
   bool Deserialize(const std::string& bytes);
 

@@ -208,7 +208,8 @@ class FakeBootstrapper : public PoseBootstrapper {
       : min_matched_(min_matched), unsolved_(unsolved), from_sonar_(from_sonar) {}
   bool FromSonar() const override { return from_sonar_; }
   PoseBootstrap Solve(const LocalMap& map, const LocalMap& /*frame_map*/,
-                      const std::vector<JuvenileScan>& z) const override {
+                      const std::vector<JuvenileScan>& z,
+                      const UncertainPose& /*seed*/) const override {
     ++calls_;
     max_z_ = std::max(max_z_, static_cast<int>(z.size()));
     int matched = 0;

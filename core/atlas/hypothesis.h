@@ -117,14 +117,17 @@ struct PoseBootstrap {
 };
 
 // w of eq. 12: solves for the robot pose from the measurements Z alone, independently of the
-// seed. `map` is the juvenile's map (its robot pose is the seed, which w must not rely on
-// beyond proposing correspondences); `frame_map` is M_i, the frame's map as the juvenile found
-// it (the juvenile works on a clone, so it holds nothing of the seed).
+// seed. `map` is the juvenile's map (its robot pose is the seed refined by the juvenile's own
+// updates over Z); `frame_map` is M_i, the frame's map as the juvenile found it (the juvenile
+// works on a clone, so it holds nothing of the seed); `seed` is x_i* of eq. 10-11 as the
+// juvenile was seeded, before Z's first increment. w must not rely on either pose beyond
+// proposing correspondences (and, for the sonar's w, gating the solution).
 class PoseBootstrapper {
  public:
   virtual ~PoseBootstrapper() = default;
   virtual PoseBootstrap Solve(const LocalMap& map, const LocalMap& frame_map,
-                              const std::vector<JuvenileScan>& z) const = 0;
+                              const std::vector<JuvenileScan>& z,
+                              const UncertainPose& seed) const = 0;
   // Whether Z holds the juvenile's sonar steps (true) or its laser steps (false, the default).
   virtual bool FromSonar() const { return false; }
 };
@@ -145,6 +148,7 @@ struct Hypothesis {
   std::unique_ptr<LocalMap> trial_map;
   bool bootstrapped = false;
   std::vector<JuvenileScan> z;
+  UncertainPose seed;  // x_i* of eq. 10-11 when seeded: the pose before z's first increment
 };
 
 struct LifecycleOptions {

@@ -7,7 +7,8 @@
 namespace atlas {
 
 PoseBootstrap LineMapBootstrapper::Solve(const LocalMap& map, const LocalMap& /*frame_map*/,
-                                         const std::vector<JuvenileScan>& z) const {
+                                         const std::vector<JuvenileScan>& z,
+                                         const UncertainPose& /*seed*/) const {
   PoseBootstrap out;
   if (z.empty()) return out;
   std::vector<BootstrapScan> scans(z.size());

@@ -28,9 +28,10 @@ class LineMapBootstrapper : public PoseBootstrapper {
  public:
   // `options` must be valid (the same options the maps were made with).
   explicit LineMapBootstrapper(const LocalMapOptions& options) : options_(options) {}
-  // Solves against `map`'s lines (the juvenile's trial map); `frame_map` is not used.
+  // Solves against `map`'s lines (the juvenile's trial map), associating from its robot pose;
+  // `frame_map` and `seed` are not used.
   PoseBootstrap Solve(const LocalMap& map, const LocalMap& frame_map,
-                      const std::vector<JuvenileScan>& z) const override;
+                      const std::vector<JuvenileScan>& z, const UncertainPose& seed) const override;
 
  private:
   LocalMapOptions options_;

@@ -48,7 +48,7 @@ struct Corridor {
       const ScanUpdate u = trial->Update(scan, false);
       z.push_back(JuvenileScan{delta, scan, u, SonarReading{}});
     }
-    return LineMapBootstrapper(options).Solve(*trial, map, z);
+    return LineMapBootstrapper(options).Solve(*trial, map, z, trial->RobotPose());
   }
 };
 
@@ -81,7 +81,7 @@ TEST(LineMapBootstrapper, UndeterminedWhenOnlyParallelWallsMatch) {
 TEST(LineMapBootstrapper, FailsWithoutExplainedMeasurements) {
   Corridor c;
   EXPECT_EQ(c.Juvenile(Pose2{}, 4, /*blind=*/true).outcome, BootstrapOutcome::kFailed);
-  EXPECT_EQ(LineMapBootstrapper(c.options).Solve(c.map, c.map, {}).outcome,
+  EXPECT_EQ(LineMapBootstrapper(c.options).Solve(c.map, c.map, {}, UncertainPose{}).outcome,
             BootstrapOutcome::kFailed);
 }
 

@@ -161,8 +161,9 @@ void BM_SonarWSolve(benchmark::State& state) {
   const SonarLocalMap frame = MappedRoom(FakeSonarRing24(), truth, rng);
   const Pose2 u = kCircleStep;
   std::unique_ptr<LocalMap> trial = frame.Clone();
-  trial->ResetRobotPose(
-      UncertainPose{Compose(truth, Pose2{0.1, -0.1, 0.05}), Vec3(0.04, 0.04, 0.01).asDiagonal()});
+  const UncertainPose seed{Compose(truth, Pose2{0.1, -0.1, 0.05}),
+                           Vec3(0.04, 0.04, 0.01).asDiagonal()};
+  trial->ResetRobotPose(seed);
   std::vector<JuvenileScan> z;
   for (int i = 0; i < readings; ++i) {
     truth = Compose(truth, u);
@@ -176,7 +177,7 @@ void BM_SonarWSolve(benchmark::State& state) {
   const SonarMapBootstrapper w;
   int solved = 0;
   for (auto _ : state) {
-    const PoseBootstrap r = w.Solve(*trial, frame, z);
+    const PoseBootstrap r = w.Solve(*trial, frame, z, seed);
     solved = r.outcome == BootstrapOutcome::kSolved ? 1 : 0;
     benchmark::DoNotOptimize(r.pose);
   }

@@ -225,10 +225,27 @@ SonarBootstrapResult SonarMapBootstrapper::SolvePose(const LocalMap& frame_map,
   return out;
 }
 
+UncertainPose SonarMapBootstrapper::DeadReckonedSeed(const LocalMap& frame_map,
+                                                     const UncertainPose& seed,
+                                                     const std::vector<JuvenileScan>& z) {
+  const auto* sonar_map = dynamic_cast<const SonarLocalMap*>(&frame_map);
+  assert(sonar_map != nullptr);
+  const OdometryNoiseOptions& odometry = sonar_map->Options().line_map.odometry;
+  UncertainPose x = seed;
+  for (const JuvenileScan& s : z)
+    x = Compose(
+        x, UncertainPose{s.odometry_delta, LineEkfMap::OdometryNoise(s.odometry_delta, odometry)});
+  return x;
+}
+
 PoseBootstrap SonarMapBootstrapper::Solve(const LocalMap& map, const LocalMap& frame_map,
-                                          const std::vector<JuvenileScan>& z) const {
+                                          const std::vector<JuvenileScan>& z,
+                                          const UncertainPose& seed) const {
   PoseBootstrap out;
-  const SonarBootstrapResult r = SolvePose(frame_map, map.RobotPose(), z);
+  if (dynamic_cast<const SonarLocalMap*>(&frame_map) == nullptr) return out;
+  const UncertainPose start =
+      o_.dead_reckoned_start ? DeadReckonedSeed(frame_map, seed, z) : map.RobotPose();
+  const SonarBootstrapResult r = SolvePose(frame_map, start, z);
   out.outcome = r.outcome;
   if (r.outcome != BootstrapOutcome::kSolved) return out;
   std::unique_ptr<LocalMap> fresh = frame_map.Clone();

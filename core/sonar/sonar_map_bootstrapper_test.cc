@@ -53,11 +53,15 @@ struct Frame {
   }
   SonarReading Fire() { return FireFakeSonarRing(walls, FakeSonarRing24(), truth, 0.01, rng); }
 
-  // The juvenile's trial map: a clone of the frame's map seeded at `offset` from the truth with
-  // covariance `seed_cov`, run through Z without new features (Section III-E).
+  // The seed x_i*: `offset` from the truth when the juvenile is seeded, covariance `seed_cov`.
+  UncertainPose Seed(const Pose2& offset, const Mat3& seed_cov) const {
+    return UncertainPose{Compose(juvenile_start, offset), seed_cov};
+  }
+  // The juvenile's trial map: a clone of the frame's map at that seed, run through Z without
+  // new features (Section III-E).
   std::unique_ptr<LocalMap> Trial(const Pose2& offset, const Mat3& seed_cov) const {
     std::unique_ptr<LocalMap> trial = map.Clone();
-    trial->ResetRobotPose(UncertainPose{Compose(juvenile_start, offset), seed_cov});
+    trial->ResetRobotPose(Seed(offset, seed_cov));
     for (const JuvenileScan& s : z) {
       trial->Predict(s.odometry_delta);
       trial->UpdateWithSonar(s.sonar, false);
@@ -92,7 +96,8 @@ TEST(SonarMapBootstrapper, SolvesTheTruePoseFromASeedFarOff) {
   // Seeded 0.5 m and 10 degrees off.
   const Pose2 offset{0.35, -0.35, 10 * kDeg};
   const std::unique_ptr<LocalMap> trial = f.Trial(offset, kLooseSeed);
-  const PoseBootstrap r = SonarMapBootstrapper().Solve(*trial, f.map, f.z);
+  const PoseBootstrap r =
+      SonarMapBootstrapper().Solve(*trial, f.map, f.z, f.Seed(offset, kLooseSeed));
   ASSERT_EQ(r.outcome, BootstrapOutcome::kSolved);
   EXPECT_NEAR(r.pose.mean.x, f.truth.x, 0.05);
   EXPECT_NEAR(r.pose.mean.y, f.truth.y, 0.05);
@@ -133,22 +138,53 @@ TEST(SonarMapBootstrapper, SolutionDoesNotDependOnTheSeed) {
   EXPECT_GT(std::abs(WrapAngle(ta->RobotPose().mean.theta - tb->RobotPose().mean.theta)), 5e-3);
 }
 
+// The start estimate is the seed moved by Z's odometry, not the juvenile's pose: a juvenile
+// whose clone was drawn 0.6 m off during probation (confident, sigma 3 cm) still gets the true
+// solution from a good seed; started at the juvenile's pose, w pairs its readings from there and
+// does not find it.
+TEST(SonarMapBootstrapper, StartsFromTheSeedMovedByOdometryNotFromTheJuvenilesPose) {
+  const Frame f(WideningCorridor(), 50, 12);
+  const std::unique_ptr<LocalMap> trial = f.Trial(Pose2{}, kLooseSeed);
+  const Mat3 confident = Vec3(0.03 * 0.03, 0.03 * 0.03, 0.01 * 0.01).asDiagonal();
+  trial->ResetRobotPose(UncertainPose{Compose(f.truth, Pose2{0.6, 0.0, 0.0}), confident});
+  const UncertainPose seed = f.Seed(Pose2{0.1, -0.1, 2 * kDeg}, kLooseSeed);
+
+  const UncertainPose start = SonarMapBootstrapper::DeadReckonedSeed(f.map, seed, f.z);
+  EXPECT_NEAR(start.mean.x, Compose(f.truth, Pose2{}).x + 0.1, 0.15);
+  EXPECT_GT(start.cov(0, 0), kLooseSeed(0, 0));  // grown by the odometry noise
+
+  const PoseBootstrap r = SonarMapBootstrapper().Solve(*trial, f.map, f.z, seed);
+  ASSERT_EQ(r.outcome, BootstrapOutcome::kSolved);
+  EXPECT_NEAR(r.pose.mean.x, f.truth.x, 0.05);
+  EXPECT_NEAR(r.pose.mean.y, f.truth.y, 0.05);
+  EXPECT_LT(Nees(r.pose, f.truth), 16.27);
+
+  SonarBootstrapOptions o;
+  o.dead_reckoned_start = false;
+  const PoseBootstrap from_juvenile = SonarMapBootstrapper(o).Solve(*trial, f.map, f.z, seed);
+  EXPECT_FALSE(from_juvenile.outcome == BootstrapOutcome::kSolved &&
+               std::abs(from_juvenile.pose.mean.x - f.truth.x) < 0.05)
+      << "started 0.6 m off with sigma 3 cm, w should not find the truth";
+}
+
 TEST(SonarMapBootstrapper, ParallelWallsOrOneWallLeaveThePoseUndetermined) {
   // Side walls far beyond the ends: nothing fixes the position along them.
   const Frame corridor({{Vec2(-30, 1.2), Vec2(40, 1.2)}, {Vec2(-30, -1.2), Vec2(40, -1.2)}}, 50,
                        12);
   ASSERT_GE(LinesAlong(corridor.map.Lines(), 90 * kDeg), 2);
   const Mat3 tight = Vec3(0.05 * 0.05, 0.05 * 0.05, 0.02 * 0.02).asDiagonal();
-  const std::unique_ptr<LocalMap> trial = corridor.Trial(Pose2{0.1, 0.05, 0.02}, tight);
+  const Pose2 off{0.1, 0.05, 0.02};
+  const std::unique_ptr<LocalMap> trial = corridor.Trial(off, tight);
   const SonarMapBootstrapper w;
-  const PoseBootstrap r = w.Solve(*trial, corridor.map, corridor.z);
+  const PoseBootstrap r = w.Solve(*trial, corridor.map, corridor.z, corridor.Seed(off, tight));
   EXPECT_EQ(r.outcome, BootstrapOutcome::kUndetermined);
   EXPECT_EQ(r.map, nullptr);
 
   const Frame one({{Vec2(-30, 1.2), Vec2(40, 1.2)}}, 50, 12);
   ASSERT_GE(LinesAlong(one.map.Lines(), 90 * kDeg), 1);
-  const std::unique_ptr<LocalMap> trial1 = one.Trial(Pose2{0.1, 0.05, 0.02}, tight);
-  EXPECT_EQ(w.Solve(*trial1, one.map, one.z).outcome, BootstrapOutcome::kUndetermined);
+  const std::unique_ptr<LocalMap> trial1 = one.Trial(off, tight);
+  EXPECT_EQ(w.Solve(*trial1, one.map, one.z, one.Seed(off, tight)).outcome,
+            BootstrapOutcome::kUndetermined);
 }
 
 TEST(SonarMapBootstrapper, ReadingsTheMapDoesNotExplainAreUndetermined) {
@@ -157,9 +193,11 @@ TEST(SonarMapBootstrapper, ReadingsTheMapDoesNotExplainAreUndetermined) {
   for (JuvenileScan& s : blind)
     for (SonarReturn& ret : s.sonar.returns) ret.range = kNoReturn;
   const std::unique_ptr<LocalMap> trial = f.Trial(Pose2{}, kLooseSeed);
-  EXPECT_EQ(SonarMapBootstrapper().Solve(*trial, f.map, blind).outcome,
+  const UncertainPose seed = f.Seed(Pose2{}, kLooseSeed);
+  EXPECT_EQ(SonarMapBootstrapper().Solve(*trial, f.map, blind, seed).outcome,
             BootstrapOutcome::kUndetermined);
-  EXPECT_EQ(SonarMapBootstrapper().Solve(*trial, f.map, {}).outcome, BootstrapOutcome::kFailed);
+  EXPECT_EQ(SonarMapBootstrapper().Solve(*trial, f.map, {}, seed).outcome,
+            BootstrapOutcome::kFailed);
 }
 
 TEST(SonarBootstrapOptions, Validate) {
