@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <numbers>
 #include <set>
 
@@ -374,6 +375,29 @@ TEST(Atlas, SonarStepsFeedASonarWAndRoundTripThroughTheImage) {
   EXPECT_EQ(restored->z[1].sonar.returns[0].transducer, 3);
   EXPECT_EQ(restored->z[1].sonar.returns[0].range, 1.25f);
   EXPECT_FALSE(IsReturn(restored->z[1].sonar.returns[1].range));
+  // The juvenile's seed x_i* is in the image (version 4).
+  const Hypothesis* saved = juvenile();
+  EXPECT_EQ(restored->seed.mean.x, saved->seed.mean.x);
+  EXPECT_TRUE(restored->seed.cov == saved->seed.cov);
+
+  // A version 3 image (no seed after the trial map) still loads: the juvenile takes its current
+  // pose as the seed and starts its Z again.
+  const std::string trial = saved->trial_map->Serialize();
+  const size_t at = image.find(trial);
+  ASSERT_NE(at, std::string::npos);
+  std::string v3 = image;
+  v3.erase(at + trial.size(), 9 * sizeof(double));  // the seed: pose and upper covariance
+  const uint32_t three = 3;
+  std::memcpy(v3.data() + 4, &three, sizeof(three));
+  Atlas c(TestWorld::Options(), w.Factory(), sonar_w);
+  ASSERT_TRUE(c.Deserialize(v3));
+  const Hypothesis* old = nullptr;
+  for (const Hypothesis& h : c.Hypotheses())
+    if (h.state == HypothesisState::kJuvenile) old = &h;
+  ASSERT_NE(old, nullptr);
+  EXPECT_TRUE(old->z.empty());
+  EXPECT_EQ(old->seed.mean.x, old->trial_map->RobotPose().mean.x);
+  EXPECT_TRUE(old->seed.cov == old->trial_map->RobotPose().cov);
 }
 
 // A 16 m square room with a few unique walls. Each fake map reports the walls within 6 m of its
