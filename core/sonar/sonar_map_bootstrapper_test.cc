@@ -149,9 +149,15 @@ TEST(SonarMapBootstrapper, StartsFromTheSeedMovedByOdometryNotFromTheJuvenilesPo
   trial->ResetRobotPose(UncertainPose{Compose(f.truth, Pose2{0.6, 0.0, 0.0}), confident});
   const UncertainPose seed = f.Seed(Pose2{0.1, -0.1, 2 * kDeg}, kLooseSeed);
 
+  // The start: the seed composed with every increment of Z, its covariance grown.
   const UncertainPose start = SonarMapBootstrapper::DeadReckonedSeed(f.map, seed, f.z);
-  EXPECT_NEAR(start.mean.x, Compose(f.truth, Pose2{}).x + 0.1, 0.15);
-  EXPECT_GT(start.cov(0, 0), kLooseSeed(0, 0));  // grown by the odometry noise
+  Pose2 moved = seed.mean;
+  for (const JuvenileScan& s : f.z) moved = Compose(moved, s.odometry_delta);
+  EXPECT_NEAR(start.mean.x, moved.x, 1e-12);
+  EXPECT_NEAR(start.mean.y, moved.y, 1e-12);
+  EXPECT_NEAR(start.mean.theta, moved.theta, 1e-12);
+  EXPECT_GT(start.cov(0, 0), kLooseSeed(0, 0));
+  EXPECT_GT(start.cov(2, 2), kLooseSeed(2, 2));
 
   const PoseBootstrap r = SonarMapBootstrapper().Solve(*trial, f.map, f.z, seed);
   ASSERT_EQ(r.outcome, BootstrapOutcome::kSolved);
