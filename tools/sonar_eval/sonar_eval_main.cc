@@ -64,6 +64,7 @@ constexpr char kUsage[] =
     "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
     "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (1)]\n"
     "                             [--bootstrap-steps N] [--probation N] [--w-edge-echoes 0|1 (0)]\n"
+    "                             [--w-dead-reckoned 0|1 (1)]\n"
     "                             [--extent-gap G=1.5] [--model-sigma M=0.02]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
@@ -117,6 +118,9 @@ constexpr char kUsage[] =
     "      (default: SonarAtlasOptions', with w at least kSonarBootstrapProbation).\n"
     "      --w-edge-echoes 1: w pairs edge-of-cone echoes too (SonarBootstrapOptions::\n"
     "      edge_echoes).\n"
+    "      --w-dead-reckoned 1 (default, as atlasd): w starts from the juvenile's seed moved by\n"
+    "      the odometry of its readings; 0: from the juvenile's current pose\n"
+    "      (SonarBootstrapOptions::dead_reckoned_start).\n"
     "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
     "      to a feature is checked against the wall the simulator echoed it from (in-cone and\n"
     "      edge-of-cone pairings: the true wall's line, another line, or no wall: multipath);\n"
@@ -732,6 +736,7 @@ int RunAtlasMode(const Args& args) {
   double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
          self_match = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1, sonar_w = 1,
          w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
+         w_dead_reckoned = SonarBootstrapOptions().dead_reckoned_start ? 1 : 0,
          bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
          redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
          redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth,
@@ -755,6 +760,7 @@ int RunAtlasMode(const Args& args) {
       !GetNumberOption(args, "--seed-cov-scale", 1, 100, seed_scale, error) ||
       !GetNumberOption(args, "--sonar-w", 0, 1, sonar_w, error) ||
       !GetNumberOption(args, "--w-edge-echoes", 0, 1, w_edge_echoes, error) ||
+      !GetNumberOption(args, "--w-dead-reckoned", 0, 1, w_dead_reckoned, error) ||
       !GetNumberOption(args, "--bootstrap-steps", 1, 1000, bootstrap_steps, error) ||
       !GetNumberOption(args, "--probation", 2, 1000, probation, error) ||
       !GetNumberOption(args, "--redundancy-prior", 0, 100, redundancy_prior, error) ||
@@ -842,6 +848,7 @@ int RunAtlasMode(const Args& args) {
     std::shared_ptr<const PoseBootstrapper> sonar_bootstrapper;
     SonarBootstrapOptions wo;
     wo.edge_echoes = w_edge_echoes != 0;
+    wo.dead_reckoned_start = w_dead_reckoned != 0;
     if (sonar_w != 0) sonar_bootstrapper = std::make_shared<SonarMapBootstrapper>(wo);
     Atlas sonar_atlas(
         ao, [sonar_o]() { return std::make_unique<SonarLocalMap>(sonar_o); }, sonar_bootstrapper);
@@ -1054,7 +1061,7 @@ int main(int argc, char** argv) {
          "--edge-extent", "--redundancy-sigma", "--line-correlation", "--redundancy-prior",
          "--keep-frame-map", "--seed-cov-scale", "--sonar-w", "--bootstrap-steps", "--probation",
          "--w-edge-echoes", "--point-rival", "--init-edge-echoes", "--alternative-sigmas",
-         "--extent-gap", "--model-sigma"});
+         "--extent-gap", "--model-sigma", "--w-dead-reckoned"});
     // clang-format on
     if (!a.error.empty()) {
       std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n%s", a.error.c_str(), atlas::kUsage);
