@@ -24,13 +24,9 @@ OUT=${1:-/tmp/atlas-constant-time}
 ROOMS=${ROOMS:-2400}
 KM=${KM:-25}
 SEED=${SEED:-1}
-BIN=${ATLAS_BIN:-$ROOT/build/release/bin}
+source "$ROOT/scripts/release-bin.sh"
+BIN=$(release_bin atlas-sim atlas-replay atlas-render)
 PNG_PREFIX=${PNG_PREFIX:-$OUT/constant-time}
-if [[ ! -x $BIN/atlas-sim || ! -x $BIN/atlas-replay || ! -x $BIN/atlas-render ]]; then
-  cmake -S "$ROOT" -B "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-  cmake --build "$ROOT/build/release" -j2 --target atlas-sim atlas-replay atlas-render >/dev/null
-  BIN=$ROOT/build/release/bin
-fi
 mkdir -p "$OUT"
 if [[ ${KEEP_SIM:-0} == 1 && -r $OUT/sim/run.clf ]]; then
   echo "== reusing $OUT/sim" >&2

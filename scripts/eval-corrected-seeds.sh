@@ -20,15 +20,10 @@ OUT=${1:-/tmp/atlas-eval-corrected-seeds}
 SEEDS=${SEEDS:-1 2 3 4 5 6 7 8 9 10}
 JOBS=${JOBS:-2}
 mkdir -p "$OUT"
-# Build once here, not in two eval-corrected.sh runs at a time.
-BIN=${ATLAS_BIN:-$ROOT/build/release/bin}
-if [[ ! -x $BIN/atlas-replay || ! -x $BIN/atlas-eval || ! -x $BIN/atlas-carmen ]]; then
-  cmake -S "$ROOT" -B "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-  cmake --build "$ROOT/build/release" -j2 \
-    --target atlas-replay atlas-eval atlas-carmen atlas-render >/dev/null
-  BIN=$ROOT/build/release/bin
-fi
-export ATLAS_BIN=$BIN
+# Build once here (what eval-corrected.sh runs), not in two eval-corrected.sh runs at a time.
+source "$ROOT/scripts/release-bin.sh"
+ATLAS_BIN=$(release_bin atlas-replay atlas-eval atlas-carmen atlas-render)
+export ATLAS_BIN
 n=0
 for s in $SEEDS; do
   echo "eval-corrected-seeds: seed $s" >&2

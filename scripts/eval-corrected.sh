@@ -18,13 +18,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-/tmp/atlas-eval-corrected}
 SEED=${SEED:-1}
 DATA=${ATLAS_DATA:-$ROOT/../shared/datasets/corrected}
-BIN=${ATLAS_BIN:-$ROOT/build/release/bin}
-if [[ ! -x $BIN/atlas-replay || ! -x $BIN/atlas-eval || ! -x $BIN/atlas-render ]]; then
-  cmake -S "$ROOT" -B "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-  cmake --build "$ROOT/build/release" -j2 \
-    --target atlas-replay atlas-eval atlas-carmen atlas-render >/dev/null
-  BIN=$ROOT/build/release/bin
-fi
+source "$ROOT/scripts/release-bin.sh"
+BIN=$(release_bin atlas-replay atlas-eval atlas-carmen atlas-render)
 FIG7_LOG=${FIG7_LOG:-intel}
 FIG7_PNG=${FIG7_PNG:-$OUT/fig7-$FIG7_LOG.png}
 mkdir -p "$OUT"

@@ -250,10 +250,7 @@ PoseBootstrap SonarMapBootstrapper::Solve(const LocalMap& map, const LocalMap& f
   if (r.outcome != BootstrapOutcome::kSolved) return out;
   std::unique_ptr<LocalMap> fresh = frame_map.Clone();
   auto* sonar = dynamic_cast<SonarLocalMap*>(fresh.get());
-  if (sonar == nullptr) {
-    out.outcome = BootstrapOutcome::kFailed;
-    return out;
-  }
+  assert(sonar != nullptr);  // a clone of a SonarLocalMap (checked above)
   sonar->SetRobotPoseFromFeatures(r.pose.mean, r.observation_cov, r.feature_index, r.d_lines);
   out.pose = sonar->RobotPose();
   out.map = std::move(fresh);
