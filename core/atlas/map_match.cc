@@ -47,6 +47,14 @@ const char* MapMatchResultName(MapMatchResult r) {
   return "unknown";
 }
 
+MapMatchOptions LaserMapMatchOptions(MapMatchOptions o) {
+  o.unknown_line_correlation = true;
+  o.alternative_sigmas = 3.0;
+  o.redundancy_prior_halfwidth = 1.0;
+  o.sigma_alpha_floor = 0.02;
+  return o;
+}
+
 MapMatchOptions SonarMapMatchOptions(MapMatchOptions o) {
   o.redundancy_sigma = 0.25;
   o.redundancy_prior_halfwidth = 0.5;

@@ -205,6 +205,32 @@ TEST(MapMatch, DirectionFixedBySinglePairIsAmbiguous) {
   EXPECT_NEAR(both.b_in_a.mean.y, truth.y, 0.05);
 }
 
+// csail, edge 6-2 (docs/atlas.md session 15): the pair that alone fixes one direction of t
+// has an alternative 1.7 m away that the maps do not show. Here a corridor with one jamb: A
+// mapped the jamb at x = 6, B (seen from x = 2) only another at x = 7.7 (world), so pairing the
+// two jambs puts t 1.7 m off along the corridor. A prior of sigma 0.4 m (gate +-1.6 m) holds
+// both placements. With the default 2 m half-width the prior vouches for the one pair and the
+// wrong t is accepted; with the laser's 1 m it does not: kSinglePair.
+TEST(MapMatch, PriorVouchesForASinglePairOnlyWithinTheLaserHalfWidth) {
+  const Pose2 truth{2.0, 0.0, 0.0};
+  const std::pair<Vec2, Vec2> south{{0, -1.2}, {14, -1.2}}, north{{0, 1.2}, {14, 1.2}};
+  const auto a = InA({south, north, {{6, 1.2}, {6, 2.2}}});
+  const auto b = SeenFrom({south, north, {{7.7, 1.2}, {7.7, 2.2}}}, truth);
+  const UncertainPose prior{Pose2{1.15, 0.0, 0.0}, Vec3(0.16, 0.01, 0.001).asDiagonal()};
+  MapMatchOptions o;
+  const MapMatch vouched = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &prior, o);
+  ASSERT_EQ(vouched.result, MapMatchResult::kAccepted) << MapMatchReasonName(vouched.reason);
+  EXPECT_NEAR(vouched.b_in_a.mean.x, truth.x - 1.7, 0.05);
+  o = LaserMapMatchOptions();
+  const MapMatch refused = MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &prior, o);
+  EXPECT_EQ(refused.result, MapMatchResult::kAmbiguous);
+  EXPECT_EQ(refused.reason, MapMatchReason::kSinglePair) << MapMatchReasonName(refused.reason);
+  // A prior of sigma 0.2 m (gate +-0.8 m) still vouches: it tells placements 1.7 m apart.
+  const UncertainPose tight{Pose2{0.3, 0.0, 0.0}, Vec3(0.04, 0.01, 0.001).asDiagonal()};
+  EXPECT_EQ(MatchMaps(a, SelfMatchMap(a, o), b, SelfMatchMap(b, o), &tight, o).result,
+            MapMatchResult::kAccepted);
+}
+
 // A wall with a 0.4 m step (freiburg-079, edge 8-0, docs/atlas.md session 6): the recessed face
 // x = -0.4 (y 1 .. -1.6) and the forward face x = 0 (y -1.6 .. -6.4), and three cross walls
 // whose normals lie within 0.13 rad of the y axis, so they fix y and the rotation well and x

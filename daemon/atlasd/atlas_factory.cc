@@ -39,8 +39,7 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
     if (s.sonar_bootstrap)
       o.lifecycle.probation_scans = std::max(o.lifecycle.probation_scans, kSonarBootstrapProbation);
   } else {
-    o.match.unknown_line_correlation = true;
-    o.match.alternative_sigmas = 3.0;
+    o.match = LaserMapMatchOptions(o.match);
   }
   return o;
 }

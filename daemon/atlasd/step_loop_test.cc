@@ -330,15 +330,23 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
 }
 
 // Sonar alone maps with the sonar's Condition 2 settings (map_match.h, SonarMapMatchOptions),
-// the laser and both with the laser's: default redundancy, lines of unknown correlation.
+// the laser and both with the laser's (LaserMapMatchOptions): default redundancy, lines of
+// unknown correlation, a 1 m prior half-width, a 0.02 rad angle floor.
 TEST(StepLoopSonar, SonarAtlasMatchesMapsWithTheSonarSettings) {
   MapperSettings s;
-  EXPECT_EQ(MakeAtlas(s)->Options().match.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
-  EXPECT_TRUE(MakeAtlas(s)->Options().match.unknown_line_correlation);
-  s.sonar_ring = FakeSonarRing24();
-  s.sensors = RangeSensors::kBoth;
-  EXPECT_EQ(MakeAtlas(s)->Options().match.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
-  EXPECT_TRUE(MakeAtlas(s)->Options().match.unknown_line_correlation);
+  const MapMatchOptions laser = LaserMapMatchOptions();
+  for (RangeSensors sensors : {RangeSensors::kLaser, RangeSensors::kBoth}) {
+    s.sensors = sensors;
+    if (sensors == RangeSensors::kBoth) s.sonar_ring = FakeSonarRing24();
+    const MapMatchOptions m = MakeAtlas(s)->Options().match;
+    EXPECT_EQ(m.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
+    EXPECT_TRUE(m.unknown_line_correlation);
+    EXPECT_EQ(m.alternative_sigmas, laser.alternative_sigmas);
+    EXPECT_EQ(m.redundancy_prior_halfwidth, laser.redundancy_prior_halfwidth);
+    EXPECT_EQ(m.sigma_alpha_floor, laser.sigma_alpha_floor);
+  }
+  EXPECT_LT(laser.redundancy_prior_halfwidth, MapMatchOptions{}.redundancy_prior_halfwidth);
+  EXPECT_GT(laser.sigma_alpha_floor, MapMatchOptions{}.sigma_alpha_floor);
   s.sensors = RangeSensors::kSonar;
   const MapMatchOptions m = MakeAtlas(s)->Options().match;
   EXPECT_EQ(m.redundancy_sigma, SonarMapMatchOptions().redundancy_sigma);
