@@ -35,8 +35,9 @@
 //   the prior tells the alternatives apart). On the sonar alcove loop (tools/sonar_eval, seeds
 //   1-20) every gross false closure (2.3-2.4 m along or across the corridor, d2 > 1000) was
 //   of this kind; the sonar atlas's priors are themselves inconsistent, so it uses 0.5 m
-//   (sonar_eval::SonarAtlasOptions; 1-2 m let gross ones back). The default 2 m leaves the six
-//   corrected laser logs' closures as they were (0.5 m refused 2 of intel's 4 true ones).
+//   (sonar_eval::SonarAtlasOptions; 1-2 m let gross ones back). The default 2 m left the six
+//   corrected laser logs' closures as they were (0.5 m refused 2 of intel's 4 true ones); laser
+//   lines use 1 m since a 1.7 m alternative was accepted on csail (LaserMapMatchOptions).
 // - Condition 2 against alternative lines: the redundancy test above asks whether the other
 //   pairs fix a direction to an absolute redundancy_sigma; the maps themselves say which
 //   alternatives there are. For each matched pair (i of A, k of B), every other line of A
@@ -138,13 +139,13 @@ struct MapMatchOptions {
 MapMatchOptions LaserMapMatchOptions(MapMatchOptions o = {});
 
 // The Condition 2 settings for maps of wide-beam sonar lines: `o` with redundancy_sigma 0.25 m
-// and redundancy_prior_halfwidth 0.5 m (laser defaults 1 m / 2 m), and alternative_sigmas 3. A
-// sonar atlas's priors are less consistent (robot NEES mean 6-8 on the alcove loop): with the
-// laser's values the alcove loop had gross false closures (docs/sonar.md, session 5). Sonar
-// maps initialised without edge echoes (SonarInitOptions, session 11) hold few lines across a
-// corridor, and a match pairing a corridor wall with the back wall of an alcove 1 m deeper was
-// accepted 0.8 m off: the alternative-lines test refuses it (docs/sonar.md, session 11). Used
-// by atlasd (sensors = "sonar") and by tools/sonar_eval.
+// and redundancy_prior_halfwidth 0.5 m (defaults 1 m / 2 m, laser 1 m / 1 m), and
+// alternative_sigmas 3. A sonar atlas's priors are less consistent (robot NEES mean 6-8 on the
+// alcove loop): with the laser's values of session 5 the alcove loop had gross false closures
+// (docs/sonar.md, session 5). Sonar maps initialised without edge echoes (SonarInitOptions,
+// session 11) hold few lines across a corridor, and a match pairing a corridor wall with the
+// back wall of an alcove 1 m deeper was accepted 0.8 m off: the alternative-lines test refuses
+// it (docs/sonar.md, session 11). Used by atlasd (sensors = "sonar") and by tools/sonar_eval.
 MapMatchOptions SonarMapMatchOptions(MapMatchOptions o = {});
 
 enum class MapMatchResult { kAccepted, kRejected, kAmbiguous };
