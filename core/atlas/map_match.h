@@ -54,7 +54,7 @@
 //   with the 4.8 m line. That pair alone fixed t's x (sigma 0.105 m with it, 0.44 m without:
 //   "redundant" by the 1 m test), and t came out 0.40 m off the reference (d2 18.7); the three
 //   other pairs and the prior allowed the true placement as well. atlasd turns it on (3 sigma)
-//   for laser lines (daemon/atlasd/atlas_factory.cc), SonarMapMatchOptions for sonar lines;
+//   for laser lines (LaserMapMatchOptions), SonarMapMatchOptions for sonar lines;
 //   off by default.
 // - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
 //   pairs, Sigma = (sum H^T S^-1 H)^-1. The lines of one local map are correlated (they share
@@ -65,7 +65,7 @@
 //   sigma of the reference (11 of 31 -> 2 of 57, gross 4 -> 1), but the looser edges widen the
 //   Dijkstra projection's priors, and in the seeded sonar run on a repetitive corridor
 //   (tools/sonar_eval SonarAtlasCondition2) a wrong period then passed the prior gate. atlasd
-//   turns it on for laser lines (daemon/atlasd/atlas_factory.h), not for sonar ones. Matched
+//   turns it on for laser lines (LaserMapMatchOptions), not for sonar ones. Matched
 //   lines that are all parallel leave a singular information matrix: kRejected (degenerate),
 //   never a guess.
 // Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each
@@ -120,10 +120,10 @@ struct MapMatchOptions {
 };
 
 // The Condition 2 settings for maps of laser lines (atlasd with a laser, atlas-replay): `o`
-// with unknown_line_correlation, alternative_sigmas 3, redundancy_prior_halfwidth 1 m (default
-// 2 m) and sigma_alpha_floor 0.02 rad (default 0.01). Over 100 seeds of the six corrected logs
-// (scripts/eval-corrected-seeds.sh, docs/atlas.md session 15) the defaults' 2 m and 0.01 rad let
-// 3 false closures through (chi2 beyond 3 sigma), these none:
+// with unknown_line_correlation and alternative_sigmas 3 (why: above), redundancy_prior_halfwidth
+// 1 m (default 2 m) and sigma_alpha_floor 0.02 rad (default 0.01). Over 100 seeds of the six
+// corrected logs (scripts/eval-corrected-seeds.sh, docs/atlas.md session 15) the defaults' 2 m and
+// 0.01 rad let 3 false closures through (chi2 beyond 3 sigma), these none:
 // - csail, edge 6-2 in three seeds, 1.6-1.8 m off (d2 70-82): a 1.8 m line of one map paired
 //   with a wall of the other whose parallel neighbour 1.7 m away, where the line really lies,
 //   that map had not mapped there; that one pair fixed t across the walls, and a prior whose

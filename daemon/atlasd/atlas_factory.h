@@ -6,16 +6,8 @@
 // the laser scans when there is a laser; for sonar alone the sonar w (SonarMapBootstrapper,
 // core/sonar/sonar_map_bootstrapper.h) unless MapperSettings::sonar_bootstrap is off (then
 // juveniles keep their seeded pose and are judged on q alone: docs/sonar.md, session 8). With
-// sonar alone, map-matching uses SonarMapMatchOptions (core/atlas/map_match.h); with laser
-// lines, LaserMapMatchOptions. That is unknown_line_correlation (t's covariance n times the
-// independent-lines one): on the six corrected logs with 24 frames examined it cut the map-match
-// edges beyond 3 sigma of the reference from 8 of 21 to 2 of 14, none gross (docs/atlas.md,
-// session 5); on the sonar alcove loop it let gross ones through (docs/sonar.md), so sonar keeps
-// it off. And alternative_sigmas 3 (a pair whose line has a near-parallel alternative that the
-// other pairs and the prior allow is ambiguous; it refused freiburg-079's false edge 8-0,
-// docs/atlas.md session 6), as sonar maps have too (docs/sonar.md, session 11). And a prior
-// that vouches for a single pair only within 1 m, and line angles no tighter than 0.02 rad for
-// matching (csail's and intel's false edges, docs/atlas.md session 15).
+// sonar alone, map-matching uses SonarMapMatchOptions, with laser lines LaserMapMatchOptions
+// (core/atlas/map_match.h says what each setting refused, and where it was measured).
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
 // daemon_setup.cc, so that the replay tools build the same mapper without the configuration
