@@ -56,6 +56,7 @@ MapMatchOptions LaserMapMatchOptions(MapMatchOptions o) {
 }
 
 MapMatchOptions SonarMapMatchOptions(MapMatchOptions o) {
+  o.unknown_line_correlation = true;
   o.redundancy_sigma = 0.25;
   o.redundancy_prior_halfwidth = 0.5;
   o.alternative_sigmas = 3.0;

@@ -64,8 +64,9 @@
 //   correlation. It is off by default: on the six corrected logs it cut the edges beyond 3
 //   sigma of the reference (11 of 31 -> 2 of 57, gross 4 -> 1), but the looser edges widen the
 //   Dijkstra projection's priors, and in the seeded sonar run on a repetitive corridor
-//   (tools/sonar_eval SonarAtlasCondition2) a wrong period then passed the prior gate. atlasd
-//   turns it on for laser lines (LaserMapMatchOptions), not for sonar ones. Matched
+//   (tools/sonar_eval SonarAtlasCondition2) a wrong period then passed the prior gate
+//   (session 5). atlasd turns it on for laser lines (LaserMapMatchOptions) and, since session
+//   16, for sonar ones (SonarMapMatchOptions: measured there). Matched
 //   lines that are all parallel leave a singular information matrix: kRejected (degenerate),
 //   never a guess.
 // Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each
@@ -139,13 +140,19 @@ struct MapMatchOptions {
 MapMatchOptions LaserMapMatchOptions(MapMatchOptions o = {});
 
 // The Condition 2 settings for maps of wide-beam sonar lines: `o` with redundancy_sigma 0.25 m
-// and redundancy_prior_halfwidth 0.5 m (defaults 1 m / 2 m, laser 1 m / 1 m), and
-// alternative_sigmas 3. A sonar atlas's priors are less consistent (robot NEES mean 6-8 on the
-// alcove loop): with the laser's values of session 5 the alcove loop had gross false closures
-// (docs/sonar.md, session 5). Sonar maps initialised without edge echoes (SonarInitOptions,
-// session 11) hold few lines across a corridor, and a match pairing a corridor wall with the
-// back wall of an alcove 1 m deeper was accepted 0.8 m off: the alternative-lines test refuses
-// it (docs/sonar.md, session 11). Used by atlasd (sensors = "sonar") and by tools/sonar_eval.
+// and redundancy_prior_halfwidth 0.5 m (defaults 1 m / 2 m, laser 1 m / 1 m),
+// alternative_sigmas 3, and unknown_line_correlation. Without the last, sonar edges were
+// overconfident: over 200 simulated runs per cell (building and alcove loop, 16 and 24
+// transducers; docs/sonar.md, session 16) the edges' chi-square against the truth averaged
+// 4.0-4.4 (3 dof: 3), 12-14 % beyond the 95 % point, and 41 of 1134 edges were false closures
+// (beyond 3 sigma: 0.05-1.1 m, median 0.3 m, and 0.2-5 deg off); with it 4 of 1094, the edges more
+// than 0.5 m or 5 deg off 16 either way, the robot NEES unchanged within a run block's noise.
+// A sonar atlas's priors are less consistent (robot NEES mean 6-8 on the alcove loop): with the
+// laser's values of session 5 the alcove loop had gross false closures (docs/sonar.md, session 5).
+// Sonar maps initialised without edge echoes (SonarInitOptions, session 11) hold few lines across a
+// corridor, and a match pairing a corridor wall with the back wall of an alcove 1 m deeper was
+// accepted 0.8 m off: the alternative-lines test refuses it (docs/sonar.md, session 11). Used by
+// atlasd (sensors = "sonar") and by tools/sonar_eval.
 MapMatchOptions SonarMapMatchOptions(MapMatchOptions o = {});
 
 enum class MapMatchResult { kAccepted, kRejected, kAmbiguous };

@@ -331,7 +331,8 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
 
 // Sonar alone maps with the sonar's Condition 2 settings (map_match.h, SonarMapMatchOptions),
 // the laser and both with the laser's (LaserMapMatchOptions): default redundancy, lines of
-// unknown correlation, a 1 m prior half-width, a 0.02 rad angle floor.
+// unknown correlation, a 1 m prior half-width, a 0.02 rad angle floor. Both kinds treat the
+// lines of a map as of unknown correlation (off in MapMatchOptions{}).
 TEST(StepLoopSonar, SonarAtlasMatchesMapsWithTheSonarSettings) {
   MapperSettings s;
   const MapMatchOptions laser = LaserMapMatchOptions();
@@ -352,7 +353,8 @@ TEST(StepLoopSonar, SonarAtlasMatchesMapsWithTheSonarSettings) {
   EXPECT_EQ(m.redundancy_sigma, SonarMapMatchOptions().redundancy_sigma);
   EXPECT_EQ(m.redundancy_prior_halfwidth, SonarMapMatchOptions().redundancy_prior_halfwidth);
   EXPECT_LT(m.redundancy_sigma, MapMatchOptions{}.redundancy_sigma);
-  EXPECT_FALSE(m.unknown_line_correlation);
+  EXPECT_TRUE(m.unknown_line_correlation);
+  EXPECT_FALSE(MapMatchOptions{}.unknown_line_correlation);
 }
 
 // A saved atlas of laser maps is not read as one of sonar maps (start moves it aside).

@@ -61,7 +61,7 @@ constexpr char kUsage[] =
     "                             [--point-rival 0|1 (1)] [--init-edge-echoes 0|1 (0)]\n"
     "                             [--redundancy-sigma S=0.25] [--redundancy-prior H=0.5]\n"
     "                             [--alternative-sigmas A=3]\n"
-    "                             [--line-correlation 0|1 (0)] [--keep-frame-map 0|1 (0)]\n"
+    "                             [--line-correlation 0|1 (1)] [--keep-frame-map 0|1 (0)]\n"
     "                             [--seed-cov-scale F=1] [--sonar-w 0|1 (1)]\n"
     "                             [--bootstrap-steps N] [--probation N] [--w-edge-echoes 0|1 (0)]\n"
     "                             [--w-dead-reckoned 0|1 (1)]\n"
@@ -103,9 +103,9 @@ constexpr char kUsage[] =
     "      map_match redundancy_sigma (0: a direction of t may rest on one line pair),\n"
     "      --redundancy-prior H its redundancy_prior_halfwidth (0: never; SonarAtlasOptions);\n"
     "      --alternative-sigmas A its alternative_sigmas (0: off; SonarAtlasOptions).\n"
-    "      --line-correlation 1: map_match's unknown_line_correlation (t's covariance times\n"
-    "      the pairs). Each edge is also judged as map-matching made it (before edge\n"
-    "      refinement).\n"
+    "      --line-correlation 0: map_match's unknown_line_correlation off (t's covariance not\n"
+    "      times the pairs; on in SonarAtlasOptions since session 16). Each edge is also judged\n"
+    "      as map-matching made it (before edge refinement).\n"
     "      --keep-frame-map 1 (with --sonar-w 0): a juvenile that matures leaves the frame's map\n"
     "      as it was (not the features it updated from its seeded pose) and gives it its robot\n"
     "      pose (AtlasOptions::keep_frame_map_without_w, an experiment).\n"
@@ -738,7 +738,8 @@ int RunAtlasMode(const Args& args) {
          w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
          w_dead_reckoned = SonarBootstrapOptions().dead_reckoned_start ? 1 : 0,
          bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
-         redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma, line_correlation = 0,
+         redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma,
+         line_correlation = sonar_eval::SonarAtlasOptions().match.unknown_line_correlation ? 1 : 0,
          redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth,
          alternative = sonar_eval::SonarAtlasOptions().match.alternative_sigmas;
   sonar_eval::AlcoveLoopOptions loop;
