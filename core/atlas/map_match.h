@@ -146,7 +146,7 @@ MapMatchOptions LaserMapMatchOptions(MapMatchOptions o = {});
 // transducers; docs/sonar.md, session 16) the edges' chi-square against the truth averaged
 // 4.0-4.4 (3 dof: 3), 12-14 % beyond the 95 % point, and 41 of 1134 edges were false closures
 // (beyond 3 sigma: 0.05-1.1 m, median 0.3 m, and 0.2-5 deg off); with it 4 of 1094, the edges more
-// than 0.5 m or 5 deg off 16 either way, the robot NEES unchanged within a run block's noise.
+// than 0.5 m or 5 deg off 16 either way, the steps inside the robot NEES band within 1.3 points.
 // A sonar atlas's priors are less consistent (robot NEES mean 6-8 on the alcove loop): with the
 // laser's values of session 5 the alcove loop had gross false closures (docs/sonar.md, session 5).
 // Sonar maps initialised without edge echoes (SonarInitOptions, session 11) hold few lines across a

@@ -331,8 +331,8 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
 
 // Sonar alone maps with the sonar's Condition 2 settings (map_match.h, SonarMapMatchOptions),
 // the laser and both with the laser's (LaserMapMatchOptions): default redundancy, lines of
-// unknown correlation, a 1 m prior half-width, a 0.02 rad angle floor. Both kinds treat the
-// lines of a map as of unknown correlation (off in MapMatchOptions{}).
+// unknown correlation, a 1 m prior half-width, a 0.02 rad angle floor. Sonar maps' lines are of
+// unknown correlation too (off in MapMatchOptions{}).
 TEST(StepLoopSonar, SonarAtlasMatchesMapsWithTheSonarSettings) {
   MapperSettings s;
   const MapMatchOptions laser = LaserMapMatchOptions();
