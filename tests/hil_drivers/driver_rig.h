@@ -277,8 +277,12 @@ inline size_t CompareScans(const fake::Recording& rec, const std::vector<size_t>
 // For runs with faults: every scan out must equal a scan sent intact, in order; scans sent
 // intact may be missing (written just before an unplug, or while the driver was reopening
 // the line). Returns the number of scans out that match none; *missing counts the others.
+// Matches `got` in order against the scans sent intact; returns how many scans out match none.
+// *missing: scans sent intact that did not come out; *missing_runs: how many unbroken runs of
+// consecutive sent scans they form (a reconnection loses one run, however long it takes).
 inline size_t CompareScansInOrder(const fake::Recording& rec, const std::vector<size_t>& sent,
-                                  const std::vector<LaserScan>& got, size_t* missing) {
+                                  const std::vector<LaserScan>& got, size_t* missing,
+                                  size_t* missing_runs) {
   auto same = [&](const LaserScan& a, const LaserScan& b) {
     if (a.ranges.size() != b.ranges.size()) return false;
     for (size_t i = 0; i < a.ranges.size(); ++i) {
@@ -287,18 +291,21 @@ inline size_t CompareScansInOrder(const fake::Recording& rec, const std::vector<
     }
     return true;
   };
-  size_t unmatched = 0, j = 0, matched = 0;
+  size_t unmatched = 0, j = 0, matched = 0, runs = 0;
   for (const LaserScan& g : got) {
     size_t k = j;
     while (k < sent.size() && !same(rec.scans[sent[k]], g)) ++k;
     if (k == sent.size()) {
       ++unmatched;
     } else {
+      runs += k > j;
       j = k + 1;
       ++matched;
     }
   }
+  runs += j < sent.size();
   *missing = sent.size() - matched;
+  *missing_runs = runs;
   return unmatched;
 }
 

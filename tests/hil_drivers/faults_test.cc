@@ -23,14 +23,17 @@ void RunAndCheck(DriverRig& rig, bool sonar_exact = true) {
   std::string error;
   ASSERT_TRUE(rig.Start(&error)) << error;
   rig.RunToEnd(std::chrono::seconds(25));
-  CheckRoundTrip(rig, /*expect_all=*/false);
-  // Messages in flight when a device is unplugged or its line reopened may be lost (a few per
-  // disconnection); otherwise everything sent intact comes out.
-  auto allowance = [](const DriverHealth& h) { return 3 * h.disconnects; };
-  EXPECT_LE(rig.lms_->SentIntact().size() - rig.scans.size(), allowance(rig.laser_->Health()));
-  EXPECT_LE(rig.base_->SentIntact().size() - rig.odometry.size(), allowance(rig.odo_->Health()));
+  const MissingRuns missing = CheckRoundTrip(rig, /*expect_all=*/false);
+  // Messages in flight when a device is unplugged, and those the device sends while its line is
+  // reopened and the driver's start-up runs, may be lost: at most two unbroken runs per
+  // disconnection, as long as the reopen takes (on a loaded machine 0.2 s of laser scans and
+  // SIPs). A message lost anywhere else is a second run. Otherwise everything sent intact
+  // comes out. Odometry frames are not matched by content: a few per disconnection.
+  EXPECT_LE(missing.laser, 2 * rig.laser_->Health().disconnects);
+  EXPECT_LE(rig.base_->SentIntact().size() - rig.odometry.size(),
+            3 * rig.odo_->Health().disconnects);
   if (sonar_exact) {
-    EXPECT_LE(rig.p2os_->SentIntact().size() - rig.sonar.size(), allowance(rig.sonar_->Health()));
+    EXPECT_LE(missing.sonar, 2 * rig.sonar_->Health().disconnects);
   }
   ASSERT_EQ(rig.states_at_end.size(), 3u) << "the fakes did not finish playing";
   for (DriverState s : rig.states_at_end) EXPECT_EQ(s, DriverState::kRunning) << ToString(s);
@@ -135,10 +138,12 @@ TEST(FaultsTest, DeviceUnpluggedAndBackIsReopened) {
     EXPECT_GE(h.connect_failures, 1u) << h.device;  // the path was gone meanwhile
     EXPECT_FALSE(h.last_error.empty()) << h.device;
   }
-  // Data flowed again after the drop: the last scan out is one of the last sent.
+  // Data flowed again after the drop: the last scan out is one of the last sent, and most of
+  // what was sent intact came out (of all sent, not of the slice: on a loaded machine the fake
+  // itself sends fewer).
   ASSERT_FALSE(rig.scans.empty());
   EXPECT_GT(rig.lms_->SentIntact().back(), rec->scans.size() - 5);
-  EXPECT_GT(rig.scans.size(), rec->scans.size() / 2);
+  EXPECT_GT(rig.scans.size(), rig.lms_->SentIntact().size() / 2);
 }
 
 TEST(FaultsTest, ShortStallIsReportedAndOutlived) {

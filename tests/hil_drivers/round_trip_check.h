@@ -67,35 +67,49 @@ inline bool SameReading(const SonarReading& a, const SonarReading& b) {
 }
 
 // Every reading out must be one of the SIPs sent intact, in order. (SIPs sent while the
-// driver was away, e.g. during its reconnection, are legitimately missing.)
-inline void CheckSonar(const std::vector<SonarReading>& sent, const std::vector<SonarReading>& got,
-                       bool expect_all) {
+// driver was away, e.g. during its reconnection, are legitimately missing.) Returns how many
+// unbroken runs of consecutive sent SIPs are missing.
+inline size_t CheckSonar(const std::vector<SonarReading>& sent,
+                         const std::vector<SonarReading>& got, bool expect_all) {
   if (expect_all) {
     EXPECT_EQ(got.size(), sent.size()) << "sonar readings out vs SIPs in";
   }
-  size_t unmatched = 0, j = 0;
+  size_t unmatched = 0, j = 0, runs = 0;
   for (const SonarReading& r : got) {
     size_t k = j;
     while (k < sent.size() && !SameReading(sent[k], r)) ++k;
     if (k == sent.size()) {
       ++unmatched;
     } else {
+      runs += k > j;
       j = k + 1;
     }
   }
-  std::printf("sonar: %zu SIPs with returns sent intact, %zu readings out, %zu not matching\n",
-              sent.size(), got.size(), unmatched);
+  runs += j < sent.size();
+  std::printf(
+      "sonar: %zu SIPs with returns sent intact, %zu readings out, %zu not matching, %zu runs "
+      "missing\n",
+      sent.size(), got.size(), unmatched, runs);
   EXPECT_EQ(unmatched, 0u);
+  return runs;
 }
 
 inline void PrintHealthAndCheck(const DriverRig& rig, bool expect_all);
 
-inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
+// Unbroken runs of consecutive messages sent intact that did not come out (0 with expect_all).
+struct MissingRuns {
+  size_t laser = 0;
+  size_t sonar = 0;
+};
+
+inline MissingRuns CheckRoundTrip(const DriverRig& rig, bool expect_all) {
   const auto sent = rig.lms_->SentIntact();
   std::string first;
   size_t missing = 0;
-  const size_t bad = expect_all ? CompareScans(*rig.rec_, sent, rig.scans, &first)
-                                : CompareScansInOrder(*rig.rec_, sent, rig.scans, &missing);
+  MissingRuns runs;
+  const size_t bad = expect_all
+                         ? CompareScans(*rig.rec_, sent, rig.scans, &first)
+                         : CompareScansInOrder(*rig.rec_, sent, rig.scans, &missing, &runs.laser);
   size_t no_return = 0;
   for (const auto& s : rig.scans)
     for (float r : s.ranges) no_return += !IsReturn(r);
@@ -109,8 +123,9 @@ inline void CheckRoundTrip(const DriverRig& rig, bool expect_all) {
     EXPECT_EQ(rig.scans.size(), rig.rec_->scans.size());
   }
   CheckOdometry(rig.base_->SentIntact(), rig.odometry, expect_all);
-  CheckSonar(rig.p2os_->SentIntact(), rig.sonar, expect_all);
+  runs.sonar = CheckSonar(rig.p2os_->SentIntact(), rig.sonar, expect_all);
   PrintHealthAndCheck(rig, expect_all);
+  return runs;
 }
 
 inline void PrintHealthAndCheck(const DriverRig& rig, bool expect_all) {
