@@ -276,10 +276,9 @@ inline size_t CompareScans(const fake::Recording& rec, const std::vector<size_t>
 
 // For runs with faults: every scan out must equal a scan sent intact, in order; scans sent
 // intact may be missing (written just before an unplug, or while the driver was reopening
-// the line). Returns the number of scans out that match none; *missing counts the others.
-// Matches `got` in order against the scans sent intact; returns how many scans out match none.
-// *missing: scans sent intact that did not come out; *missing_runs: how many unbroken runs of
-// consecutive sent scans they form (a reconnection loses one run, however long it takes).
+// the line). Returns the number of scans out that match none; *missing counts the scans sent
+// intact that did not come out, *missing_runs the unbroken runs of consecutive sent scans they
+// form (a reconnection loses one or two runs, however long it takes).
 inline size_t CompareScansInOrder(const fake::Recording& rec, const std::vector<size_t>& sent,
                                   const std::vector<LaserScan>& got, size_t* missing,
                                   size_t* missing_runs) {
