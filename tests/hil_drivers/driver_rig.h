@@ -274,15 +274,44 @@ inline size_t CompareScans(const fake::Recording& rec, const std::vector<size_t>
   return bad;
 }
 
+// Matches each message out, in order, with the next message sent intact that `same(k, out)`
+// says it equals (k indexes the messages sent intact). unmatched: messages out that match
+// none; missing_runs: the unbroken runs of consecutive sent messages that did not come out (a
+// reconnection loses one or two runs, however long it takes).
+struct InOrderMatch {
+  size_t unmatched = 0;
+  size_t matched = 0;
+  size_t missing_runs = 0;
+};
+
+template <typename Out, typename Same>
+InOrderMatch MatchInOrder(size_t sent_count, const std::vector<Out>& got, Same same) {
+  InOrderMatch m;
+  size_t j = 0;
+  for (const Out& g : got) {
+    size_t k = j;
+    while (k < sent_count && !same(k, g)) ++k;
+    if (k == sent_count) {
+      ++m.unmatched;
+      continue;
+    }
+    m.missing_runs += k > j;
+    j = k + 1;
+    ++m.matched;
+  }
+  m.missing_runs += j < sent_count;
+  return m;
+}
+
 // For runs with faults: every scan out must equal a scan sent intact, in order; scans sent
 // intact may be missing (written just before an unplug, or while the driver was reopening
 // the line). Returns the number of scans out that match none; *missing counts the scans sent
-// intact that did not come out, *missing_runs the unbroken runs of consecutive sent scans they
-// form (a reconnection loses one or two runs, however long it takes).
+// intact that did not come out, *missing_runs the unbroken runs they form (MatchInOrder).
 inline size_t CompareScansInOrder(const fake::Recording& rec, const std::vector<size_t>& sent,
                                   const std::vector<LaserScan>& got, size_t* missing,
                                   size_t* missing_runs) {
-  auto same = [&](const LaserScan& a, const LaserScan& b) {
+  auto same = [&](size_t k, const LaserScan& b) {
+    const LaserScan& a = rec.scans[sent[k]];
     if (a.ranges.size() != b.ranges.size()) return false;
     for (size_t i = 0; i < a.ranges.size(); ++i) {
       const bool ra = IsReturn(a.ranges[i]), rb = IsReturn(b.ranges[i]);
@@ -290,22 +319,10 @@ inline size_t CompareScansInOrder(const fake::Recording& rec, const std::vector<
     }
     return true;
   };
-  size_t unmatched = 0, j = 0, matched = 0, runs = 0;
-  for (const LaserScan& g : got) {
-    size_t k = j;
-    while (k < sent.size() && !same(rec.scans[sent[k]], g)) ++k;
-    if (k == sent.size()) {
-      ++unmatched;
-    } else {
-      runs += k > j;
-      j = k + 1;
-      ++matched;
-    }
-  }
-  runs += j < sent.size();
-  *missing = sent.size() - matched;
-  *missing_runs = runs;
-  return unmatched;
+  const InOrderMatch m = MatchInOrder(sent.size(), got, same);
+  *missing = sent.size() - m.matched;
+  *missing_runs = m.missing_runs;
+  return m.unmatched;
 }
 
 }  // namespace atlas::hil

@@ -74,24 +74,14 @@ inline size_t CheckSonar(const std::vector<SonarReading>& sent,
   if (expect_all) {
     EXPECT_EQ(got.size(), sent.size()) << "sonar readings out vs SIPs in";
   }
-  size_t unmatched = 0, j = 0, runs = 0;
-  for (const SonarReading& r : got) {
-    size_t k = j;
-    while (k < sent.size() && !SameReading(sent[k], r)) ++k;
-    if (k == sent.size()) {
-      ++unmatched;
-    } else {
-      runs += k > j;
-      j = k + 1;
-    }
-  }
-  runs += j < sent.size();
+  const InOrderMatch m = MatchInOrder(
+      sent.size(), got, [&](size_t k, const SonarReading& r) { return SameReading(sent[k], r); });
   std::printf(
       "sonar: %zu SIPs with returns sent intact, %zu readings out, %zu not matching, %zu runs "
       "missing\n",
-      sent.size(), got.size(), unmatched, runs);
-  EXPECT_EQ(unmatched, 0u);
-  return runs;
+      sent.size(), got.size(), m.unmatched, m.missing_runs);
+  EXPECT_EQ(m.unmatched, 0u);
+  return m.missing_runs;
 }
 
 inline void PrintHealthAndCheck(const DriverRig& rig, bool expect_all);
