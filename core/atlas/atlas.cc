@@ -20,6 +20,10 @@ std::string AtlasOptions::Validate() const {
   if (seed_cooldown_steps < 0) return "seed_cooldown_steps must be non-negative";
   if (traversal_max_hops < 1) return "traversal_max_hops must be at least 1";
   if (!(traversal_reach > 0)) return "traversal_reach must be positive";
+  if (!(return_q >= 0 && return_q <= 1)) return "return_q must lie in [0, 1]";
+  if (!(return_radius > 0)) return "return_radius must be positive";
+  if (!(genesis_cov_scale >= 1.0 && genesis_cov_scale <= 100.0))
+    return "genesis_cov_scale must lie in [1, 100]";
   if (projection_max_frames < 2) return "projection_max_frames must be at least 2";
   if (!(projection_max_rho > 0)) return "projection_max_rho must be positive";
   if (match_candidates_per_step < 0) return "match_candidates_per_step must be non-negative";
@@ -363,9 +367,10 @@ bool Atlas::Genesis(int from_index) {
     ++stats_.genesis_refused;
     return false;
   }
-  // III-C: the robot pose (with its covariance) in the old frame becomes the edge; the robot is
-  // at exactly zero, with zero covariance, in the new frame.
-  const UncertainPose robot = graph_.Frame(from).map->RobotPose();
+  // III-C: the robot pose (with its covariance, times genesis_cov_scale) in the old frame becomes
+  // the edge; the robot is at exactly zero, with zero covariance, in the new frame.
+  UncertainPose robot = graph_.Frame(from).map->RobotPose();
+  robot.cov *= options_.genesis_cov_scale;
   const int64_t from_id = hypotheses_[from_index].id;
   if (!MakeRoomForHypothesis(from_index)) return false;
   std::unique_ptr<LocalMap> map = factory_();
@@ -409,7 +414,10 @@ const Projection& Atlas::ProjectionFromDominant(FrameId dominant) {
 }
 
 void Atlas::Traverse(int d) {
-  if (hypotheses_[d].q >= options_.q_traverse || options_.max_seeds_per_step == 0) return;
+  const double q = hypotheses_[d].q;
+  const bool returning = q >= options_.q_traverse;
+  if (q >= std::max(options_.q_traverse, options_.return_q) || options_.max_seeds_per_step == 0)
+    return;
   const FrameId dom_frame = hypotheses_[d].frame;
   const UncertainPose x_d = PoseOf(hypotheses_[d]);
   const Projection& p = ProjectionFromDominant(dom_frame);
@@ -423,6 +431,7 @@ void Atlas::Traverse(int d) {
     // eq. 10-11: x_i* = T_i^d (+) x_d, T_i^d the pose of the dominant frame in frame i.
     UncertainPose seed = Compose(Inverse(e.pose), x_d);
     if (!bootstrapper_) seed.cov *= options_.seed_cov_scale_without_w;
+    if (returning && std::hypot(seed.mean.x, seed.mean.y) > options_.return_radius) continue;
     if (!WithinReach(*f.map, seed)) {
       ++stats_.seeds_out_of_reach;
       continue;

@@ -32,6 +32,8 @@
 //     have a line within `traversal_reach` of the seed:
 //     x_i* = T_i^d (+) x_d with T_i^d the pose of the dominant frame in frame i composed along
 //     the projection tree (one edge for adjacent frames, exactly eq. 10-11).
+//     With `return_q` above q_traverse, a dominant q in [q_traverse, return_q) seeds too, but
+//     only frames whose origin lies within `return_radius` of the seed (see the option).
 //  5. Genesis at capacity (III-C): the dominant map is full, its q is below q_traverse, it
 //     explains less than `capacity_explanation` of its recent observations (it would have to
 //     grow), no other
@@ -103,6 +105,14 @@ struct AtlasOptions {
   // than the sensor reaches cannot explain the scans, and its juvenile would only take a
   // hypothesis slot and the step's seed. Metres; default the laser range the maps use.
   double traversal_reach = 8.0;
+  // Traversal where the robot returns (our addition; off when return_q <= q_traverse): while
+  // the dominant q lies in [q_traverse, return_q), juveniles are seeded as in step 4, but only
+  // in frames whose origin the seeded position lies within `return_radius` metres of: the
+  // robot is back where that frame began, and its map may explain the scans better than the
+  // dominant one, which still explains them well enough not to fall below q_traverse (a
+  // square loop whose frame also covers the start: seattle, docs/atlas.md session 16).
+  double return_q = 0.0;
+  double return_radius = 4.0;
   // Bounded Dijkstra projection used by traversal and map-matching.
   int projection_max_frames = 24;
   double projection_max_rho = std::numeric_limits<double>::infinity();
@@ -131,6 +141,13 @@ struct AtlasOptions {
   // 1/omega is the seed's side of covariance intersection (eq. 16-18) with weight omega. An
   // experiment (docs/sonar.md, session 7); 1 = the plain projection.
   double seed_cov_scale_without_w = 1.0;
+  // Genesis (III-C) puts the robot's covariance in the old frame on the new edge, times this
+  // (our addition; 1 = the paper). The local maps' covariance there is optimistic: on the six
+  // corrected logs (30 seeds) the edges of the Genesis chain lie at a median chi-square of
+  // 3.6-4.9 on four logs and 13.7 on freiburg-079 against the reference, where 2.37 is expected
+  // (docs/atlas.md, session 17), and a prior composed from them gates map-matching and seeds
+  // traversal. atlasd's laser atlas uses 2.
+  double genesis_cov_scale = 1.0;
   double capacity_explanation = 0.8;
   int genesis_min_interval_steps = 5;
   // Matching into unconnected parts of the graph (after ResumeInNewFrame), no prior.

@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <numbers>
 #include <set>
+#include <vector>
 
 #include "core/atlas/atlas_test_world.h"
 
@@ -44,15 +46,19 @@ void CheckInvariants(const Atlas& atlas) {
 
 TEST(Atlas, OptionsValidate) {
   EXPECT_EQ(AtlasOptions{}.Validate(), "");
-  AtlasOptions o;
-  o.max_hypotheses = 1;
-  EXPECT_NE(o.Validate(), "");
-  o = AtlasOptions{};
-  o.lifecycle.probation_scans = 1;
-  EXPECT_NE(o.Validate(), "");
-  o = AtlasOptions{};
-  o.min_match_lines = 1;
-  EXPECT_NE(o.Validate(), "");
+  const std::vector<std::function<void(AtlasOptions&)>> invalid = {
+      [](AtlasOptions& o) { o.max_hypotheses = 1; },
+      [](AtlasOptions& o) { o.lifecycle.probation_scans = 1; },
+      [](AtlasOptions& o) { o.min_match_lines = 1; },
+      [](AtlasOptions& o) { o.genesis_cov_scale = 0.5; },
+      [](AtlasOptions& o) { o.return_q = 1.5; },
+      [](AtlasOptions& o) { o.return_radius = 0.0; },
+  };
+  for (size_t i = 0; i < invalid.size(); ++i) {
+    AtlasOptions o;
+    invalid[i](o);
+    EXPECT_NE(o.Validate(), "") << "case " << i;
+  }
 }
 
 TEST(Atlas, FirstStepMakesFrameZeroWithMatureDominantHypothesis) {
@@ -106,6 +112,63 @@ TEST(Atlas, GenesisEdgeCarriesRobotCovarianceExactly) {
     EXPECT_TRUE(new_frame_mature);
   }
   EXPECT_TRUE(saw_genesis);
+}
+
+// genesis_cov_scale multiplies the covariance the Genesis edge takes from the robot, and nothing
+// else: the same run with scale 1 and 2 makes the same edge mean and twice its covariance.
+TEST(Atlas, GenesisCovarianceScaleMultipliesOnlyTheEdgeCovariance) {
+  TestWorld w1, w2;
+  AtlasOptions o = TestWorld::Options();
+  Atlas plain(o, w1.Factory(), std::make_shared<FakeBootstrapper>());
+  o.genesis_cov_scale = 2.0;
+  Atlas scaled(o, w2.Factory(), std::make_shared<FakeBootstrapper>());
+  bool saw_genesis = false;
+  for (int i = 0; i < 80 && !saw_genesis; ++i) {
+    const int a = plain.Step(Pose2{0.25, 0.0, 0.01}, TestScan()).genesis;
+    const int b = scaled.Step(Pose2{0.25, 0.0, 0.01}, TestScan()).genesis;
+    ASSERT_EQ(a, b);
+    if (a == 0) continue;
+    saw_genesis = true;
+    const AtlasEdge& ep = plain.Graph().Edge(plain.Graph().EdgeCount() - 1);
+    const AtlasEdge& es = scaled.Graph().Edge(scaled.Graph().EdgeCount() - 1);
+    ASSERT_EQ(es.kind, EdgeKind::kGenesis);
+    EXPECT_EQ(es.b_in_a.mean.x, ep.b_in_a.mean.x);
+    EXPECT_EQ(es.b_in_a.mean.y, ep.b_in_a.mean.y);
+    EXPECT_EQ(es.b_in_a.mean.theta, ep.b_in_a.mean.theta);
+    ASSERT_GT(ep.b_in_a.cov.trace(), 0.0);
+    EXPECT_TRUE(es.b_in_a.cov.isApprox(Mat3(2.0 * ep.b_in_a.cov), 1e-12));
+    EXPECT_TRUE(scaled.Graph().Frame(1).map->RobotPose().cov.isZero(0.0));
+  }
+  EXPECT_TRUE(saw_genesis);
+}
+
+// Traversal where the robot returns: with return_q above q_traverse, a dominant q in
+// [q_traverse, return_q) seeds too, but only frames whose origin lies within return_radius of
+// the seed. Out and back along the corridor: with a radius no seed can meet (1 mm), the run is
+// step for step the run without the band; with a radius every seed meets, the band seeds at
+// steps where the plain run does not.
+TEST(Atlas, ReturnBandSeedsOnlyFramesWhoseOriginIsNear) {
+  auto run = [](double return_q, double radius) {
+    TestWorld w;
+    AtlasOptions o = TestWorld::Options();
+    o.return_q = return_q;
+    o.return_radius = radius;
+    Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+    std::vector<std::pair<int, FrameId>> steps;
+    for (int i = 0; i < 120; ++i) {
+      const StepStats& s = atlas.Step(Pose2{i < 60 ? 0.25 : -0.25, 0.0, 0.0}, TestScan());
+      CheckInvariants(atlas);
+      steps.emplace_back(s.seeded, s.dominant_frame);
+    }
+    return steps;
+  };
+  const auto plain = run(0.0, 4.0);
+  EXPECT_EQ(run(0.99, 1e-3), plain);
+  const auto band = run(0.99, 1e9);
+  int extra = 0;
+  for (size_t i = 0; i < plain.size() && i < band.size(); ++i)
+    extra += band[i].first > 0 && plain[i].first == 0;
+  EXPECT_GT(extra, 0) << "the band never seeded where the plain run did not";
 }
 
 // Two mature hypotheses in adjacent frames must agree with the edge between them (edge

@@ -40,6 +40,10 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
       o.lifecycle.probation_scans = std::max(o.lifecycle.probation_scans, kSonarBootstrapProbation);
   } else {
     o.match = LaserMapMatchOptions(o.match);
+    // Measured on the six corrected logs (60 seeds) and mit-csail (docs/atlas.md, session 17).
+    o.genesis_cov_scale = 2.0;
+    o.return_q = 0.9;
+    o.return_radius = 4.0;
   }
   return o;
 }
