@@ -96,6 +96,14 @@ if cpu and repeats:
         other = [int(l.split()[1]) for l in open(path) if not l.startswith("#")]
         if len(other) == len(least):
             least = [min(x, y) for x, y in zip(least, other)]
+    # The medians above come from one replay, and on a shared machine they move by up to 0.15
+    # between two replays of the same binary (docs/atlas.md, session 17); the least of the
+    # replays at each step is the steadier figure.
+    first, last = median(least[:tenth]), median(least[-tenth:])
+    print("  CPU  median step of the least of %d replays, first tenth %.1f us, last tenth %.1f us: "
+          "last/first = %.3f (target within 15 %%: %s)" % (
+              len(repeats) + 1, first / 1e3, last / 1e3, last / first,
+              "met" if abs(last / first - 1) <= 0.15 else "MISSED"))
     worst = max(range(len(least)), key=lambda i: least[i])
     print("  CPU  max over steps of the least of %d replays: %.2f ms at step %d (budget %.1f ms: %s);"
           " %d steps over budget in every replay" % (
