@@ -22,6 +22,8 @@ std::string AtlasOptions::Validate() const {
   if (!(traversal_reach > 0)) return "traversal_reach must be positive";
   if (!(return_q >= 0 && return_q <= 1)) return "return_q must lie in [0, 1]";
   if (!(return_radius > 0)) return "return_radius must be positive";
+  if (!(return_far_radius >= 0 && return_far_radius <= return_radius))
+    return "return_far_radius must lie in [0, return_radius]";
   if (!(genesis_cov_scale >= 1.0 && genesis_cov_scale <= 100.0))
     return "genesis_cov_scale must lie in [1, 100]";
   if (projection_max_frames < 2) return "projection_max_frames must be at least 2";
@@ -424,14 +426,17 @@ void Atlas::Traverse(int d) {
   int seeded = 0;
   for (size_t k = 1; k < p.entries.size() && seeded < options_.max_seeds_per_step; ++k) {
     const ProjectedFrame& e = p.entries[k];
-    if (e.hops > options_.traversal_max_hops) continue;
+    const bool far = e.hops > options_.traversal_max_hops;
+    if (far && !(returning && options_.return_far_radius > 0)) continue;
     if (static_cast<int>(hypotheses_.size()) >= options_.max_hypotheses) break;
     const MapFrame& f = graph_.Frame(e.frame);
     if (f.seed_cooldown_until > step_ || HasHypothesis(e.frame)) continue;
     // eq. 10-11: x_i* = T_i^d (+) x_d, T_i^d the pose of the dominant frame in frame i.
     UncertainPose seed = Compose(Inverse(e.pose), x_d);
     if (!bootstrapper_) seed.cov *= options_.seed_cov_scale_without_w;
-    if (returning && std::hypot(seed.mean.x, seed.mean.y) > options_.return_radius) continue;
+    if (returning && std::hypot(seed.mean.x, seed.mean.y) >
+                         (far ? options_.return_far_radius : options_.return_radius))
+      continue;
     if (!WithinReach(*f.map, seed)) {
       ++stats_.seeds_out_of_reach;
       continue;

@@ -33,7 +33,9 @@
 //     x_i* = T_i^d (+) x_d with T_i^d the pose of the dominant frame in frame i composed along
 //     the projection tree (one edge for adjacent frames, exactly eq. 10-11).
 //     With `return_q` above q_traverse, a dominant q in [q_traverse, return_q) seeds too, but
-//     only frames whose origin lies within `return_radius` of the seed (see the option).
+//     only frames whose origin lies within `return_radius` of the seed, and frames more than
+//     `traversal_max_hops` edges away (still within the projection) whose origin lies within
+//     `return_far_radius` of it (see the options).
 //  5. Genesis at capacity (III-C): the dominant map is full, its q is below q_traverse, it
 //     explains less than `capacity_explanation` of its recent observations (it would have to
 //     grow), no other
@@ -113,6 +115,12 @@ struct AtlasOptions {
   // square loop whose frame also covers the start: seattle, docs/atlas.md session 16).
   double return_q = 0.0;
   double return_radius = 4.0;
+  // In that band only, frames farther than `traversal_max_hops` edges (any frame of the
+  // bounded projection) are seeded too when their origin lies within this many metres of the
+  // seed: the robot is back where a frame began that the chain of Genesis edges has carried
+  // far along the graph (aces' and freiburg-079's returns to a start, docs/atlas.md session
+  // 18). Tighter than return_radius, because the seed comes along a longer chain. 0: off.
+  double return_far_radius = 0.0;
   // Bounded Dijkstra projection used by traversal and map-matching.
   int projection_max_frames = 24;
   double projection_max_rho = std::numeric_limits<double>::infinity();

@@ -53,6 +53,8 @@ TEST(Atlas, OptionsValidate) {
       [](AtlasOptions& o) { o.genesis_cov_scale = 0.5; },
       [](AtlasOptions& o) { o.return_q = 1.5; },
       [](AtlasOptions& o) { o.return_radius = 0.0; },
+      [](AtlasOptions& o) { o.return_far_radius = -1.0; },
+      [](AtlasOptions& o) { o.return_far_radius = o.return_radius + 1.0; },
   };
   for (size_t i = 0; i < invalid.size(); ++i) {
     AtlasOptions o;
@@ -169,6 +171,65 @@ TEST(Atlas, ReturnBandSeedsOnlyFramesWhoseOriginIsNear) {
   for (size_t i = 0; i < plain.size() && i < band.size(); ++i)
     extra += band[i].first > 0 && plain[i].first == 0;
   EXPECT_GT(extra, 0) << "the band never seeded where the plain run did not";
+}
+
+// Edges between two frames of the graph (breadth first; -1 when not connected).
+int Hops(const AtlasGraph& g, FrameId from, FrameId to) {
+  std::vector<int> hops(g.FrameCount(), -1);
+  std::vector<FrameId> queue{from};
+  hops[from] = 0;
+  for (size_t i = 0; i < queue.size(); ++i) {
+    for (const int32_t e : g.Frame(queue[i]).edges) {
+      const AtlasEdge& edge = g.Edge(e);
+      const FrameId next = edge.a == queue[i] ? edge.b : edge.a;
+      if (hops[next] >= 0) continue;
+      hops[next] = hops[queue[i]] + 1;
+      queue.push_back(next);
+    }
+  }
+  return hops[to];
+}
+
+// The return band beyond traversal_max_hops: frames farther along the graph are seeded only
+// with return_far_radius, only within it (a 1 mm radius gives exactly the run without it),
+// and they are then seeded (a huge radius, here with traversal_max_hops 1).
+TEST(Atlas, ReturnBandSeedsFramesBeyondTheHopsOnlyWithinTheFarRadius) {
+  struct Run {
+    std::vector<std::pair<int, FrameId>> steps;
+    int far_seeds = 0;
+  };
+  auto run = [](double far_radius) {
+    TestWorld w;
+    AtlasOptions o = TestWorld::Options();
+    o.return_q = 0.99;
+    o.return_radius = 1e9;
+    o.return_far_radius = far_radius;
+    o.traversal_max_hops = 1;
+    Atlas atlas(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+    Run r;
+    for (int i = 0; i < 160; ++i) {
+      const StepStats& s = atlas.Step(Pose2{i < 80 ? 0.25 : -0.25, 0.0, 0.0}, TestScan());
+      CheckInvariants(atlas);
+      r.steps.emplace_back(s.seeded, s.dominant_frame);
+      for (const Hypothesis& h : atlas.Hypotheses()) {
+        if (h.state != HypothesisState::kJuvenile || h.born_step != s.step) continue;
+        int nearest = -1;
+        for (const Hypothesis& m : atlas.Hypotheses()) {
+          if (m.state != HypothesisState::kMature) continue;
+          const int n = Hops(atlas.Graph(), m.frame, h.frame);
+          if (n >= 0 && (nearest < 0 || n < nearest)) nearest = n;
+        }
+        r.far_seeds += nearest > o.traversal_max_hops;
+      }
+    }
+    return r;
+  };
+  const Run off = run(0.0);
+  EXPECT_EQ(off.far_seeds, 0);
+  EXPECT_EQ(run(1e-3).steps, off.steps);
+  const Run far = run(1e9);
+  EXPECT_GT(far.far_seeds, 0) << "no frame beyond traversal_max_hops was seeded";
+  EXPECT_NE(far.steps, off.steps);
 }
 
 // Two mature hypotheses in adjacent frames must agree with the edge between them (edge

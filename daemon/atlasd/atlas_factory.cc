@@ -40,10 +40,12 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
       o.lifecycle.probation_scans = std::max(o.lifecycle.probation_scans, kSonarBootstrapProbation);
   } else {
     o.match = LaserMapMatchOptions(o.match);
-    // Measured on the six corrected logs (60 seeds) and mit-csail (docs/atlas.md, session 17).
+    // Measured on the six corrected logs (60 seeds) and mit-csail (docs/atlas.md, sessions 17
+    // and 18).
     o.genesis_cov_scale = 2.0;
     o.return_q = 0.9;
     o.return_radius = 4.0;
+    o.return_far_radius = 1.5;
   }
   return o;
 }
