@@ -118,8 +118,8 @@ struct AtlasOptions {
   // In that band only, frames farther than `traversal_max_hops` edges (any frame of the
   // bounded projection) are seeded too when their origin lies within this many metres of the
   // seed: the robot is back where a frame began that the chain of Genesis edges has carried
-  // far along the graph (aces' and freiburg-079's returns to a start, docs/atlas.md session
-  // 18). Tighter than return_radius, because the seed comes along a longer chain. 0: off.
+  // far along the graph (freiburg-079 gains most; docs/atlas.md session 18). Tighter than
+  // return_radius, because the seed comes along a longer chain. 0: off.
   double return_far_radius = 0.0;
   // Bounded Dijkstra projection used by traversal and map-matching.
   int projection_max_frames = 24;
