@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/atlas/atlas_test_world.h"
+#include "core/atlas/dijkstra_projection.h"
 
 namespace atlas {
 namespace {
@@ -173,23 +174,6 @@ TEST(Atlas, ReturnBandSeedsOnlyFramesWhoseOriginIsNear) {
   EXPECT_GT(extra, 0) << "the band never seeded where the plain run did not";
 }
 
-// Edges between two frames of the graph (breadth first; -1 when not connected).
-int Hops(const AtlasGraph& g, FrameId from, FrameId to) {
-  std::vector<int> hops(g.FrameCount(), -1);
-  std::vector<FrameId> queue{from};
-  hops[from] = 0;
-  for (size_t i = 0; i < queue.size(); ++i) {
-    for (const int32_t e : g.Frame(queue[i]).edges) {
-      const AtlasEdge& edge = g.Edge(e);
-      const FrameId next = edge.a == queue[i] ? edge.b : edge.a;
-      if (hops[next] >= 0) continue;
-      hops[next] = hops[queue[i]] + 1;
-      queue.push_back(next);
-    }
-  }
-  return hops[to];
-}
-
 // The return band beyond traversal_max_hops: frames farther along the graph are seeded only
 // with return_far_radius, only within it (a 1 mm radius gives exactly the run without it),
 // and they are then seeded (a huge radius, here with traversal_max_hops 1).
@@ -213,11 +197,12 @@ TEST(Atlas, ReturnBandSeedsFramesBeyondTheHopsOnlyWithinTheFarRadius) {
       r.steps.emplace_back(s.seeded, s.dominant_frame);
       for (const Hypothesis& h : atlas.Hypotheses()) {
         if (h.state != HypothesisState::kJuvenile || h.born_step != s.step) continue;
+        // Hops as traversal counts them: along the Dijkstra projection from a mature frame.
         int nearest = -1;
         for (const Hypothesis& m : atlas.Hypotheses()) {
           if (m.state != HypothesisState::kMature) continue;
-          const int n = Hops(atlas.Graph(), m.frame, h.frame);
-          if (n >= 0 && (nearest < 0 || n < nearest)) nearest = n;
+          const ProjectedFrame* e = DijkstraProjection(atlas.Graph(), m.frame).Find(h.frame);
+          if (e != nullptr && (nearest < 0 || e->hops < nearest)) nearest = e->hops;
         }
         r.far_seeds += nearest > o.traversal_max_hops;
       }
