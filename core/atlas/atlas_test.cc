@@ -201,7 +201,8 @@ TEST(Atlas, ReturnBandSeedsFramesBeyondTheHopsOnlyWithinTheFarRadius) {
         int nearest = -1;
         for (const Hypothesis& m : atlas.Hypotheses()) {
           if (m.state != HypothesisState::kMature) continue;
-          const ProjectedFrame* e = DijkstraProjection(atlas.Graph(), m.frame).Find(h.frame);
+          const Projection p = DijkstraProjection(atlas.Graph(), m.frame);
+          const ProjectedFrame* e = p.Find(h.frame);
           if (e != nullptr && (nearest < 0 || e->hops < nearest)) nearest = e->hops;
         }
         r.far_seeds += nearest > o.traversal_max_hops;
