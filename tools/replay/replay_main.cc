@@ -38,6 +38,9 @@ Writes into --out DIR (docs/formats.md, "atlas-replay output"):
   reference.tsv, closures.tsv   with --corrected: the reference pose at each scan, and every
                    map-match edge against the reference (false loop closures)
   global_refined.tsv   with --refine: as global.tsv, frames placed by least squares (Ceres)
+  hypotheses.tsv   with --hypotheses: step timestamp id frame state dominant steps q
+                   observations matched bootstrapped x y theta sx sy stheta   (every live
+                   hypothesis after each step, its pose in its own frame)
 Score global.tsv with: atlas-eval --relations FILE.relations DIR/global.tsv
                   or:  atlas-eval --reference DIR/reference.tsv DIR/global.tsv
 
@@ -45,6 +48,8 @@ Options:
   --out DIR            output directory, created if missing (default: replay-out)
   --refine             also arrange all frames by global least squares after the run (offline;
                        never in the step loop) and write global_refined.tsv
+  --hypotheses         also write hypotheses.tsv: which hypotheses were alive at each step,
+                       in which frame, juvenile or mature, with their q (Section III-B, III-E)
   --corrected          a Radish "corrected" log: line order is the clock, its poses are the
                        reference; wheel odometry is synthesised from them with seeded noise:
     --seed N             random seed (default 1)
@@ -207,6 +212,8 @@ int Main(int argc, char** argv) {
       sweep = true;
     } else if (a == "--refine") {
       options.refine = true;
+    } else if (a == "--hypotheses") {
+      options.hypotheses = true;
     } else if (a == "--corrected") {
       corrected = true;
     } else if (a == "--seed") {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -25,6 +26,12 @@ struct TimingRow {
   FrameId dominant = kNoFrame;
   int64_t step_ns = 0;
 };
+
+void Append(std::string& s, const char* fmt, auto... args) {
+  char buf[512];
+  const int n = std::snprintf(buf, sizeof buf, fmt, args...);
+  s.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
+}
 
 class RecordingSink final : public StepSink {
  public:
@@ -51,7 +58,20 @@ class RecordingSink final : public StepSink {
     killed_by_w += s.killed_by_w;
     refine_rejected += s.refine_rejected;
     contradicting += s.contradicting;
+    if (hypotheses == nullptr) return;
+    for (const Hypothesis& h : atlas.Hypotheses()) {
+      const UncertainPose p = atlas.PoseOf(h);
+      Append(*hypotheses,
+             "%lld\t%.6f\t%lld\t%d\t%s\t%d\t%d\t%.4f\t%d\t%d\t%d\t%.6f\t%.6f\t%.6f\t%.6f\t%.6f\t"
+             "%.6f\n",
+             static_cast<long long>(s.step), ToSeconds(stamp), static_cast<long long>(h.id),
+             h.frame, HypothesisStateName(h.state), h.dominant ? 1 : 0, h.steps, h.q,
+             h.last_update.observations, h.last_update.matched, h.bootstrapped ? 1 : 0, p.mean.x,
+             p.mean.y, p.mean.theta, std::sqrt(p.cov(0, 0)), std::sqrt(p.cov(1, 1)),
+             std::sqrt(p.cov(2, 2)));
+    }
   }
+  std::string* hypotheses = nullptr;  // hypotheses.tsv rows, when asked for
   std::vector<StampedFramePose> trajectory;
   std::vector<TimingRow> timing;
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
@@ -66,12 +86,6 @@ struct OutFile {
     if (f != nullptr) std::fclose(f);
   }
 };
-
-void Append(std::string& s, const char* fmt, auto... args) {
-  char buf[512];
-  const int n = std::snprintf(buf, sizeof buf, fmt, args...);
-  s.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
-}
 
 // Resident set size now (kB), from /proc/self/statm; 0 where unavailable.
 int64_t CurrentRssKb() {
@@ -170,6 +184,10 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   StepLoopOptions loop_options = options.loop;
   StepLoop loop(loop_options, options.mapper, atlas.get());
   RecordingSink sink;
+  std::string hypotheses_text =
+      "# atlas-replay hypotheses: step timestamp id frame state dominant steps q observations "
+      "matched bootstrapped x y theta sx sy stheta\n";
+  if (options.hypotheses) sink.hypotheses = &hypotheses_text;
   ReplaySummary& sum = result.summary;
   sink.trajectory.reserve(static_cast<size_t>(total_scans));
   sink.timing.reserve(static_cast<size_t>(total_scans));
@@ -273,6 +291,12 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   if (std::string e = WriteOutputFile(out_dir, "timing.tsv", text); !e.empty()) {
     result.error = e;
     return result;
+  }
+  if (options.hypotheses) {
+    if (std::string e = WriteOutputFile(out_dir, "hypotheses.tsv", hypotheses_text); !e.empty()) {
+      result.error = e;
+      return result;
+    }
   }
   text = "# atlas-replay step_cpu: step cpu_ns (the stepping thread's CPU time per step)\n";
   for (size_t k = 0; k < sink.timing.size() && k < step_cpu_ns.size(); ++k)

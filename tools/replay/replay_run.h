@@ -16,6 +16,10 @@
 // With a reference trajectory (corrected logs: their corrected poses; simulated runs: truth):
 //   reference.tsv   timestamp x y theta   (the reference pose at each stepped scan)
 //   closures.tsv    each map-match edge against the reference (closure_check.h)
+// With the hypotheses asked for (ReplayOptions::hypotheses):
+//   hypotheses.tsv  step timestamp id frame state dominant steps q observations matched
+//                   bootstrapped x y theta sx sy stheta   (every live hypothesis after each step:
+//                   its pose in its own frame and the square roots of its covariance's diagonal)
 // With refinement asked for (offline, after the run; tools/refine/global_refinement.h):
 //   global_refined.tsv  timestamp x y theta   (as global.tsv, frames placed by least squares)
 // Deterministic: the same events and settings give byte-identical files, except step_ns in
@@ -39,8 +43,9 @@ namespace atlas::replay {
 struct ReplayOptions {
   MapperSettings mapper;
   StepLoopOptions loop;
-  int64_t max_scans = 0;  // 0: all
-  bool refine = false;    // write global_refined.tsv
+  int64_t max_scans = 0;    // 0: all
+  bool refine = false;      // write global_refined.tsv
+  bool hypotheses = false;  // write hypotheses.tsv
   refine::RefineOptions refine_options;
   ClosureCheckOptions closures;
   std::string Validate() const;  // empty when valid

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -128,6 +129,77 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   EXPECT_NE(json.find("\"frames\": " + std::to_string(ra.summary.frames)), std::string::npos);
   std::filesystem::remove_all(a);
   std::filesystem::remove_all(b);
+}
+
+// hypotheses.tsv: at every step, the live hypotheses that timing.tsv counts, exactly one of them
+// dominant, in timing.tsv's dominant frame and at the pose trajectory.tsv published.
+TEST_F(ReplayMitCsail, HypothesesFileListsEveryStepsLiveHypothesesWithTheDominantOneAsOutput) {
+  ReplayOptions options;
+  options.max_scans = 600;
+  options.hypotheses = true;
+  const std::string dir = TempDir(), plain = TempDir();
+  ASSERT_FALSE(dir.empty());
+  ASSERT_FALSE(plain.empty());
+  const ReplayResult r = RunReplay(read_.log.events, options, dir);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  options.hypotheses = false;
+  ASSERT_TRUE(RunReplay(read_.log.events, options, plain).error.empty());
+  EXPECT_FALSE(std::filesystem::exists(plain + "/hypotheses.tsv"));
+  EXPECT_EQ(ReadAll(dir + "/trajectory.tsv"), ReadAll(plain + "/trajectory.tsv"));
+
+  const auto timing = Rows(ReadAll(dir + "/timing.tsv"));
+  const auto traj = Rows(ReadAll(dir + "/trajectory.tsv"));
+  const auto hyp = Rows(ReadAll(dir + "/hypotheses.tsv"));
+  ASSERT_EQ(timing.size(), 600u);
+  std::map<std::string, std::vector<std::string>> traj_at;  // by timestamp
+  for (const auto& t : traj) traj_at[t[0]] = t;
+  size_t k = 0;
+  int juvenile_rows = 0;
+  // Each hypothesis lives over consecutive steps and processes one scan per step.
+  std::map<std::string, std::pair<long, long>> last_of;  // id -> (step, steps)
+  for (const auto& t : timing) {
+    const std::string& step = t[0];
+    int live = 0, dominant = 0;
+    for (; k < hyp.size() && hyp[k][0] == step; ++k) {
+      const auto& h = hyp[k];
+      ASSERT_EQ(h.size(), 17u);
+      for (size_t c : {0u, 1u, 2u, 3u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 12u, 13u, 14u, 15u, 16u})
+        EXPECT_TRUE(IsFiniteNumber(h[c])) << h[c];
+      EXPECT_EQ(h[1], t[1]);
+      ASSERT_TRUE(h[4] == "juvenile" || h[4] == "mature") << h[4];
+      const double q = std::strtod(h[7].c_str(), nullptr);
+      EXPECT_GE(q, 0.0);
+      EXPECT_LE(q, 1.0);
+      ++live;
+      const long step_no = std::atol(h[0].c_str()), steps = std::atol(h[6].c_str());
+      const auto prev = last_of.find(h[2]);
+      if (prev != last_of.end()) {
+        EXPECT_EQ(step_no, prev->second.first + 1) << "hypothesis " << h[2];
+        EXPECT_EQ(steps, prev->second.second + 1) << "hypothesis " << h[2];
+      } else if (step_no > 1) {
+        EXPECT_EQ(steps, 0) << "hypothesis " << h[2];  // made during this step (Genesis, traversal)
+      }
+      last_of[h[2]] = {step_no, steps};
+      if (h[4] == "juvenile") {
+        ++juvenile_rows;
+        EXPECT_EQ(h[5], "0");  // the output is a mature hypothesis
+      }
+      if (h[5] != "1") continue;
+      ++dominant;
+      EXPECT_EQ(h[3], t[4]) << "step " << step;  // timing.tsv's dominant frame
+      const auto it = traj_at.find(h[1]);
+      if (it == traj_at.end()) continue;
+      EXPECT_EQ(it->second[1], h[3]);
+      for (size_t c = 0; c < 3; ++c) EXPECT_EQ(it->second[2 + c], h[11 + c]) << "step " << step;
+    }
+    EXPECT_EQ(live, std::atoi(t[3].c_str())) << "step " << step;
+    EXPECT_EQ(dominant, t[4] == "-1" ? 0 : 1) << "step " << step;
+  }
+  EXPECT_EQ(k, hyp.size());  // no row outside timing.tsv's steps
+  EXPECT_GT(juvenile_rows, 0);
+  EXPECT_GT(last_of.size(), 2u);
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(plain);
 }
 
 TEST(Replay, UnwritableOutputIsAnErrorNotACrash) {
