@@ -27,11 +27,19 @@ struct TimingRow {
   int64_t step_ns = 0;
 };
 
-void Append(std::string& s, const char* fmt, auto... args) {
-  char buf[512];
-  const int n = std::snprintf(buf, sizeof buf, fmt, args...);
-  s.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
-}
+struct HypothesisRow {  // hypotheses.tsv
+  int64_t step = 0;
+  Time stamp{};
+  int64_t id = 0;
+  FrameId frame = kNoFrame;
+  HypothesisState state = HypothesisState::kJuvenile;
+  bool dominant = false;
+  int steps = 0;
+  double q = 0.0;
+  int observations = 0, matched = 0;
+  bool bootstrapped = false;
+  UncertainPose pose;
+};
 
 class RecordingSink final : public StepSink {
  public:
@@ -58,20 +66,14 @@ class RecordingSink final : public StepSink {
     killed_by_w += s.killed_by_w;
     refine_rejected += s.refine_rejected;
     contradicting += s.contradicting;
-    if (hypotheses == nullptr) return;
-    for (const Hypothesis& h : atlas.Hypotheses()) {
-      const UncertainPose p = atlas.PoseOf(h);
-      Append(*hypotheses,
-             "%lld\t%.6f\t%lld\t%d\t%s\t%d\t%d\t%.4f\t%d\t%d\t%d\t%.6f\t%.6f\t%.6f\t%.6f\t%.6f\t"
-             "%.6f\n",
-             static_cast<long long>(s.step), ToSeconds(stamp), static_cast<long long>(h.id),
-             h.frame, HypothesisStateName(h.state), h.dominant ? 1 : 0, h.steps, h.q,
-             h.last_update.observations, h.last_update.matched, h.bootstrapped ? 1 : 0, p.mean.x,
-             p.mean.y, p.mean.theta, std::sqrt(p.cov(0, 0)), std::sqrt(p.cov(1, 1)),
-             std::sqrt(p.cov(2, 2)));
-    }
+    if (!record_hypotheses) return;
+    for (const Hypothesis& h : atlas.Hypotheses())
+      hypotheses.push_back({s.step, stamp, h.id, h.frame, h.state, h.dominant, h.steps, h.q,
+                            h.last_update.observations, h.last_update.matched, h.bootstrapped,
+                            atlas.PoseOf(h)});
   }
-  std::string* hypotheses = nullptr;  // hypotheses.tsv rows, when asked for
+  bool record_hypotheses = false;         // hypotheses.tsv asked for
+  std::vector<HypothesisRow> hypotheses;  // its rows, formatted after the run
   std::vector<StampedFramePose> trajectory;
   std::vector<TimingRow> timing;
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
@@ -86,6 +88,12 @@ struct OutFile {
     if (f != nullptr) std::fclose(f);
   }
 };
+
+void Append(std::string& s, const char* fmt, auto... args) {
+  char buf[512];
+  const int n = std::snprintf(buf, sizeof buf, fmt, args...);
+  s.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
+}
 
 // Resident set size now (kB), from /proc/self/statm; 0 where unavailable.
 int64_t CurrentRssKb() {
@@ -184,10 +192,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   StepLoopOptions loop_options = options.loop;
   StepLoop loop(loop_options, options.mapper, atlas.get());
   RecordingSink sink;
-  std::string hypotheses_text =
-      "# atlas-replay hypotheses: step timestamp id frame state dominant steps q observations "
-      "matched bootstrapped x y theta sx sy stheta\n";
-  if (options.hypotheses) sink.hypotheses = &hypotheses_text;
+  sink.record_hypotheses = options.hypotheses;
   ReplaySummary& sum = result.summary;
   sink.trajectory.reserve(static_cast<size_t>(total_scans));
   sink.timing.reserve(static_cast<size_t>(total_scans));
@@ -293,7 +298,20 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     return result;
   }
   if (options.hypotheses) {
-    if (std::string e = WriteOutputFile(out_dir, "hypotheses.tsv", hypotheses_text); !e.empty()) {
+    text =
+        "# atlas-replay hypotheses: step timestamp id frame state dominant steps q observations "
+        "matched bootstrapped x y theta sx sy stheta\n";
+    for (const HypothesisRow& h : sink.hypotheses) {
+      const UncertainPose& p = h.pose;
+      Append(text,
+             "%lld\t%.6f\t%lld\t%d\t%s\t%d\t%d\t%.4f\t%d\t%d\t%d\t%.6f\t%.6f\t%.6f\t%.6f\t%.6f\t"
+             "%.6f\n",
+             static_cast<long long>(h.step), ToSeconds(h.stamp), static_cast<long long>(h.id),
+             h.frame, HypothesisStateName(h.state), h.dominant ? 1 : 0, h.steps, h.q,
+             h.observations, h.matched, h.bootstrapped ? 1 : 0, p.mean.x, p.mean.y, p.mean.theta,
+             std::sqrt(p.cov(0, 0)), std::sqrt(p.cov(1, 1)), std::sqrt(p.cov(2, 2)));
+    }
+    if (std::string e = WriteOutputFile(out_dir, "hypotheses.tsv", text); !e.empty()) {
       result.error = e;
       return result;
     }
