@@ -3,8 +3,9 @@
 # cannot tell a better atlas from luck: on aces the open revisit pairs ranged from 7 to 13 of 22
 # across seeds 1-10 with the same binary (docs/atlas.md, session 14). This runs
 # eval-corrected.sh once per seed (two at a time) and prints, per log, the revisit pairs more
-# than 0.5 m off summed over the seeds, their share, the worst seed, and the map-match edges and
-# false closures over all seeds.
+# than 0.5 m off summed over the seeds, their share, the worst seed, the map-match edges and
+# false closures over all seeds, and per log the map-matching outcomes by reason summed over the
+# seeds (atlas-replay's "by reason" line: how many tries Condition 2 refused as repetitive, etc.).
 #
 # Usage: scripts/eval-corrected-seeds.sh [OUT]   (default OUT: /tmp/atlas-eval-corrected-seeds)
 # Environment: SEEDS (default "1 2 3 4 5 6 7 8 9 10"), JOBS (default 2), and what
@@ -69,4 +70,20 @@ print("%-13s %13d %10d %6.1f%%" % ("all", total_pairs, total_open,
                                    100.0 * total_open / max(total_pairs, 1)))
 print("map-match edges %d, false closures (chi2 3 dof > 14.16) %d, gross (> 0.5 m or 5 deg) %d"
       % (edges, false, gross))
+reasons = {l: {} for l in logs}
+for s in seeds:
+    for l in logs:
+        try:
+            text = open("%s/seed-%s/%s/replay.txt" % (out, s, l)).read()
+        except OSError:
+            continue
+        m = re.search(r"by reason\s+(.*)", text)
+        for k, v in re.findall(r"([a-z-]+) (\d+)", m.group(1) if m else ""):
+            reasons[l][k] = reasons[l].get(k, 0) + int(v)
+names = next((list(r) for r in reasons.values() if r), [])
+if names:
+    print("map-matching outcomes by reason, summed over the seeds")
+    print("%-13s" % "log" + "".join(" %*s" % (max(len(n), 6), n) for n in names))
+    for l in logs:
+        print("%-13s" % l + "".join(" %*d" % (max(len(n), 6), reasons[l].get(n, 0)) for n in names))
 PY
