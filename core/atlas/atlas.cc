@@ -11,7 +11,8 @@
 namespace atlas {
 
 std::string AtlasOptions::Validate() const {
-  for (const std::string& e : {quality.Validate(), lifecycle.Validate(), match.Validate()})
+  for (const std::string& e :
+       {quality.Validate(), lifecycle.Validate(), match.Validate(), points.Validate()})
     if (!e.empty()) return e;
   if (max_hypotheses < 2 || max_hypotheses > 64) return "max_hypotheses must lie in [2, 64]";
   if (max_degree < 2) return "max_degree must be at least 2";
@@ -90,6 +91,7 @@ DominantOutput Atlas::Dominant() const {
 
 FrameId Atlas::AddFrame(std::unique_ptr<LocalMap> map) {
   const FrameId id = graph_.AddFrame(std::move(map), step_);
+  graph_.MutableFrame(id).points = FramePoints(options_.points);
   components_.AddFrame();
   return id;
 }
@@ -193,6 +195,8 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
     if (scan) {
       h.last_update = map.Update(*scan, mature);
       h.window.Add(h.last_update);
+      if (mature && options_.points.enabled)
+        graph_.MutableFrame(h.frame).points.AddScan(map.RobotPose().mean, *scan);
     } else {
       h.last_update = map.UpdateWithSonar(*sonar, mature);
       if (h.last_update.observations > 0) h.window.Add(h.last_update);
@@ -557,10 +561,12 @@ void Atlas::MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* pri
   const SelfMatch& self_a = SelfMatchOf(dom_frame);
   const SelfMatch self_a_copy = self_a;  // the cache may evict it while matching b
   const SelfMatch& self_b = SelfMatchOf(other);
-  const MapMatch m =
-      atlas::MatchMaps(graph_.Frame(dom_frame).map->Lines(), self_a_copy,
-                       graph_.Frame(other).map->Lines(), self_b, prior, options_.match);
+  const MapMatch m = atlas::MatchMaps(
+      graph_.Frame(dom_frame).map->Lines(), self_a_copy, graph_.Frame(other).map->Lines(), self_b,
+      prior, options_.match, options_.points.enabled ? &graph_.Frame(dom_frame).points : nullptr,
+      options_.points.enabled ? &graph_.Frame(other).points : nullptr);
   stats_.match_hypotheses += m.hypotheses;
+  stats_.match_by_points += m.by_points ? 1 : 0;
   ++stats_.match_reasons[static_cast<int>(m.reason)];
   switch (m.result) {
     case MapMatchResult::kAccepted:
@@ -717,6 +723,7 @@ std::string Atlas::Serialize() const {
     w.Put(frame.seed_cooldown_until);
     w.Put<int32_t>(frame.retirements);
     w.PutString(frame.map->Serialize());
+    w.PutString(frame.points.Serialize());
   }
   w.Put<uint32_t>(graph_.EdgeCount());
   for (const AtlasEdge& e : graph_.Edges()) {
@@ -792,7 +799,10 @@ bool Atlas::Deserialize(const std::string& bytes) {
       return false;
     std::unique_ptr<LocalMap> map = factory_();
     if (!map->Deserialize(blob)) return false;
+    FramePoints points(options_.points);
+    if (version >= 5 && (!r.GetString(&blob, kMaxBlob) || !points.Deserialize(blob))) return false;
     const FrameId id = graph.AddFrame(std::move(map), created);
+    graph.MutableFrame(id).points = std::move(points);
     graph.MutableFrame(id).seed_cooldown_until = cooldown;
     graph.MutableFrame(id).retirements = retirements;
   }

@@ -96,6 +96,9 @@ struct AtlasOptions {
   HypothesisQualityOptions quality;
   LifecycleOptions lifecycle;
   MapMatchOptions match;
+  // Each frame keeps the laser endpoints of its mature hypotheses' scans (frame_points.h), and
+  // map-matching asks them when the lines are ambiguous (map_match.h, "Points"). Off: no points.
+  FramePointsOptions points;
   int max_hypotheses = 4;  // live hypotheses, juvenile and mature
   int max_degree = 16;     // edges per frame
   double q_traverse = 0.6;
@@ -178,7 +181,9 @@ struct StepStats {
   int genesis = 0;
   int genesis_refused = 0;  // the dominant frame's degree was full
   int match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
-  int match_unconnected = 0;  // candidates from unconnected parts (no prior) matched this step
+  int match_unconnected = 0;
+  int match_by_points = 0;  // accepted matches the frames' points singled out (map_match.h)  //
+                            // candidates from unconnected parts (no prior) matched this step
   // Map-matching outcomes this step by MapMatchReason (index static_cast<int>(reason)); an
   // accepted match whose edge could not be added counts as kMatched and as match_rejected.
   std::array<int, kMapMatchReasonCount> match_reasons{};
@@ -255,7 +260,8 @@ class Atlas {
   // Version 3 added JuvenileScan::sonar; older images are read with it empty.
   // Version 4 added Hypothesis::seed; an older image's juvenile takes its current pose as the
   // seed and starts its Z again.
-  static constexpr uint32_t kImageVersion = 4;
+  // Version 5 added each frame's points (FramePoints); older images are read with none.
+  static constexpr uint32_t kImageVersion = 5;
   std::string Serialize() const;
   bool Deserialize(const std::string& bytes);
 

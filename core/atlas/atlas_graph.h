@@ -18,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/atlas/frame_points.h"
 #include "core/geometry/se2.h"
 #include "core/localmap/local_map.h"
 
@@ -43,6 +44,7 @@ struct AtlasEdge {
 struct MapFrame {
   FrameId id = kNoFrame;
   std::unique_ptr<LocalMap> map;
+  FramePoints points;  // the laser endpoints its map was built from (frame_points.h), if kept
   std::vector<int32_t> edges;  // indices into AtlasGraph::Edges(), at most max_degree
   int64_t created_step = 0;
   // Bookkeeping the step loop keeps per frame (bounded, O(1) per frame).

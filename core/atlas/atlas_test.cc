@@ -419,6 +419,30 @@ TEST(Atlas, WorkPerStepIsBoundedOnALongRun) {
   EXPECT_GT(atlas.Graph().FrameCount(), 100);
 }
 
+// `image` (version 5) as an image of an older version: each frame's points are cut out and the
+// version is set. Only the frame records are rewritten (their layout has not changed since 1).
+std::string AsOlderImage(const std::string& image, uint32_t version) {
+  const auto u64_at = [&image](size_t at) {
+    uint64_t v = 0;
+    std::memcpy(&v, image.data() + at, sizeof(v));
+    return v;
+  };
+  constexpr size_t kHeader = 4 + 4 + 8 + 8 + 8 + 8;  // magic, version, step, ids, cursor
+  uint32_t frames = 0;
+  std::memcpy(&frames, image.data() + kHeader, sizeof(frames));
+  std::string out = image.substr(0, kHeader + 4);
+  std::memcpy(out.data() + 4, &version, sizeof(version));
+  size_t at = kHeader + 4;
+  for (uint32_t f = 0; f < frames; ++f) {
+    const size_t map_at = at + 8 + 8 + 4;  // created, cooldown, retirements
+    const size_t points_at = map_at + 8 + u64_at(map_at);
+    out.append(image, at, points_at - at);
+    at = points_at + 8 + u64_at(points_at);
+  }
+  out.append(image, at, std::string::npos);
+  return out;
+}
+
 TEST(Atlas, SerializeRoundTripsAndRejectsGarbage) {
   TestWorld w;
   Atlas a(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
@@ -447,6 +471,52 @@ TEST(Atlas, SerializeRoundTripsAndRejectsGarbage) {
   EXPECT_FALSE(c.Deserialize(bad));
   EXPECT_FALSE(c.Deserialize(image + "x"));
   EXPECT_TRUE(c.Serialize() == before);
+}
+
+// A scan of 181 returns 2 m from the sensor, over a half turn; the sensor 3 cm ahead of and
+// 3 cm left of the robot (so that the endpoints lie inside cells, not on their borders).
+LaserScan HalfTurnScan() {
+  LaserScan s;
+  s.sensor_pose = Pose2{0.03, 0.03, 0.0};
+  s.angle_min = static_cast<float>(-std::numbers::pi / 2);
+  s.angle_increment = static_cast<float>(std::numbers::pi / 180);
+  s.max_range = 30.0f;
+  s.ranges.assign(181, 2.0f);
+  return s;
+}
+
+// Frames keep the endpoints of their mature hypotheses' scans (frame_points.h) when asked, the
+// image carries them (version 5), and an older image loads with none.
+TEST(Atlas, FramesKeepScanPointsThroughTheImage) {
+  TestWorld w;
+  AtlasOptions o = TestWorld::Options();
+  Atlas off(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+  o.points.enabled = true;
+  Atlas a(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+  for (int i = 0; i < 20; ++i) {
+    a.Step(Pose2{0.25, 0.0, 0.0}, HalfTurnScan());
+    off.Step(Pose2{0.25, 0.0, 0.0}, HalfTurnScan());
+  }
+  const FramePoints& points = a.Graph().Frame(0).points;
+  EXPECT_GT(points.Size(), 50);
+  EXPECT_LE(points.Size(), o.points.capacity);
+  // The first scan, robot at the origin: 2 m ahead of the sensor, and 2 m left of it.
+  EXPECT_TRUE(points.Contains(Vec2(2.03, 0.03)));
+  EXPECT_TRUE(points.Contains(Vec2(0.03, 2.03)));
+  EXPECT_FALSE(points.Contains(Vec2(-1.0, 0.0)));
+  EXPECT_EQ(off.Graph().Frame(0).points.Size(), 0);
+
+  const std::string image = a.Serialize();
+  Atlas b(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+  ASSERT_TRUE(b.Deserialize(image));
+  EXPECT_TRUE(b.Serialize() == image);
+  EXPECT_EQ(b.Graph().Frame(0).points.Size(), points.Size());
+  Atlas c(o, w.Factory(), std::make_shared<FakeBootstrapper>());
+  ASSERT_TRUE(c.Deserialize(AsOlderImage(image, 4)));
+  EXPECT_EQ(c.Graph().FrameCount(), a.Graph().FrameCount());
+  EXPECT_EQ(c.Graph().Frame(0).points.Size(), 0);
+  // A version 5 image cut inside the points is refused.
+  EXPECT_FALSE(c.Deserialize(AsOlderImage(image, 5)));
 }
 
 TEST(Atlas, SonarStepsFeedASonarWAndRoundTripThroughTheImage) {
@@ -497,8 +567,7 @@ TEST(Atlas, SonarStepsFeedASonarWAndRoundTripThroughTheImage) {
   ASSERT_NE(at, std::string::npos);
   std::string v3 = image;
   v3.erase(at + trial.size(), 9 * sizeof(double));  // the seed: pose and upper covariance
-  const uint32_t three = 3;
-  std::memcpy(v3.data() + 4, &three, sizeof(three));
+  v3 = AsOlderImage(v3, 3);
   Atlas c(TestWorld::Options(), w.Factory(), sonar_w);
   ASSERT_TRUE(c.Deserialize(v3));
   const Hypothesis* old = nullptr;

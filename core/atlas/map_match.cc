@@ -32,6 +32,9 @@ std::string MapMatchOptions::Validate() const {
   if (!(redundancy_prior_halfwidth >= 0))
     return "map_match.redundancy_prior_halfwidth must be >= 0 (0: never)";
   if (!(alternative_sigmas >= 0)) return "map_match.alternative_sigmas must be >= 0 (0: off)";
+  if (point_min_hits < 1) return "map_match.point_min_hits must be at least 1";
+  if (!(point_rival_ratio > 0 && point_rival_ratio < 1))
+    return "map_match.point_rival_ratio must lie in (0, 1)";
   return "";
 }
 
@@ -278,11 +281,14 @@ struct Enumeration {
   bool complete = true;  // false when max_line_checks stopped the enumeration
 };
 
+bool InsidePrior(const Pose2& t, const UncertainPose* prior, const MapMatchOptions& o);
+
 // Enumerates pair hypotheses and collects verified transforms with support >= 2. With
-// `self` set, a and b are the same map and the identity hypotheses are skipped.
+// `self` set, a and b are the same map and the identity hypotheses are skipped. With `gate`
+// set, hypotheses outside its gate are not verified (nor kept).
 Enumeration Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std::vector<Line>& b,
                         uint64_t usable_b, bool self, const MapMatchOptions& o,
-                        std::vector<Cluster>* clusters) {
+                        std::vector<Cluster>* clusters, const UncertainPose* gate = nullptr) {
   Enumeration out;
   const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
   const int64_t checks_per_hypothesis =
@@ -320,6 +326,7 @@ Enumeration Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std
             if (!SegmentsOverlap(a[i], b[k], rigid, o.overlap_slack) ||
                 !SegmentsOverlap(a[j], b[l], rigid, o.overlap_slack))
               continue;
+            if (gate != nullptr && !InsidePrior(t, gate, o)) continue;
             if (out.verified >= max_verified) {
               out.complete = false;
               return out;
@@ -343,6 +350,18 @@ bool InsidePrior(const Pose2& t, const UncertainPose* prior, const MapMatchOptio
   const Mat3 cov = prior->cov + Vec3(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix();
   return d.dot(cov.inverse() * d) <= o.prior_gate_chi2;
 }
+
+// Placements of B in A scored by the frames' points (frame_points.h; map_match.h, "Points").
+struct PointPlacements {
+  const FramePoints* a;
+  const FramePoints* b;
+  int Hits(const Pose2& t) const { return a->ScoreOf(*b, t).hits; }
+  // Whether every shift of t along `direction` by at least distinct_translation, in steps of
+  // a cell, out to the prior's gate (or 3 m without a prior), has at most point_rival_ratio of
+  // t's hits.
+  bool FixesDirection(const Pose2& t, const Vec2& direction, const UncertainPose* prior,
+                      const MapMatchOptions& o) const;
+};
 
 // The translation direction that information `h` over t fixes worst, and t's standard deviation
 // along it (from the marginal information of the translation, the Schur complement of the
@@ -373,9 +392,27 @@ WeakDirection Weakest(const Mat3& h) {
 // `cov_t` along the shift, puts the two segments side by side (overlap_slack), lies inside the
 // prior's gate, and leaves every other pair inside its line gate: nothing then tells the two
 // placements apart.
+bool PointPlacements::FixesDirection(const Pose2& t, const Vec2& direction,
+                                     const UncertainPose* prior, const MapMatchOptions& o) const {
+  const int t_hits = Hits(t);
+  if (t_hits < o.point_min_hits) return false;
+  const double reach = prior == nullptr
+                           ? 3.0
+                           : std::sqrt(o.prior_gate_chi2 *
+                                       direction.dot(prior->cov.topLeftCorner<2, 2>() * direction));
+  const double step = a->options().cell;
+  for (double d = o.distinct_translation; d <= reach; d += step)
+    for (double sign : {-1.0, 1.0}) {
+      const Pose2 moved{t.x + sign * d * direction.x(), t.y + sign * d * direction.y(), t.theta};
+      if (Hits(moved) > o.point_rival_ratio * t_hits) return false;
+    }
+  return true;
+}
+
 bool PairHasAlternative(const std::vector<Line>& a, const std::vector<Line>& b,
                         const std::pair<uint8_t, uint8_t>* pairs, int count, int p, const Pose2& t,
-                        const Mat3& cov_t, const UncertainPose* prior, const MapMatchOptions& o) {
+                        const Mat3& cov_t, const UncertainPose* prior, const MapMatchOptions& o,
+                        const PointPlacements* points, int t_hits) {
   const auto [i, k] = pairs[p];
   const RigidTransform rigid(t);
   const Mat2 info_xy = cov_t.topLeftCorner<2, 2>().inverse();
@@ -385,6 +422,7 @@ bool PairHasAlternative(const std::vector<Line>& a, const std::vector<Line>& b,
     const Pose2 moved{t.x + shift.x(), t.y + shift.y(), t.theta};
     if (!SegmentsOverlap(a[ai], b[bk], RigidTransform(moved), o.overlap_slack)) return false;
     if (!InsidePrior(moved, prior, o)) return false;
+    if (points != nullptr && points->Hits(moved) <= o.point_rival_ratio * t_hits) return false;
     for (int q = 0; q < count; ++q) {
       if (q == p) continue;
       const auto [iq, kq] = pairs[q];
@@ -414,6 +452,78 @@ bool PairHasAlternative(const std::vector<Line>& a, const std::vector<Line>& b,
   return false;
 }
 
+// t and its covariance from the matched pairs of `support` (Gauss-Newton from `start`), then
+// Condition 2 per direction and against alternative lines. `points`, when set, scores
+// alternative placements (map_match.h, "Points").
+void Finish(const std::vector<Line>& a, const std::vector<Line>& b, const Support& support,
+            const Pose2& start, const UncertainPose* prior, const MapMatchOptions& o,
+            const PointPlacements* points, MapMatch* out) {
+  // t and its covariance from all matched lines (Gauss-Newton).
+  Pose2 t = start;
+  Mat3 h = Mat3::Zero();
+  std::array<Mat3, 64> h_pair;  // each pair's information at the final t
+  const int pairs = support.count;
+  for (int it = 0; it <= o.gauss_newton_iterations; ++it) {
+    h.setZero();
+    Vec3 g = Vec3::Zero();
+    for (int p = 0; p < pairs; ++p) {
+      const auto [i, k] = support.pairs[p];
+      const PairResidual r = Residual(a[i], b[k], t);
+      const Mat2 s_inv = r.s.inverse();
+      h_pair[p] = r.jt.transpose() * s_inv * r.jt;
+      h += h_pair[p];
+      g += r.jt.transpose() * s_inv * r.r;
+    }
+    if (it == o.gauss_newton_iterations) break;
+    const Eigen::FullPivLU<Mat3> lu(h);
+    if (!lu.isInvertible()) break;
+    const Vec3 delta = -lu.solve(g);
+    t = Pose2::FromVector(t.ToVector() + delta);
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(h);
+  const Vec3 ev = eig.eigenvalues();
+  if (!(ev(0) > 1e-10 * ev(2)) || !ev.allFinite()) {
+    out->reason = MapMatchReason::kDegenerate;
+    return;
+  }
+  // Condition 2 per direction: t must stay fixed without any one pair, or the direction that
+  // pair alone fixes rests on one unverified correspondence (e.g. the only jamb of a corridor).
+  if (o.redundancy_sigma > 0) {
+    for (int p = 0; p < pairs; ++p) {
+      const WeakDirection w = Weakest(h - h_pair[p]);
+      if (w.sigma <= o.redundancy_sigma) continue;
+      // The prior alone tells the pair's alternatives apart along that direction (Condition 2).
+      if (prior != nullptr &&
+          o.prior_gate_chi2 * w.direction.dot(prior->cov.topLeftCorner<2, 2>() * w.direction) <=
+              o.redundancy_prior_halfwidth * o.redundancy_prior_halfwidth)
+        continue;
+      // Or the points do: no shift along it inside the prior's gate explains them as well.
+      if (points != nullptr && points->FixesDirection(t, w.direction, prior, o)) continue;
+      out->result = MapMatchResult::kAmbiguous;
+      out->reason = MapMatchReason::kSinglePair;
+      return;
+    }
+  }
+  out->b_in_a.mean = t;
+  out->b_in_a.cov = h.inverse();
+  if (o.unknown_line_correlation) out->b_in_a.cov *= static_cast<double>(support.count);
+  out->b_in_a.cov = 0.5 * (out->b_in_a.cov + out->b_in_a.cov.transpose());
+  if (o.alternative_sigmas > 0) {
+    const int t_hits = points != nullptr ? points->Hits(t) : 0;
+    for (int p = 0; p < pairs; ++p) {
+      if (!PairHasAlternative(a, b, support.pairs.data(), pairs, p, t, out->b_in_a.cov, prior, o,
+                              points, t_hits))
+        continue;
+      out->b_in_a = UncertainPose{};
+      out->result = MapMatchResult::kAmbiguous;
+      out->reason = MapMatchReason::kSinglePair;
+      return;
+    }
+  }
+  out->result = MapMatchResult::kAccepted;
+  out->reason = MapMatchReason::kMatched;
+}
+
 }  // namespace
 
 SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions& o) {
@@ -431,9 +541,11 @@ SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions&
   return out;
 }
 
-MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
-                   const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
-                   const UncertainPose* prior, const MapMatchOptions& o) {
+namespace {
+
+MapMatch MatchLines(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
+                    const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
+                    const UncertainPose* prior, const MapMatchOptions& o) {
   MapMatch out;
   const std::vector<Line> a = Prepare(lines_a, o), b = Prepare(lines_b, o);
   uint64_t usable_a = AllLines(static_cast<int>(a.size()));
@@ -519,68 +631,85 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
     }
   }
 
-  // t and its covariance from all matched lines (Gauss-Newton).
-  Pose2 t = best->t;
-  Mat3 h = Mat3::Zero();
-  std::array<Mat3, 64> h_pair;  // each pair's information at the final t
-  const int pairs = best->support.count;
-  for (int it = 0; it <= o.gauss_newton_iterations; ++it) {
-    h.setZero();
-    Vec3 g = Vec3::Zero();
-    for (int p = 0; p < pairs; ++p) {
-      const auto [i, k] = best->support.pairs[p];
-      const PairResidual r = Residual(a[i], b[k], t);
-      const Mat2 s_inv = r.s.inverse();
-      h_pair[p] = r.jt.transpose() * s_inv * r.jt;
-      h += h_pair[p];
-      g += r.jt.transpose() * s_inv * r.r;
-    }
-    if (it == o.gauss_newton_iterations) break;
-    const Eigen::FullPivLU<Mat3> lu(h);
-    if (!lu.isInvertible()) break;
-    const Vec3 delta = -lu.solve(g);
-    t = Pose2::FromVector(t.ToVector() + delta);
-  }
-  const Eigen::SelfAdjointEigenSolver<Mat3> eig(h);
-  const Vec3 ev = eig.eigenvalues();
-  if (!(ev(0) > 1e-10 * ev(2)) || !ev.allFinite()) {
-    out.reason = MapMatchReason::kDegenerate;
-    return out;
-  }
-  // Condition 2 per direction: t must stay fixed without any one pair, or the direction that
-  // pair alone fixes rests on one unverified correspondence (e.g. the only jamb of a corridor).
-  if (o.redundancy_sigma > 0) {
-    for (int p = 0; p < pairs; ++p) {
-      const WeakDirection w = Weakest(h - h_pair[p]);
-      if (w.sigma <= o.redundancy_sigma) continue;
-      // The prior alone tells the pair's alternatives apart along that direction (Condition 2).
-      if (prior != nullptr &&
-          o.prior_gate_chi2 * w.direction.dot(prior->cov.topLeftCorner<2, 2>() * w.direction) <=
-              o.redundancy_prior_halfwidth * o.redundancy_prior_halfwidth)
-        continue;
-      out.result = MapMatchResult::kAmbiguous;
-      out.reason = MapMatchReason::kSinglePair;
-      return out;
-    }
-  }
-  out.b_in_a.mean = t;
-  out.b_in_a.cov = h.inverse();
-  if (o.unknown_line_correlation) out.b_in_a.cov *= static_cast<double>(best->support.count);
-  out.b_in_a.cov = 0.5 * (out.b_in_a.cov + out.b_in_a.cov.transpose());
-  if (o.alternative_sigmas > 0) {
-    for (int p = 0; p < pairs; ++p) {
-      if (!PairHasAlternative(a, b, best->support.pairs.data(), pairs, p, t, out.b_in_a.cov, prior,
-                              o))
-        continue;
-      out.b_in_a = UncertainPose{};
-      out.result = MapMatchResult::kAmbiguous;
-      out.reason = MapMatchReason::kSinglePair;
-      return out;
-    }
-  }
-  out.result = MapMatchResult::kAccepted;
-  out.reason = MapMatchReason::kMatched;
+  Finish(a, b, best->support, best->t, prior, o, nullptr, &out);
   return out;
+}
+
+// The placement the points single out among those the lines leave open (map_match.h, "Points").
+MapMatch MatchByPoints(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
+                       const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
+                       const UncertainPose* prior, const MapMatchOptions& o,
+                       const PointPlacements& points) {
+  MapMatch out;
+  out.result = MapMatchResult::kAmbiguous;
+  out.reason = MapMatchReason::kRepetitive;
+  const std::vector<Line> a = Prepare(lines_a, o), b = Prepare(lines_b, o);
+  const uint64_t usable_a = AllLines(static_cast<int>(a.size()));
+  const uint64_t usable_b = AllLines(static_cast<int>(b.size()));
+  std::vector<Cluster> clusters;
+  clusters.reserve(kMaxClusters);
+  const Enumeration e = Hypothesise(a, usable_a, b, usable_b, /*self=*/false, o, &clusters, prior);
+  out.hypotheses = e.verified;
+  if (!e.complete) return out;
+  const Cluster* winner = nullptr;
+  std::array<int, kMaxClusters> hits;
+  int winner_hits = -1;
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    hits[c] = -1;
+    if (clusters[c].support.count < o.min_support) continue;
+    hits[c] = points.Hits(clusters[c].t);
+    if (hits[c] > winner_hits ||
+        (hits[c] == winner_hits && Better(clusters[c].support, winner->support))) {
+      winner = &clusters[c];
+      winner_hits = hits[c];
+    }
+  }
+  if (winner == nullptr) return out;
+  out.support = winner->support.count;
+  out.point_hits = winner_hits;
+  // Every other placement inside the gate: the lines' other transforms, and the maps' own
+  // repetitions of the winner (the rivals MatchLines verified on lines).
+  int rival_hits = 0;
+  for (size_t c = 0; c < clusters.size(); ++c)
+    if (hits[c] >= 0 && !SameTransform(clusters[c].t, winner->t, o))
+      rival_hits = std::max(rival_hits, hits[c]);
+  auto consider = [&](const Pose2& rival) {
+    if (SameTransform(rival, winner->t, o) || !InsidePrior(rival, prior, o)) return;
+    rival_hits = std::max(rival_hits, points.Hits(rival));
+  };
+  for (const SelfMatch::Repetition& r : self_a.repetitions)
+    consider(Compose(r.transform, winner->t));
+  for (const SelfMatch::Repetition& r : self_b.repetitions)
+    consider(Compose(winner->t, r.transform));
+  out.point_rival_hits = rival_hits;
+  if (winner_hits < o.point_min_hits || rival_hits > o.point_rival_ratio * winner_hits) return out;
+  Finish(a, b, winner->support, winner->t, prior, o, &points, &out);
+  out.by_points = out.result == MapMatchResult::kAccepted;
+  return out;
+}
+
+}  // namespace
+
+MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
+                   const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
+                   const UncertainPose* prior, const MapMatchOptions& o,
+                   const FramePoints* points_a, const FramePoints* points_b) {
+  MapMatch lines = MatchLines(lines_a, self_a, lines_b, self_b, prior, o);
+  const bool open_to_points = lines.result == MapMatchResult::kAmbiguous &&
+                              (lines.reason == MapMatchReason::kRepetitive ||
+                               lines.reason == MapMatchReason::kRivalTransform) &&
+                              o.self_match && points_a != nullptr && points_b != nullptr &&
+                              points_a->Size() >= o.point_min_hits &&
+                              points_b->Size() >= o.point_min_hits;
+  if (!open_to_points) return lines;
+  MapMatch by_points = MatchByPoints(lines_a, self_a, lines_b, self_b, prior, o,
+                                     PointPlacements{points_a, points_b});
+  by_points.hypotheses += lines.hypotheses;
+  if (by_points.result == MapMatchResult::kAccepted) return by_points;
+  lines.hypotheses = by_points.hypotheses;
+  lines.point_hits = by_points.point_hits;
+  lines.point_rival_hits = by_points.point_rival_hits;
+  return lines;
 }
 
 }  // namespace atlas

@@ -125,6 +125,79 @@ TEST(MapMatch, AmbiguousRepetitiveStructureIsRejected) {
             MapMatchResult::kAmbiguous);
 }
 
+// Points every 5 cm along the segments (given in A's frame), as the frame `in` (a pose in A)
+// holds them.
+void AddSegmentPoints(const std::vector<std::pair<Vec2, Vec2>>& segs, const Pose2& in,
+                      FramePoints* points) {
+  const RigidTransform to_frame(Inverse(in));
+  for (const auto& [p, q] : segs) {
+    const int n = static_cast<int>((q - p).norm() / 0.05);
+    for (int k = 0; k <= n; ++k) points->Add(to_frame.Apply(p + (q - p) * (double(k) / n)));
+  }
+}
+
+// Condition 2 with the frames' points (map_match.h, "Points"): the comb's lines repeat every
+// 4 m, but a cabinet and a desk in one bay, in both frames' scans, tell the placements apart.
+// Points that repeat as the lines do cannot.
+TEST(MapMatch, PointsSingleOutARepetitionOnlyWhenUnique) {
+  MapMatchOptions o;
+  const Pose2 truth{8.0, 0.5, 0.3};
+  const auto a = InA(Comb(0, 24));
+  const auto b = SeenFrom(Comb(7, 17), truth);
+  const SelfMatch self_a = SelfMatchMap(a, o), self_b = SelfMatchMap(b, o);
+  UncertainPose loose{Pose2{8.5, 0.0, 0.3}, Vec3(25, 25, 0.1).asDiagonal()};
+  FramePointsOptions po;
+  po.enabled = true;
+  po.capacity = 4096;
+  // B's scans saw the part of the comb from x = 7 to 12.
+  FramePoints comb_a(po), comb_b(po);
+  AddSegmentPoints(Comb(0, 24), Pose2{}, &comb_a);
+  AddSegmentPoints(Comb(7, 12), truth, &comb_b);
+  FramePoints furnished_a = comb_a, furnished_b = comb_b;
+  const std::vector<std::pair<Vec2, Vec2>> furniture{
+      {{9.0, 0.4}, {10.5, 0.4}},  {{9.0, 1.2}, {10.5, 1.2}},  {{9.0, 0.4}, {9.0, 1.2}},
+      {{10.5, 0.4}, {10.5, 1.2}}, {{10.8, 1.0}, {11.6, 1.0}}, {{10.8, 1.6}, {11.6, 1.6}},
+      {{10.8, 1.0}, {10.8, 1.6}}, {{11.6, 1.0}, {11.6, 1.6}}};
+  AddSegmentPoints(furniture, Pose2{}, &furnished_a);
+  AddSegmentPoints(furniture, truth, &furnished_b);
+
+  for (const UncertainPose* prior :
+       {static_cast<const UncertainPose*>(nullptr), static_cast<const UncertainPose*>(&loose)}) {
+    // Lines alone, and lines with points that repeat as they do: ambiguous.
+    const MapMatch lines = MatchMaps(a, self_a, b, self_b, prior, o);
+    EXPECT_EQ(lines.result, MapMatchResult::kAmbiguous);
+    const MapMatch periodic = MatchMaps(a, self_a, b, self_b, prior, o, &comb_a, &comb_b);
+    EXPECT_EQ(periodic.result, MapMatchResult::kAmbiguous) << MapMatchReasonName(periodic.reason);
+    EXPECT_FALSE(periodic.by_points);
+    EXPECT_GT(periodic.point_hits, 0);
+    EXPECT_GT(periodic.point_rival_hits, o.point_rival_ratio * periodic.point_hits);
+    // Furnished: accepted, at the truth, with the lines' transform and covariance.
+    const MapMatch m = MatchMaps(a, self_a, b, self_b, prior, o, &furnished_a, &furnished_b);
+    ASSERT_EQ(m.result, MapMatchResult::kAccepted)
+        << MapMatchReasonName(m.reason) << " hits " << m.point_hits << " rival "
+        << m.point_rival_hits;
+    EXPECT_TRUE(m.by_points);
+    EXPECT_NEAR(m.b_in_a.mean.x, truth.x, 0.02);
+    EXPECT_NEAR(m.b_in_a.mean.y, truth.y, 0.02);
+    EXPECT_NEAR(m.b_in_a.mean.theta, truth.theta, 0.005);
+    EXPECT_LE(m.point_rival_hits, o.point_rival_ratio * m.point_hits);
+    EXPECT_TRUE(m.b_in_a.cov.allFinite());
+    // Too few hits for the winner: refused as before.
+    MapMatchOptions strict = o;
+    strict.point_min_hits = m.point_hits + 1;
+    EXPECT_EQ(MatchMaps(a, self_a, b, self_b, prior, strict, &furnished_a, &furnished_b).result,
+              MapMatchResult::kAmbiguous);
+  }
+  // Points are asked only where the lines are ambiguous: a unique room is matched as before.
+  const auto room_a = InA(Room());
+  const auto room_b = SeenFrom(Room(), truth);
+  const MapMatch room = MatchMaps(room_a, SelfMatchMap(room_a, o), room_b, SelfMatchMap(room_b, o),
+                                  nullptr, o, &comb_a, &comb_b);
+  EXPECT_EQ(room.result, MapMatchResult::kAccepted);
+  EXPECT_FALSE(room.by_points);
+  EXPECT_EQ(room.point_hits, -1);
+}
+
 TEST(MapMatch, TightPriorDisambiguatesRepetition) {
   // Condition 2 satisfied: the predicted transform is accurate to 0.3 m, the repetition is 4 m.
   MapMatchOptions o;

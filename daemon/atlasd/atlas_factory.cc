@@ -46,6 +46,8 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
     o.return_q = 0.9;
     o.return_radius = 4.0;
     o.return_far_radius = 1.5;
+    // Condition 2 with the frames' points (map_match.h, "Points"; docs/atlas.md, session 21).
+    o.points.enabled = true;
   }
   return o;
 }

@@ -24,6 +24,7 @@ TEST(AtlasFactory, LaserAtlasSeedsWhereTheRobotReturnsAndTheSonarAtlasDoesNot) {
     EXPECT_GT(o.return_q, o.q_traverse);
     EXPECT_GT(o.return_far_radius, 0.0);
     EXPECT_LT(o.return_far_radius, o.return_radius);
+    EXPECT_TRUE(o.points.enabled);  // frames keep their scans' points (map_match.h, "Points")
   }
   s.sensors = RangeSensors::kSonar;
   s.sonar_ring = FakeSonarRing24();
@@ -31,6 +32,7 @@ TEST(AtlasFactory, LaserAtlasSeedsWhereTheRobotReturnsAndTheSonarAtlasDoesNot) {
   EXPECT_EQ(o.genesis_cov_scale, AtlasOptions{}.genesis_cov_scale);
   EXPECT_LE(o.return_q, o.q_traverse);
   EXPECT_EQ(o.return_far_radius, 0.0);
+  EXPECT_FALSE(o.points.enabled);
 }
 
 }  // namespace

@@ -59,6 +59,7 @@ class RecordingSink final : public StepSink {
     match_accepted += s.match_accepted;
     match_rejected += s.match_rejected;
     match_ambiguous += s.match_ambiguous;
+    match_by_points += s.match_by_points;
     for (int r = 0; r < kMapMatchReasonCount; ++r) match_reasons[r] += s.match_reasons[r];
     seeded += s.seeded;
     matured += s.matured;
@@ -76,7 +77,7 @@ class RecordingSink final : public StepSink {
   std::vector<HypothesisRow> hypotheses;  // its rows, formatted after the run
   std::vector<StampedFramePose> trajectory;
   std::vector<TimingRow> timing;
-  int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
+  int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0, match_by_points = 0;
   std::array<int64_t, kMapMatchReasonCount> match_reasons{};
   int64_t seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
   int64_t refine_rejected = 0, contradicting = 0;
@@ -246,6 +247,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   sum.match_accepted = sink.match_accepted;
   sum.match_rejected = sink.match_rejected;
   sum.match_ambiguous = sink.match_ambiguous;
+  sum.match_by_points = sink.match_by_points;
   sum.match_reasons = sink.match_reasons;
   sum.seeded = sink.seeded;
   sum.matured = sink.matured;
@@ -436,6 +438,7 @@ std::string SummaryJson(const ReplaySummary& s) {
   Append(t, "\"match_accepted\": %lld, \"match_rejected\": %lld, \"match_ambiguous\": %lld, ",
          static_cast<long long>(s.match_accepted), static_cast<long long>(s.match_rejected),
          static_cast<long long>(s.match_ambiguous));
+  Append(t, "\"match_by_points\": %lld, ", static_cast<long long>(s.match_by_points));
   t += "\"match_reasons\": {";
   for (int r = 0; r < kMapMatchReasonCount; ++r)
     Append(t, "%s\"%s\": %lld", r > 0 ? ", " : "",
@@ -492,9 +495,11 @@ std::string SummaryText(const ReplaySummary& s) {
          "edges                %d (now: genesis %d, map-match %d, refined %d; made by "
          "map-matching %d)\n",
          s.edges, s.genesis_edges, s.map_match_edges, s.refined_edges, s.map_match_origin_edges);
-  Append(t, "map-match outcomes   accepted %lld, rejected %lld, ambiguous %lld\n",
-         static_cast<long long>(s.match_accepted), static_cast<long long>(s.match_rejected),
-         static_cast<long long>(s.match_ambiguous));
+  Append(t,
+         "map-match outcomes   accepted %lld (the frames' points chose %lld), rejected %lld, "
+         "ambiguous %lld\n",
+         static_cast<long long>(s.match_accepted), static_cast<long long>(s.match_by_points),
+         static_cast<long long>(s.match_rejected), static_cast<long long>(s.match_ambiguous));
   t += "  by reason         ";
   for (int r = 0; r < kMapMatchReasonCount; ++r)
     Append(t, "%s%s %lld", r > 0 ? ", " : " ", MapMatchReasonName(static_cast<MapMatchReason>(r)),

@@ -1,0 +1,140 @@
+#include "core/atlas/frame_points.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "core/atlas/byte_image.h"
+
+namespace atlas {
+
+namespace {
+
+constexpr int32_t kMaxIndex = 32767;
+
+bool CellIndex(double v, double cell, int32_t* out) {
+  const double i = std::floor(v / cell);
+  if (!(std::abs(i) <= kMaxIndex)) return false;
+  *out = static_cast<int32_t>(i);
+  return true;
+}
+
+}  // namespace
+
+std::string FramePointsOptions::Validate() const {
+  if (!(cell > 0.01 && cell <= 1.0)) return "frame_points.cell must lie in (0.01, 1] metres";
+  if (capacity < 16 || capacity > (1 << 20))
+    return "frame_points.capacity must lie in [16, 1048576] cells";
+  if (!(max_range > 0)) return "frame_points.max_range must be positive";
+  if (max_scored < 16) return "frame_points.max_scored must be at least 16";
+  return "";
+}
+
+uint32_t FramePoints::Key(int32_t ix, int32_t iy) {
+  return (static_cast<uint32_t>(ix + 32768) << 16) | static_cast<uint32_t>(iy + 32768);
+}
+
+bool FramePoints::Has(int32_t ix, int32_t iy) const {
+  if (slots_.empty() || std::abs(ix) > kMaxIndex || std::abs(iy) > kMaxIndex) return false;
+  const uint32_t key = Key(ix, iy);
+  const size_t mask = slots_.size() - 1;
+  for (size_t s = (key * 2654435761u) & mask;; s = (s + 1) & mask) {
+    if (slots_[s] == key) return true;
+    if (slots_[s] == 0) return false;
+  }
+}
+
+bool FramePoints::Insert(int32_t ix, int32_t iy) {
+  if (slots_.empty()) {
+    slots_.assign(std::bit_ceil(static_cast<size_t>(2 * options_.capacity)), 0);
+    cells_.reserve(options_.capacity);
+  }
+  const uint32_t key = Key(ix, iy);
+  const size_t mask = slots_.size() - 1;
+  size_t s = (key * 2654435761u) & mask;
+  for (; slots_[s] != 0; s = (s + 1) & mask)
+    if (slots_[s] == key) return true;
+  if (static_cast<int>(cells_.size()) >= options_.capacity) return false;
+  slots_[s] = key;
+  cells_.push_back(key);
+  return true;
+}
+
+bool FramePoints::Add(const Vec2& p) {
+  int32_t ix, iy;
+  if (!CellIndex(p.x(), options_.cell, &ix) || !CellIndex(p.y(), options_.cell, &iy)) return false;
+  return Insert(ix, iy);
+}
+
+void FramePoints::AddScan(const Pose2& robot, const LaserScan& scan) {
+  const RigidTransform sensor(Compose(robot, scan.sensor_pose));
+  const double max_range = std::min<double>(options_.max_range, scan.max_range);
+  for (size_t k = 0; k < scan.ranges.size(); ++k) {
+    const double r = scan.ranges[k];
+    if (!(r > 0.0 && r < max_range)) continue;
+    const double a = scan.angle_min + static_cast<double>(k) * scan.angle_increment;
+    if (!Add(sensor.Apply(Vec2(r * std::cos(a), r * std::sin(a))))) return;
+  }
+}
+
+bool FramePoints::Contains(const Vec2& p) const {
+  int32_t ix, iy;
+  return CellIndex(p.x(), options_.cell, &ix) && CellIndex(p.y(), options_.cell, &iy) &&
+         Has(ix, iy);
+}
+
+Vec2 FramePoints::Centre(uint32_t key) const {
+  const double ix = static_cast<double>(static_cast<int32_t>(key >> 16) - 32768);
+  const double iy = static_cast<double>(static_cast<int32_t>(key & 0xffff) - 32768);
+  return Vec2((ix + 0.5) * options_.cell, (iy + 0.5) * options_.cell);
+}
+
+std::vector<Vec2> FramePoints::Centres() const {
+  std::vector<Vec2> out;
+  out.reserve(cells_.size());
+  for (uint32_t key : cells_) out.push_back(Centre(key));
+  return out;
+}
+
+FramePoints::Score FramePoints::ScoreOf(const FramePoints& b, const Pose2& b_in_this) const {
+  Score out;
+  const int n = b.Size();
+  if (n == 0 || slots_.empty()) return out;
+  const int stride = std::max(1, (n + options_.max_scored - 1) / options_.max_scored);
+  const RigidTransform t(b_in_this);
+  for (int k = 0; k < n; k += stride) {
+    const Vec2 p = t.Apply(b.Centre(b.cells_[k]));
+    ++out.scored;
+    int32_t ix, iy;
+    if (!CellIndex(p.x(), options_.cell, &ix) || !CellIndex(p.y(), options_.cell, &iy)) continue;
+    bool hit = false;
+    for (int dx = -1; dx <= 1 && !hit; ++dx)
+      for (int dy = -1; dy <= 1 && !hit; ++dy) hit = Has(ix + dx, iy + dy);
+    out.hits += hit ? 1 : 0;
+  }
+  return out;
+}
+
+std::string FramePoints::Serialize() const {
+  ByteWriter w;
+  w.Put<uint32_t>(static_cast<uint32_t>(cells_.size()));
+  for (uint32_t key : cells_) w.Put(key);
+  return std::move(w.bytes());
+}
+
+bool FramePoints::Deserialize(const std::string& bytes) {
+  ByteReader r(bytes);
+  uint32_t n = 0;
+  if (!r.Get(&n) || n > (1u << 20)) return false;
+  std::vector<uint32_t> keys(n);
+  for (uint32_t& key : keys)
+    if (!r.Get(&key) || key < (1u << 16) || (key & 0xffff) == 0) return false;
+  if (!r.AtEnd()) return false;
+  slots_.clear();
+  cells_.clear();
+  for (uint32_t key : keys)
+    Insert(static_cast<int32_t>(key >> 16) - 32768, static_cast<int32_t>(key & 0xffff) - 32768);
+  return true;
+}
+
+}  // namespace atlas
