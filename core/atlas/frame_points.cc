@@ -73,7 +73,8 @@ void FramePoints::AddScan(const Pose2& robot, const LaserScan& scan) {
     const double r = scan.ranges[k];
     if (!(r > 0.0 && r < max_range)) continue;
     const double a = scan.angle_min + static_cast<double>(k) * scan.angle_increment;
-    if (!Add(sensor.Apply(Vec2(r * std::cos(a), r * std::sin(a))))) return;
+    if (!Add(sensor.Apply(Vec2(r * std::cos(a), r * std::sin(a)))) && Size() >= options_.capacity)
+      return;
   }
 }
 

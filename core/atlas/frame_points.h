@@ -13,12 +13,13 @@
 //
 // Contract:
 // - Cells are `cell` metres square; a cell is stored once, however many endpoints fall in it.
-// - At most `capacity` cells per frame (fixed storage, an open-addressing table of 2 x capacity
-//   slots allocated on the first AddScan): endpoints that would need a new cell beyond that are
-//   dropped. Memory per frame is bounded (8 bytes per slot).
+// - At most `capacity` cells per frame (fixed storage, allocated at the first cell: an
+//   open-addressing table of 2 x capacity slots and the cells in insertion order, 4 bytes each,
+//   24 kB at the default capacity): endpoints that would need a new cell beyond that are
+//   dropped. A frame that never had a mature hypothesis with a laser allocates nothing.
 // - Only returns closer than `max_range` are stored (far returns are noisy and unlikely to be
 //   seen again from the other frame).
-// - Score() counts the cells of `b` (at most `max_scored` of them, evenly strided) that, moved by
+// - ScoreOf() counts the cells of `b` (at most `max_scored` of them, evenly strided) that, moved by
 //   the pose of b's frame in this one, land in or next to (3 x 3 neighbourhood) an occupied cell
 //   here. O(max_scored x 9), independent of the atlas size.
 

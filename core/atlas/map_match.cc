@@ -385,13 +385,6 @@ WeakDirection Weakest(const Mat3& h) {
   return w;
 }
 
-// Condition 2 against the maps' own alternatives (map_match.h, "Alternative lines"): the matched
-// pair `p` of `pairs` could as well pair its line of B with another line of A of (nearly) its
-// orientation, or its line of A with another line of B: the placement t' = t + shift that does
-// so. True when some t' differs from t by more than `o.alternative_sigmas` of t's covariance
-// `cov_t` along the shift, puts the two segments side by side (overlap_slack), lies inside the
-// prior's gate, and leaves every other pair inside its line gate: nothing then tells the two
-// placements apart.
 bool PointPlacements::FixesDirection(const Pose2& t, const Vec2& direction,
                                      const UncertainPose* prior, const MapMatchOptions& o) const {
   const int t_hits = Hits(t);
@@ -409,6 +402,13 @@ bool PointPlacements::FixesDirection(const Pose2& t, const Vec2& direction,
   return true;
 }
 
+// Condition 2 against the maps' own alternatives (map_match.h, "Alternative lines"): the matched
+// pair `p` of `pairs` could as well pair its line of B with another line of A of (nearly) its
+// orientation, or its line of A with another line of B: the placement t' = t + shift that does
+// so. True when some t' differs from t by more than `o.alternative_sigmas` of t's covariance
+// `cov_t` along the shift, puts the two segments side by side (overlap_slack), lies inside the
+// prior's gate, and leaves every other pair inside its line gate: nothing then tells the two
+// placements apart.
 bool PairHasAlternative(const std::vector<Line>& a, const std::vector<Line>& b,
                         const std::pair<uint8_t, uint8_t>* pairs, int count, int p, const Pose2& t,
                         const Mat3& cov_t, const UncertainPose* prior, const MapMatchOptions& o,
