@@ -181,9 +181,8 @@ struct StepStats {
   int genesis = 0;
   int genesis_refused = 0;  // the dominant frame's degree was full
   int match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
-  int match_unconnected = 0;
-  int match_by_points = 0;  // accepted matches the frames' points singled out (map_match.h)  //
-                            // candidates from unconnected parts (no prior) matched this step
+  int match_unconnected = 0;  // candidates from unconnected parts (no prior) matched this step
+  int match_by_points = 0;    // accepted matches the frames' points singled out (map_match.h)
   // Map-matching outcomes this step by MapMatchReason (index static_cast<int>(reason)); an
   // accepted match whose edge could not be added counts as kMatched and as match_rejected.
   std::array<int, kMapMatchReasonCount> match_reasons{};
