@@ -12,6 +12,15 @@ namespace {
 
 constexpr int32_t kMaxIndex = 32767;
 
+// The first slot of `key` in a table of mask + 1 slots: the product's high bits folded into
+// the low ones, since the low bits of key * odd depend on the key's low bits (one row of
+// cells) alone.
+size_t FirstSlot(uint32_t key, size_t mask) {
+  uint32_t h = key * 2654435761u;
+  h ^= h >> 16;
+  return h & mask;
+}
+
 bool CellIndex(double v, double cell, int32_t* out) {
   const double i = std::floor(v / cell);
   if (!(std::abs(i) <= kMaxIndex)) return false;
@@ -38,7 +47,7 @@ bool FramePoints::Has(int32_t ix, int32_t iy) const {
   if (slots_.empty() || std::abs(ix) > kMaxIndex || std::abs(iy) > kMaxIndex) return false;
   const uint32_t key = Key(ix, iy);
   const size_t mask = slots_.size() - 1;
-  for (size_t s = (key * 2654435761u) & mask;; s = (s + 1) & mask) {
+  for (size_t s = FirstSlot(key, mask);; s = (s + 1) & mask) {
     if (slots_[s] == key) return true;
     if (slots_[s] == 0) return false;
   }
@@ -51,7 +60,7 @@ bool FramePoints::Insert(int32_t ix, int32_t iy) {
   }
   const uint32_t key = Key(ix, iy);
   const size_t mask = slots_.size() - 1;
-  size_t s = (key * 2654435761u) & mask;
+  size_t s = FirstSlot(key, mask);
   for (; slots_[s] != 0; s = (s + 1) & mask)
     if (slots_[s] == key) return true;
   if (static_cast<int>(cells_.size()) >= options_.capacity) return false;
