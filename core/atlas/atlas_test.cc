@@ -511,11 +511,12 @@ TEST(Atlas, FramesKeepScanPointsThroughTheImage) {
   ASSERT_TRUE(b.Deserialize(image));
   EXPECT_TRUE(b.Serialize() == image);
   EXPECT_EQ(b.Graph().Frame(0).points.Size(), points.Size());
+  EXPECT_TRUE(b.Graph().Frame(0).points.Contains(Vec2(2.03, 0.03)));
   Atlas c(o, w.Factory(), std::make_shared<FakeBootstrapper>());
   ASSERT_TRUE(c.Deserialize(AsOlderImage(image, 4)));
   EXPECT_EQ(c.Graph().FrameCount(), a.Graph().FrameCount());
   EXPECT_EQ(c.Graph().Frame(0).points.Size(), 0);
-  // A version 5 image cut inside the points is refused.
+  // A version 5 image whose frames lack their points is refused.
   EXPECT_FALSE(c.Deserialize(AsOlderImage(image, 5)));
 }
 
