@@ -92,6 +92,9 @@ TEST_F(CheckpointTest, ExportWritesOneGraphRowPerEdgeAndOneMapRowPerLine) {
   for (FrameId f = 0; f < a->Graph().FrameCount(); ++f)
     lines += a->Graph().Frame(f).map->Lines().size();
   EXPECT_EQ(rows("maps.tsv"), static_cast<int>(lines));
+  int cells = 0;
+  for (FrameId f = 0; f < a->Graph().FrameCount(); ++f) cells += a->Graph().Frame(f).points.Size();
+  EXPECT_EQ(rows("points.tsv"), cells);
 }
 
 TEST_F(CheckpointTest, EmptyStoreLeavesTheAtlasEmpty) {

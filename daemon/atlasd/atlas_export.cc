@@ -50,6 +50,14 @@ std::string MapsTsvRows(const AtlasGraph& graph) {
   return text;
 }
 
+std::string PointsTsvRows(const AtlasGraph& graph) {
+  std::string text;
+  for (FrameId f = 0; f < graph.FrameCount(); ++f)
+    for (const Vec2& c : graph.Frame(f).points.Centres())
+      Append(text, "%d\t%.2f\t%.2f\n", f, c.x(), c.y());
+  return text;
+}
+
 std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -60,7 +68,10 @@ std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
   if (std::string e = WriteText(dir, "graph.tsv", text); !e.empty()) return e;
   text = "# atlasd maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
   text += MapsTsvRows(graph);
-  return WriteText(dir, "maps.tsv", text);
+  if (std::string e = WriteText(dir, "maps.tsv", text); !e.empty()) return e;
+  text = "# atlasd points: frame x y (cell centres of the laser points each frame keeps)\n";
+  text += PointsTsvRows(graph);
+  return WriteText(dir, "points.tsv", text);
 }
 
 int ExportSavedAtlas(const DaemonOptions& options, const std::string& dir) {

@@ -18,6 +18,7 @@ const Color kOtherEdgeColor{0.45, 0.45, 0.5, 0.6};
 const Color kEllipseColor{0.15, 0.35, 0.85, 0.7};
 const Color kTrajectoryColor{0.95, 0.55, 0.1, 0.6};
 const Color kSourceColor{0.8, 0.1, 0.6};
+const Color kPointColor{0.45, 0.6, 0.8, 0.7};
 
 struct Box {
   Vec2 min = Vec2::Constant(std::numeric_limits<double>::infinity());
@@ -139,6 +140,14 @@ void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const 
   canvas.Segments(tree, Stroke{kTreeColor, 1.5});
   canvas.Segments(match, Stroke{kMatchColor, 1.2, true});
   canvas.Segments(other, Stroke{kOtherEdgeColor, 1.0, true});
+  // The laser points every placed frame keeps for map-matching (points.tsv), under its lines.
+  std::vector<Vec2> points;
+  points.reserve(run.points.size());
+  for (const replay::FramePointRow& r : run.points) {
+    if (r.frame < 0 || r.frame >= n || !pose_of(r.frame)) continue;
+    points.push_back(pose_of(r.frame)->mean.TransformPoint(r.p));
+  }
+  canvas.Points(points, kPointColor, std::clamp(0.05 * px_per_m, 0.6, 1.5));
   // Lines of every placed frame.
   std::vector<std::pair<Vec2, Vec2>> segments;
   segments.reserve(run.lines.size());
@@ -185,6 +194,8 @@ void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const 
                                   {"other edges", kOtherEdgeColor},
                                   {"source frame", kSourceColor, true}};
   if (options.ellipses && !options.refined) legend.push_back({"frame uncertainty", kEllipseColor});
+  if (!points.empty())
+    legend.push_back({"laser points the frames keep (map-matching)", kPointColor, true});
   // Only when there is one to draw (an exported store has no trajectory: atlasd publishes the
   // poses, it does not save them).
   if (options.trajectory && !(options.refined ? run.refined : run.global).empty())

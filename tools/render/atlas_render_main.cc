@@ -18,11 +18,12 @@ constexpr const char* kUsage = R"(usage: atlas-render --run DIR [--png FILE] [--
        atlas-render --atlas DIR [--projection F | --whole | --timeline | --timeline-frames]
                     [--png FILE] [--svg FILE] [options]
 
---atlas DIR draws an atlas-replay output directory (graph.tsv, maps.tsv, trajectory.tsv,
-global.tsv, timing.tsv; docs/formats.md):
+--atlas DIR draws an atlas-replay output directory (graph.tsv, maps.tsv, points.tsv,
+trajectory.tsv, global.tsv, timing.tsv; docs/formats.md):
   --projection F     the Dijkstra projection from frame F (default 0): every reached frame's
-                     lines at its projected pose, its origin and 3-sigma position ellipse, the
-                     projection tree (paper, Fig. 2 and 10). Default file DIR/projection-F.png
+                     lines (and laser points, if points.tsv is there) at its projected
+                     pose, its origin and 3-sigma position ellipse, the projection tree
+                     (paper, Fig. 2 and 10). Default file DIR/projection-F.png
   --whole            the whole run: every frame from frame 0 and the robot's global trajectory
                      (Fig. 8). Default file DIR/whole.png
   --refined          with --whole or --projection: frames placed by global least squares

@@ -196,6 +196,19 @@ std::string ParseMapRows(std::string_view text, const std::string& source,
   });
 }
 
+std::string ParsePointRows(std::string_view text, const std::string& source,
+                           std::vector<FramePointRow>* out) {
+  return ForEachRow(text, source, 3, [&](const std::vector<std::string_view>& f) {
+    FramePointRow r;
+    if (std::string e = FrameField(f[0], 0, false, &r.frame); !e.empty()) return e;
+    double v[2];
+    if (std::string e = Numbers(f, 1, 2, v); !e.empty()) return e;
+    r.p = Vec2(v[0], v[1]);
+    out->push_back(r);
+    return std::string();
+  });
+}
+
 std::string ParseStampedPoses(std::string_view text, const std::string& source,
                               std::vector<StampedPose>* out) {
   return ForEachRow(text, source, 4, [&](const std::vector<std::string_view>& f) {
@@ -224,6 +237,7 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
       {"frames.tsv", wanted.frames,
        [&](auto t, auto& s) { return ParseFrameRows(t, s, &out->frames); }},
       {"maps.tsv", wanted.maps, [&](auto t, auto& s) { return ParseMapRows(t, s, &out->lines); }},
+      {"points.tsv", false, [&](auto t, auto& s) { return ParsePointRows(t, s, &out->points); }},
       {"step_cpu.tsv", wanted.step_cpu,
        [&](auto t, auto& s) {
          return ForEachRow(t, s, 2, [&](const std::vector<std::string_view>& f) {
@@ -254,6 +268,7 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
   for (const auto& r : out->timing) n = std::max({n, r.frames, r.dominant + 1});
   for (const auto& r : out->frames) n = std::max({n, r.frame + 1, r.parent + 1});
   for (const auto& r : out->lines) n = std::max(n, r.frame + 1);
+  for (const auto& r : out->points) n = std::max(n, r.frame + 1);
   out->frame_count = n;
   return "";
 }

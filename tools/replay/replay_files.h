@@ -45,6 +45,10 @@ struct FrameLine {  // maps.tsv
   FrameId frame = kNoFrame;
   MapLine line;
 };
+struct FramePointRow {  // points.tsv
+  FrameId frame = kNoFrame;
+  Vec2 p = Vec2::Zero();  // a cell centre in the frame's coordinates
+};
 struct StampedPose {  // global.tsv, global_refined.tsv
   double stamp_s = 0.0;
   Pose2 pose;
@@ -54,12 +58,13 @@ struct ReplayOutput {
   std::vector<StampedFramePose> trajectory;
   std::vector<EdgeRecord> edges;
   std::vector<TimingRecord> timing;
-  std::vector<FrameRecord> frames;   // empty if frames.tsv is absent (older runs)
-  std::vector<FrameLine> lines;      // empty if maps.tsv is absent
-  std::vector<StampedPose> global;   // empty if global.tsv is absent
-  std::vector<StampedPose> refined;  // empty if global_refined.tsv is absent
-  std::vector<int64_t> step_cpu_ns;  // step_cpu.tsv, by step - 1; empty if absent
-  int frame_count = 0;               // 1 + the largest frame id named anywhere
+  std::vector<FrameRecord> frames;    // empty if frames.tsv is absent (older runs)
+  std::vector<FrameLine> lines;       // empty if maps.tsv is absent
+  std::vector<FramePointRow> points;  // empty if points.tsv is absent
+  std::vector<StampedPose> global;    // empty if global.tsv is absent
+  std::vector<StampedPose> refined;   // empty if global_refined.tsv is absent
+  std::vector<int64_t> step_cpu_ns;   // step_cpu.tsv, by step - 1; empty if absent
+  int frame_count = 0;                // 1 + the largest frame id named anywhere
 };
 
 // Which files ReadReplayOutput must find (the others are read when present).
@@ -84,6 +89,8 @@ std::string ParseMapRows(std::string_view text, const std::string& source,
                          std::vector<FrameLine>* out);
 std::string ParseStampedPoses(std::string_view text, const std::string& source,
                               std::vector<StampedPose>* out);
+std::string ParsePointRows(std::string_view text, const std::string& source,
+                           std::vector<FramePointRow>* out);
 
 // Reads `dir`'s files; returns "" or what is wrong ("<dir>/graph.tsv: cannot open: ...").
 std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wanted,

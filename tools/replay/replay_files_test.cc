@@ -26,6 +26,15 @@ TEST(ReplayFiles, ParsesWhatReplayWrites) {
   EXPECT_DOUBLE_EQ(lines[0].line.endpoint_b.y(), 4.0);
   EXPECT_DOUBLE_EQ(lines[0].line.cov(1, 0), 1e-6);
 
+  std::vector<FramePointRow> points;
+  ASSERT_EQ(ParsePointRows("2\t-0.05\t1.35\n", "points.tsv", &points), "");
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_EQ(points[0].frame, 2);
+  EXPECT_DOUBLE_EQ(points[0].p.x(), -0.05);
+  EXPECT_EQ(ParsePointRows("2\t0.1\n", "points.tsv", &points),
+            "points.tsv:1: expected 3 fields, found 2");
+  EXPECT_NE(ParsePointRows("-4\t0.1\t0.2\n", "points.tsv", &points), "");
+
   std::vector<FrameRecord> frames;
   ASSERT_EQ(ParseFrameRows("0\t1\t10.5\t-1\n1\t40\t12.0\t0\n", "frames.tsv", &frames), "");
   EXPECT_EQ(frames[0].parent, kNoFrame);

@@ -370,6 +370,12 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     result.error = e;
     return result;
   }
+  text = "# atlas-replay points: frame x y (cell centres of the laser points each frame keeps)\n";
+  text += PointsTsvRows(graph);
+  if (std::string e = WriteOutputFile(out_dir, "points.tsv", text); !e.empty()) {
+    result.error = e;
+    return result;
+  }
 
   if (!reference.empty()) {
     text = "# atlas-replay reference: timestamp x y theta (reference pose at each stepped scan)\n";

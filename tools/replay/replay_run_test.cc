@@ -78,7 +78,7 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   EXPECT_GE(ra.summary.frames, 1);
 
   // Deterministic: everything but the measured step times is byte-identical.
-  for (const char* name : {"trajectory.tsv", "graph.tsv", "global.tsv"})
+  for (const char* name : {"trajectory.tsv", "graph.tsv", "global.tsv", "points.tsv"})
     EXPECT_EQ(ReadAll(a + "/" + name), ReadAll(b + "/" + name)) << name;
   auto ta = Rows(ReadAll(a + "/timing.tsv")), tb = Rows(ReadAll(b + "/timing.tsv"));
   ASSERT_EQ(ta.size(), tb.size());
@@ -123,6 +123,16 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
     EXPECT_GE(std::strtod(e[5].c_str(), nullptr), 0.0);   // c00
     EXPECT_GE(std::strtod(e[8].c_str(), nullptr), 0.0);   // c11
     EXPECT_GE(std::strtod(e[10].c_str(), nullptr), 0.0);  // c22
+  }
+  // points.tsv: the laser points the frames keep (the laser atlas keeps them), by frame.
+  const auto points = Rows(ReadAll(a + "/points.tsv"));
+  EXPECT_GT(points.size(), 100u);
+  for (const auto& p : points) {
+    ASSERT_EQ(p.size(), 3u);
+    const int frame = std::atoi(p[0].c_str());
+    EXPECT_GE(frame, 0);
+    EXPECT_LT(frame, ra.summary.frames);
+    EXPECT_TRUE(IsFiniteNumber(p[1]) && IsFiniteNumber(p[2])) << p[1] << " " << p[2];
   }
   const std::string json = ReadAll(a + "/summary.json");
   EXPECT_NE(json.find("\"scans\": 300"), std::string::npos) << json;
