@@ -99,5 +99,5 @@ echo "== drawing the atlas atlasd built"
 "$BIN/atlas-render" --run "$OUT/sim" --png "$OUT/run.png"
 echo
 echo "Result: $OUT/atlas.png: the atlas atlasd built (its frames placed from frame 0, their lines,"
-echo "and the poses it published); $OUT/run.png: the simulated building and run; the saved atlas"
+echo "the laser points they keep, and the poses it published); $OUT/run.png: the simulated building and run; the saved atlas"
 echo "is $OUT/state/atlas.sqlite, atlasd's log $OUT/atlasd.err."
