@@ -28,6 +28,11 @@ bool CellIndex(double v, double cell, int32_t* out) {
   return true;
 }
 
+// The cell of `p`; false when it lies beyond the index range.
+bool CellOf(const Vec2& p, double cell, int32_t* ix, int32_t* iy) {
+  return CellIndex(p.x(), cell, ix) && CellIndex(p.y(), cell, iy);
+}
+
 }  // namespace
 
 std::string FramePointsOptions::Validate() const {
@@ -71,7 +76,7 @@ bool FramePoints::Insert(int32_t ix, int32_t iy) {
 
 bool FramePoints::Add(const Vec2& p) {
   int32_t ix, iy;
-  if (!CellIndex(p.x(), options_.cell, &ix) || !CellIndex(p.y(), options_.cell, &iy)) return false;
+  if (!CellOf(p, options_.cell, &ix, &iy)) return false;
   return Insert(ix, iy);
 }
 
@@ -89,8 +94,7 @@ void FramePoints::AddScan(const Pose2& robot, const LaserScan& scan) {
 
 bool FramePoints::Contains(const Vec2& p) const {
   int32_t ix, iy;
-  return CellIndex(p.x(), options_.cell, &ix) && CellIndex(p.y(), options_.cell, &iy) &&
-         Has(ix, iy);
+  return CellOf(p, options_.cell, &ix, &iy) && Has(ix, iy);
 }
 
 Vec2 FramePoints::Centre(uint32_t key) const {
@@ -116,7 +120,7 @@ FramePoints::Score FramePoints::ScoreOf(const FramePoints& b, const Pose2& b_in_
     const Vec2 p = t.Apply(b.Centre(b.cells_[k]));
     ++out.scored;
     int32_t ix, iy;
-    if (!CellIndex(p.x(), options_.cell, &ix) || !CellIndex(p.y(), options_.cell, &iy)) continue;
+    if (!CellOf(p, options_.cell, &ix, &iy)) continue;
     bool hit = false;
     for (int dx = -1; dx <= 1 && !hit; ++dx)
       for (int dy = -1; dy <= 1 && !hit; ++dy) hit = Has(ix + dx, iy + dy);

@@ -281,7 +281,12 @@ struct Enumeration {
   bool complete = true;  // false when max_line_checks stopped the enumeration
 };
 
-bool InsidePrior(const Pose2& t, const UncertainPose* prior, const MapMatchOptions& o);
+bool InsidePrior(const Pose2& t, const UncertainPose* prior, const MapMatchOptions& o) {
+  if (prior == nullptr) return true;
+  const Vec3 d(t.x - prior->mean.x, t.y - prior->mean.y, WrapAngle(t.theta - prior->mean.theta));
+  const Mat3 cov = prior->cov + Vec3(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix();
+  return d.dot(cov.inverse() * d) <= o.prior_gate_chi2;
+}
 
 // Enumerates pair hypotheses and collects verified transforms with support >= 2. With
 // `self` set, a and b are the same map and the identity hypotheses are skipped. With `gate`
@@ -344,11 +349,10 @@ Enumeration Hypothesise(const std::vector<Line>& a, uint64_t usable_a, const std
 
 uint64_t AllLines(int n) { return n >= 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1; }
 
-bool InsidePrior(const Pose2& t, const UncertainPose* prior, const MapMatchOptions& o) {
-  if (prior == nullptr) return true;
-  const Vec3 d(t.x - prior->mean.x, t.y - prior->mean.y, WrapAngle(t.theta - prior->mean.theta));
-  const Mat3 cov = prior->cov + Vec3(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix();
-  return d.dot(cov.inverse() * d) <= o.prior_gate_chi2;
+// The square of how far the prior's gate reaches either side of its mean along `direction`.
+double GateReachSquared(const UncertainPose& prior, const Vec2& direction,
+                        const MapMatchOptions& o) {
+  return o.prior_gate_chi2 * direction.dot(prior.cov.topLeftCorner<2, 2>() * direction);
 }
 
 // Placements of B in A scored by the frames' points (frame_points.h; map_match.h, "Points").
@@ -359,7 +363,8 @@ struct PointPlacements {
   // Whether every shift of t along `direction` by at least distinct_translation, in steps of
   // a cell, out to the prior's gate (or 3 m without a prior), has at most point_rival_ratio of
   // t's hits.
-  bool FixesDirection(const Pose2& t, const Vec2& direction, const UncertainPose* prior,
+  // `t_hits` is Hits(t).
+  bool FixesDirection(const Pose2& t, int t_hits, const Vec2& direction, const UncertainPose* prior,
                       const MapMatchOptions& o) const;
 };
 
@@ -385,14 +390,10 @@ WeakDirection Weakest(const Mat3& h) {
   return w;
 }
 
-bool PointPlacements::FixesDirection(const Pose2& t, const Vec2& direction,
+bool PointPlacements::FixesDirection(const Pose2& t, int t_hits, const Vec2& direction,
                                      const UncertainPose* prior, const MapMatchOptions& o) const {
-  const int t_hits = Hits(t);
   if (t_hits < o.point_min_hits) return false;
-  const double reach = prior == nullptr
-                           ? 3.0
-                           : std::sqrt(o.prior_gate_chi2 *
-                                       direction.dot(prior->cov.topLeftCorner<2, 2>() * direction));
+  const double reach = prior == nullptr ? 3.0 : std::sqrt(GateReachSquared(*prior, direction, o));
   const double step = a->options().cell;
   for (double d = o.distinct_translation; d <= reach; d += step)
     for (double sign : {-1.0, 1.0}) {
@@ -486,6 +487,7 @@ void Finish(const std::vector<Line>& a, const std::vector<Line>& b, const Suppor
     out->reason = MapMatchReason::kDegenerate;
     return;
   }
+  const int t_hits = points != nullptr ? points->Hits(t) : 0;
   // Condition 2 per direction: t must stay fixed without any one pair, or the direction that
   // pair alone fixes rests on one unverified correspondence (e.g. the only jamb of a corridor).
   if (o.redundancy_sigma > 0) {
@@ -493,12 +495,11 @@ void Finish(const std::vector<Line>& a, const std::vector<Line>& b, const Suppor
       const WeakDirection w = Weakest(h - h_pair[p]);
       if (w.sigma <= o.redundancy_sigma) continue;
       // The prior alone tells the pair's alternatives apart along that direction (Condition 2).
-      if (prior != nullptr &&
-          o.prior_gate_chi2 * w.direction.dot(prior->cov.topLeftCorner<2, 2>() * w.direction) <=
-              o.redundancy_prior_halfwidth * o.redundancy_prior_halfwidth)
+      if (prior != nullptr && GateReachSquared(*prior, w.direction, o) <=
+                                  o.redundancy_prior_halfwidth * o.redundancy_prior_halfwidth)
         continue;
       // Or the points do: no shift along it inside the prior's gate explains them as well.
-      if (points != nullptr && points->FixesDirection(t, w.direction, prior, o)) continue;
+      if (points != nullptr && points->FixesDirection(t, t_hits, w.direction, prior, o)) continue;
       out->result = MapMatchResult::kAmbiguous;
       out->reason = MapMatchReason::kSinglePair;
       return;
@@ -509,7 +510,6 @@ void Finish(const std::vector<Line>& a, const std::vector<Line>& b, const Suppor
   if (o.unknown_line_correlation) out->b_in_a.cov *= static_cast<double>(support.count);
   out->b_in_a.cov = 0.5 * (out->b_in_a.cov + out->b_in_a.cov.transpose());
   if (o.alternative_sigmas > 0) {
-    const int t_hits = points != nullptr ? points->Hits(t) : 0;
     for (int p = 0; p < pairs; ++p) {
       if (!PairHasAlternative(a, b, support.pairs.data(), pairs, p, t, out->b_in_a.cov, prior, o,
                               points, t_hits))
@@ -543,11 +543,10 @@ SelfMatch SelfMatchMap(const std::vector<MapLine>& lines, const MapMatchOptions&
 
 namespace {
 
-MapMatch MatchLines(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
-                    const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
-                    const UncertainPose* prior, const MapMatchOptions& o) {
+// The match by the lines alone (map_match.h), of maps prepared by Prepare().
+MapMatch MatchLines(const std::vector<Line>& a, const SelfMatch& self_a, const std::vector<Line>& b,
+                    const SelfMatch& self_b, const UncertainPose* prior, const MapMatchOptions& o) {
   MapMatch out;
-  const std::vector<Line> a = Prepare(lines_a, o), b = Prepare(lines_b, o);
   uint64_t usable_a = AllLines(static_cast<int>(a.size()));
   uint64_t usable_b = AllLines(static_cast<int>(b.size()));
   const int count_a = static_cast<int>(a.size()), count_b = static_cast<int>(b.size());
@@ -636,14 +635,13 @@ MapMatch MatchLines(const std::vector<MapLine>& lines_a, const SelfMatch& self_a
 }
 
 // The placement the points single out among those the lines leave open (map_match.h, "Points").
-MapMatch MatchByPoints(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
-                       const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
+MapMatch MatchByPoints(const std::vector<Line>& a, const SelfMatch& self_a,
+                       const std::vector<Line>& b, const SelfMatch& self_b,
                        const UncertainPose* prior, const MapMatchOptions& o,
                        const PointPlacements& points) {
   MapMatch out;
   out.result = MapMatchResult::kAmbiguous;
   out.reason = MapMatchReason::kRepetitive;
-  const std::vector<Line> a = Prepare(lines_a, o), b = Prepare(lines_b, o);
   const uint64_t usable_a = AllLines(static_cast<int>(a.size()));
   const uint64_t usable_b = AllLines(static_cast<int>(b.size()));
   std::vector<Cluster> clusters;
@@ -694,7 +692,8 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
                    const std::vector<MapLine>& lines_b, const SelfMatch& self_b,
                    const UncertainPose* prior, const MapMatchOptions& o,
                    const FramePoints* points_a, const FramePoints* points_b) {
-  MapMatch lines = MatchLines(lines_a, self_a, lines_b, self_b, prior, o);
+  const std::vector<Line> a = Prepare(lines_a, o), b = Prepare(lines_b, o);
+  MapMatch lines = MatchLines(a, self_a, b, self_b, prior, o);
   const bool open_to_points = lines.result == MapMatchResult::kAmbiguous &&
                               (lines.reason == MapMatchReason::kRepetitive ||
                                lines.reason == MapMatchReason::kRivalTransform) &&
@@ -702,8 +701,8 @@ MapMatch MatchMaps(const std::vector<MapLine>& lines_a, const SelfMatch& self_a,
                               points_a->Size() >= o.point_min_hits &&
                               points_b->Size() >= o.point_min_hits;
   if (!open_to_points) return lines;
-  MapMatch by_points = MatchByPoints(lines_a, self_a, lines_b, self_b, prior, o,
-                                     PointPlacements{points_a, points_b});
+  MapMatch by_points =
+      MatchByPoints(a, self_a, b, self_b, prior, o, PointPlacements{points_a, points_b});
   by_points.hypotheses += lines.hypotheses;
   if (by_points.result == MapMatchResult::kAccepted) return by_points;
   lines.hypotheses = by_points.hypotheses;
