@@ -299,6 +299,7 @@ TEST(LineEkfMapTest, ResetRobotPoseClearsCorrelation) {
 TEST(LineEkfMapTest, LinesAreCanonicalWithExtents) {
   LineEkfMap map(SimOptions());
   RunCorridor(map, 13, 60);
+  ASSERT_GE(map.Lines().size(), 2u);  // at least the corridor's two walls
   for (const MapLine& l : map.Lines()) {
     EXPECT_GE(l.rho, 0.0);
     EXPECT_GT(l.cov.determinant(), 0.0);

@@ -332,8 +332,10 @@ void ExpectConsistentPrefix(const StoredAtlas& a, int last) {
   }
 }
 
-// Writes logical batches forever, directly or through the writer thread; writes one byte to
-// ready_fd once the store is open; never returns.
+// Writes logical batches forever, directly or through the writer thread; writes "r" to
+// ready_fd once the store is open and, writing directly, "w" once kReportAfter batches are
+// committed; never returns.
+constexpr int kReportAfter = 25;
 [[noreturn]] void WriteUntilKilled(const std::string& dir, bool through_writer, int ready_fd) {
   AtlasStore store;
   if (!store.Open(dir).ok()) _exit(2);
@@ -350,18 +352,23 @@ void ExpectConsistentPrefix(const StoredAtlas& a, int last) {
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   }
+  int saved = 0;
   while (true) {
     if (!store.Save(Batch(++k), &error)) _exit(4);
+    if (++saved == kReportAfter && write(ready_fd, "w", 1) != 1) _exit(5);
   }
 }
 
 // Even rounds kill at a random moment after fork (opening and creating included); odd rounds at
 // a random moment after the child has started writing, half of those through the writer thread.
+// A last round kills only after the child has said it committed kReportAfter batches, so the
+// test has something to lose however slow the machine is.
 TEST_F(StoreDir, SigkillAtRandomMomentsLeavesAConsistentPrefix) {
   std::mt19937 rng(20261122);
   std::uniform_int_distribution<int> delay_ms(0, 60);
   int last = 0;
-  for (int round = 0; round < 16; ++round) {
+  for (int round = 0; round <= 16; ++round) {
+    const bool final_round = round == 16;
     int ready[2];
     ASSERT_EQ(pipe(ready), 0);
     const pid_t child = fork();
@@ -371,11 +378,18 @@ TEST_F(StoreDir, SigkillAtRandomMomentsLeavesAConsistentPrefix) {
       WriteUntilKilled(dir_.string(), round % 4 == 3, ready[1]);
     }
     close(ready[1]);
-    if (round % 2 == 1) {
+    if (round % 2 == 1 || final_round) {
       char byte;
       ASSERT_EQ(read(ready[0], &byte, 1), 1) << "the child could not open the store";
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    const int before = last;
+    if (final_round) {
+      char byte = 0;
+      ASSERT_EQ(read(ready[0], &byte, 1), 1) << "the child stopped writing";
+      ASSERT_EQ(byte, 'w');
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    }
     ASSERT_EQ(kill(child, SIGKILL), 0);
     close(ready[0]);
     int status = 0;
@@ -393,10 +407,12 @@ TEST_F(StoreDir, SigkillAtRandomMomentsLeavesAConsistentPrefix) {
     ASSERT_TRUE(store.Load(&a, &error)) << error;
     const int now = a.metadata.count("last") ? std::stoi(a.metadata["last"]) : 0;
     EXPECT_GE(now, last) << "a committed batch was lost";
+    if (final_round) {
+      EXPECT_GE(now, before + kReportAfter) << "a committed batch was lost";
+    }
     last = now;
     ExpectConsistentPrefix(a, last);
   }
-  EXPECT_GT(last, 20) << "the children wrote too little for the test to mean anything";
   RecordProperty("batches_committed", last);
 }
 
@@ -430,7 +446,9 @@ TEST_F(StoreDir, WriterSavesInOrderAndMergesWhenFull) {
 
 TEST_F(StoreDir, WriterKeepsAFailedBatchAndCountsTheError) {
   AtlasStore closed;  // never opened: every save fails
-  AtlasStoreWriter writer(&closed, 2, std::chrono::seconds(30));
+  // A retry interval of an hour: a Stop() that waited it out would hang the test until ctest's
+  // timeout, so returning at all is the check.
+  AtlasStoreWriter writer(&closed, 2, std::chrono::hours(1));
   writer.Start();
   writer.Submit(Batch(1));
   for (int i = 0; i < 500 && writer.Stats().errors == 0; ++i) {
@@ -441,9 +459,7 @@ TEST_F(StoreDir, WriterKeepsAFailedBatchAndCountsTheError) {
   EXPECT_EQ(s.saved, 0u);
   EXPECT_EQ(s.queued, 1u);  // kept for a retry
   EXPECT_THAT(s.last_error, HasSubstr("not open"));
-  const auto t0 = std::chrono::steady_clock::now();
   writer.Stop();  // does not wait out the retry interval
-  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
   EXPECT_EQ(writer.Submit(Batch(2)), SubmitResult::kStopped);
 }
 

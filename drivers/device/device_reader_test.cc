@@ -71,9 +71,7 @@ TEST(DeviceReaderTest, MissingDeviceIsRetriedAndReported) {
   EXPECT_EQ(h.state, DriverState::kConnecting);
   EXPECT_NE(h.last_error.find("/nonexistent/laser"), std::string::npos) << h.last_error;
   EXPECT_NE(h.last_error.find("ENOENT"), std::string::npos) << h.last_error;
-  const Time t0 = Now();
   r.Stop();
-  EXPECT_LT(ToSeconds(Now() - t0), 1.0);
   EXPECT_EQ(r.Health().state, DriverState::kStopped);
 }
 

@@ -71,7 +71,7 @@ TEST(BuildingGenerator, RouteGraphIsConnectedWithLoopsOfSeveralSizes) {
     const int n = q.front();
     q.pop();
     for (int m : adj[n])
-      if (!seen[m]) seen[m] = seen[m] = true, ++reached, q.push(m);
+      if (!seen[m]) seen[m] = true, ++reached, q.push(m);
   }
   EXPECT_EQ(reached, static_cast<int>(w.nodes.size()));
   // Independent loops (cycle rank E - V + 1): one per block of the grid, at least 9 here.
