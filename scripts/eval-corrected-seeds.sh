@@ -3,7 +3,9 @@
 # cannot tell a better atlas from luck: on aces the open revisit pairs ranged from 7 to 13 of 22
 # across seeds 1-10 with the same binary (docs/atlas.md, session 14). This runs
 # eval-corrected.sh once per seed (two at a time) and prints, per log, the revisit pairs more
-# than 0.5 m off summed over the seeds, their share, the worst seed, the map-match edges and
+# than 0.5 m off summed over the seeds, their share, the worst seed, how many pairs the atlas
+# joined (one frame, neighbouring frames, a path through a map-match edge) or left on a chain of
+# Genesis edges (with the open ones of each in brackets), the map-match edges and
 # false closures over all seeds, and per log the map-matching outcomes by reason summed over the
 # seeds (atlas-replay's "by reason" line: how many tries Condition 2 refused as repetitive, etc.).
 #
@@ -41,6 +43,7 @@ out, seeds = sys.argv[1], sys.argv[2:]
 logs = ["intel", "aces", "freiburg-079", "freiburg-101", "csail", "seattle"]
 pairs = {l: 0 for l in logs}
 opened = {l: [] for l in logs}
+joins = {l: [0, 0, 0, 0] for l in logs}  # joined, joined open, chain, chain open
 edges = false = gross = 0
 for s in seeds:
     text = open("%s/seed-%s.txt" % (out, s)).read().splitlines()
@@ -50,24 +53,35 @@ for s in seeds:
         if f[0] in pairs and len(f) >= 5:
             pairs[f[0]] += int(f[1])
             opened[f[0]].append((int(f[4]), s))
+            if len(f) >= 11:
+                joins[f[0]] = [j + int(v) for j, v in zip(joins[f[0]], f[7:11])]
     m = re.search(r"all logs: (\d+) map-match edges checked, (\d+) false closures .*, (\d+) gross",
                   next(l for l in text if l.startswith("all logs:")))
     edges += int(m.group(1))
     false += int(m.group(2))
     gross += int(m.group(3))
 print("corrected logs over seeds %s: revisit pairs more than 0.5 m off (open)" % " ".join(seeds))
-print("%-13s %13s %10s %7s %16s" % ("log", "revisit pairs", "open", "share", "worst seed"))
+print("(joined: the two poses share a frame, lie in neighbouring frames or are joined through a "
+      "map-match edge; chain: joined only along two or more Genesis or refined edges)")
+print("%-13s %13s %10s %7s %16s %14s %14s" % ("log", "revisit pairs", "open", "share",
+                                             "worst seed", "joined (open)", "chain (open)"))
 total_pairs = total_open = 0
+total_joins = [0, 0, 0, 0]
 for l in logs:
     o = sum(k for k, _ in opened[l])
     worst = max(opened[l], key=lambda t: t[0], default=(0, ""))
     share = 100.0 * o / pairs[l] if pairs[l] else 0.0
     where = "%10d (s%s)" % worst if worst[0] > 0 else "%10s" % "-"
-    print("%-13s %13d %10d %6.1f%% %s" % (l, pairs[l], o, share, where))
+    j = joins[l]
+    print("%-13s %13d %10d %6.1f%% %s %14s %14s" % (l, pairs[l], o, share, where,
+                                                    "%d (%d)" % (j[0], j[1]),
+                                                    "%d (%d)" % (j[2], j[3])))
     total_pairs += pairs[l]
     total_open += o
-print("%-13s %13d %10d %6.1f%%" % ("all", total_pairs, total_open,
-                                   100.0 * total_open / max(total_pairs, 1)))
+    total_joins = [a + b for a, b in zip(total_joins, j)]
+print("%-13s %13d %10d %6.1f%% %16s %14s %14s" % (
+    "all", total_pairs, total_open, 100.0 * total_open / max(total_pairs, 1), "",
+    "%d (%d)" % tuple(total_joins[:2]), "%d (%d)" % tuple(total_joins[2:])))
 print("map-match edges %d, false closures (chi2 3 dof > 14.16) %d, gross (> 0.5 m or 5 deg) %d"
       % (edges, false, gross))
 reasons = {l: {} for l in logs}

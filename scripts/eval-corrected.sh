@@ -7,7 +7,9 @@
 # (closures.tsv: chi-square 3 dof > 14.16 = false loop closure; per-axis 3 sigma and gross
 # errors also counted), and score the robot's returns (revisits: reference pose pairs <= 1.5 m
 # apart with >= 20 m of travel between them, composed along the atlas's Dijkstra path; "open"
-# = more than 0.5 m off). Also draws Fig. 7 (step time, dominant frame id) for one log.
+# = more than 0.5 m off; "joined" = the atlas closed the loop there: one frame, neighbouring
+# frames or a path through a map-match edge; "chain" = only along two or more Genesis edges).
+# Also draws Fig. 7 (step time, dominant frame id) for one log.
 #
 # Usage: scripts/eval-corrected.sh [OUT]      (default OUT: /tmp/atlas-eval-corrected)
 # Environment: ATLAS_BIN (directory of atlas-replay, atlas-eval, atlas-carmen, atlas-render;
@@ -139,22 +141,29 @@ for name in ["intel", "aces", "freiburg-079", "freiburg-101", "csail", "seattle"
     total["gross"] += s["gross_closures"]
 print("revisits: reference pose pairs <= 1.5 m apart with >= 20 m of travel between them; "
       "relation error composed along the atlas's Dijkstra path (dead reckoning beside it); "
-      "open: pairs more than 0.5 m off")
-print("%-13s %8s %9s %9s %6s %9s %9s" % ("log", "revisits", "atlas m", "atlas deg", "open",
-                                          "odo m", "odo deg"))
+      "open: pairs more than 0.5 m off; joined: the two poses share a frame, lie in "
+      "neighbouring frames or are joined through a map-match edge (the loop is closed there); "
+      "chain: joined only along two or more Genesis or refined edges")
+print("%-13s %8s %9s %9s %6s %9s %9s %7s %5s %6s %5s" % (
+    "log", "revisits", "atlas m", "atlas deg", "open", "odo m", "odo deg", "joined", "open",
+    "chain", "open"))
 for name in ["intel", "aces", "freiburg-079", "freiburg-101", "csail", "seattle"]:
     d = os.path.join(out, name)
     try:
         rv = json.load(open(os.path.join(d, "revisits.json")))
         ro = json.load(open(os.path.join(d, "revisits_odometry.json")))
-        errs = [float(l.split()[2]) for l in open(os.path.join(d, "revisits_errors.tsv"))
+        rows = [l.split() for l in open(os.path.join(d, "revisits_errors.tsv"))
                 if not l.startswith("#")]
+        errs = [float(r[2]) for r in rows]
     except (OSError, ValueError):
         print("%-13s %8s" % (name, "none"))
         continue
-    print("%-13s %8d %9.3f %9.2f %6d %9.3f %9.2f" % (
+    chain = [float(r[2]) for r in rows if r[4] == "chain"]
+    joined = [float(r[2]) for r in rows if r[4] != "chain"]
+    print("%-13s %8d %9.3f %9.2f %6d %9.3f %9.2f %7d %5d %6d %5d" % (
         name, rv["matched"], rv["translation_m"]["mean"], rv["rotation_deg"]["mean"],
-        sum(e > 0.5 for e in errs), ro["translation_m"]["mean"], ro["rotation_deg"]["mean"]))
+        sum(e > 0.5 for e in errs), ro["translation_m"]["mean"], ro["rotation_deg"]["mean"],
+        len(joined), sum(e > 0.5 for e in joined), len(chain), sum(e > 0.5 for e in chain)))
 print("all logs: %(checked)d map-match edges checked, %(chi2)d false closures (chi2), "
       "%(axis)d beyond 3 sigma on an axis, %(gross)d gross (> 0.5 m or 5 deg)" % total)
 PY

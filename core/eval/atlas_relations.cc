@@ -65,7 +65,21 @@ const Projection& DijkstraComposedPoses::ProjectionFrom(FrameId source) {
   return it->second;
 }
 
-std::optional<Pose2> DijkstraComposedPoses::operator()(Time t1, Time t2) {
+const char* FrameJoinName(FrameJoin join) {
+  switch (join) {
+    case FrameJoin::kSameFrame:
+      return "same";
+    case FrameJoin::kNeighbours:
+      return "neighbours";
+    case FrameJoin::kThroughMapMatch:
+      return "map-match";
+    case FrameJoin::kChain:
+      return "chain";
+  }
+  return "?";
+}
+
+std::optional<Pose2> DijkstraComposedPoses::operator()(Time t1, Time t2, FrameJoin* join) {
   const std::optional<size_t> i1 = poses_.IndexAt(t1, tolerance_);
   const std::optional<size_t> i2 = poses_.IndexAt(t2, tolerance_);
   if (!i1 || !i2) {
@@ -77,14 +91,26 @@ std::optional<Pose2> DijkstraComposedPoses::operator()(Time t1, Time t2) {
   const FrameId f1 = frame_[*i1], f2 = frame_[*i2];
   if (f1 == f2) {
     ++counts_.same_frame;
+    if (join != nullptr) *join = FrameJoin::kSameFrame;
     return Between(p1, p2);
   }
-  const ProjectedFrame* e = ProjectionFrom(f1).Find(f2);
+  const Projection& projection = ProjectionFrom(f1);
+  const ProjectedFrame* e = projection.Find(f2);
   if (e == nullptr) {
     ++counts_.unconnected;
     return std::nullopt;
   }
   ++counts_.cross_frame;
+  bool map_match = false;
+  for (const ProjectedFrame* on = e; on->parent != kNoFrame; on = projection.Find(on->parent))
+    map_match |= graph_.Edge(on->parent_edge).kind == EdgeKind::kMapMatch;
+  const FrameJoin j = map_match      ? FrameJoin::kThroughMapMatch
+                      : e->hops == 1 ? FrameJoin::kNeighbours
+                                     : FrameJoin::kChain;
+  ++(j == FrameJoin::kThroughMapMatch ? counts_.through_map_match
+     : j == FrameJoin::kNeighbours    ? counts_.neighbours
+                                      : counts_.chain);
+  if (join != nullptr) *join = j;
   return Between(p1, Compose(e->pose.mean, p2));
 }
 

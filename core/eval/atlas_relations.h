@@ -40,11 +40,21 @@ struct EdgeRow {
 // second edge between the same two frames.
 std::string BuildGraphFromEdges(int frame_count, std::span<const EdgeRow> edges, AtlasGraph* out);
 
+// How the atlas joins a relation's two poses: the path its composition follows. A loop is
+// closed where the robot returns (Fig. 7) when the return's poses share a frame, lie in
+// neighbouring frames, or are joined through a map-match edge (III-D); otherwise the relation
+// follows a chain of two or more Genesis (or refined) edges, and carries their drift.
+enum class FrameJoin { kSameFrame, kNeighbours, kThroughMapMatch, kChain };
+const char* FrameJoinName(FrameJoin join);  // "same", "neighbours", "map-match", "chain"
+
 struct CompositionCounts {
-  int64_t same_frame = 0;   // both poses in one frame
-  int64_t cross_frame = 0;  // composed along a Dijkstra path
-  int64_t unconnected = 0;  // frames not connected in the graph (no relative pose)
-  int64_t unmatched = 0;    // a stamp without a trajectory pose
+  int64_t same_frame = 0;         // both poses in one frame
+  int64_t cross_frame = 0;        // composed along a Dijkstra path: the three below
+  int64_t neighbours = 0;         // a path of one edge, not made by map-matching
+  int64_t through_map_match = 0;  // a path with an edge made by map-matching (kind kMapMatch)
+  int64_t chain = 0;              // two or more edges, none made by map-matching
+  int64_t unconnected = 0;        // frames not connected in the graph (no relative pose)
+  int64_t unmatched = 0;          // a stamp without a trajectory pose
 };
 
 class DijkstraComposedPoses {
@@ -54,7 +64,8 @@ class DijkstraComposedPoses {
                         Duration tolerance = kDefaultMatchTolerance);
 
   // The estimated pose at t2 in the frame of the estimated pose at t1, counted in Counts().
-  std::optional<Pose2> operator()(Time t1, Time t2);
+  // With `join`, also how the two poses are joined (set only when a pose is returned).
+  std::optional<Pose2> operator()(Time t1, Time t2, FrameJoin* join = nullptr);
   const CompositionCounts& Counts() const { return counts_; }
 
  private:

@@ -73,6 +73,42 @@ TEST(AtlasRelationsTest, ComposesAlongTheMinimumRhoPath) {
   EXPECT_EQ(lookup.Counts().unmatched, 1);
 }
 
+TEST(AtlasRelationsTest, SaysHowEachRelationsFramesAreJoined) {
+  // Fig. 2 (A-B Genesis, B-D map-match), and a chain of a Genesis and a refined edge beside it:
+  // E(4) - F(5) - G(6).
+  Fig2 fig;
+  fig.edges.push_back({4, 5, Edge(Pose2{5, 0, 0}, 0.01), EdgeKind::kGenesis});
+  fig.edges.push_back({5, 6, Edge(Pose2{5, 0, 0}, 0.01), EdgeKind::kRefined});
+  AtlasGraph graph;
+  ASSERT_EQ(BuildGraphFromEdges(7, fig.edges, &graph), "");
+  const Pose2 p{1, 1, 0.2};
+  std::vector<FramePose> rows = {{At(1.0), 0, p}, {At(2.0), 0, p}, {At(3.0), 1, p}, {At(4.0), 3, p},
+                                 {At(5.0), 4, p}, {At(6.0), 6, p}, {At(7.0), 5, p}};
+  DijkstraComposedPoses lookup(rows, graph);
+  const struct {
+    double t1, t2;
+    FrameJoin join;
+  } cases[] = {{1, 2, FrameJoin::kSameFrame},       {1, 3, FrameJoin::kNeighbours},
+               {1, 4, FrameJoin::kThroughMapMatch}, {4, 1, FrameJoin::kThroughMapMatch},
+               {3, 4, FrameJoin::kThroughMapMatch}, {5, 6, FrameJoin::kChain},
+               {6, 5, FrameJoin::kChain},           {6, 7, FrameJoin::kNeighbours}};
+  for (const auto& c : cases) {
+    FrameJoin join = FrameJoin::kSameFrame;
+    if (c.join == FrameJoin::kSameFrame) join = FrameJoin::kChain;  // must be overwritten
+    ASSERT_TRUE(lookup(At(c.t1), At(c.t2), &join).has_value()) << c.t1 << " " << c.t2;
+    EXPECT_EQ(FrameJoinName(join), std::string(FrameJoinName(c.join))) << c.t1 << " " << c.t2;
+  }
+  EXPECT_EQ(lookup.Counts().same_frame, 1);
+  EXPECT_EQ(lookup.Counts().cross_frame, 7);
+  EXPECT_EQ(lookup.Counts().neighbours, 2);
+  EXPECT_EQ(lookup.Counts().through_map_match, 3);
+  EXPECT_EQ(lookup.Counts().chain, 2);
+  // Unconnected frames (A and E) have no join.
+  FrameJoin untouched = FrameJoin::kChain;
+  EXPECT_FALSE(lookup(At(1.0), At(5.0), &untouched).has_value());
+  EXPECT_EQ(untouched, FrameJoin::kChain);
+}
+
 TEST(AtlasRelationsTest, TheWrongPathIsTakenWhenItIsTheCertainOne) {
   // Swap the uncertainties: the path via C (with its 1 m error) now has the smaller rho.
   const Fig2 fig(/*sigma_via_b=*/0.5, /*sigma_via_c=*/0.01);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,9 +69,10 @@ int Fail(const std::string& error) {
 
 // --errors FILE: one row per matched relation. Empty path: nothing written.
 std::string WriteRelationErrors(const std::string& path, const std::vector<Relation>& relations,
-                                const RelationsScore& score) {
+                                const RelationsScore& score,
+                                std::span<const FrameJoin> joins = {}) {
   if (path.empty()) return "";
-  const std::string text = FormatRelationErrors(relations, score);
+  const std::string text = FormatRelationErrors(relations, score, joins);
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) return "cannot write " + path + ": " + std::strerror(errno);
   const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
@@ -126,19 +128,31 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
   DijkstraComposedPoses lookup(std::move(trajectory.rows), graph, tolerance);
   const RelationsScore s =
       ScoreRelations(relations.relations, [&lookup](Time t1, Time t2) { return lookup(t1, t2); });
-  if (std::string e = WriteRelationErrors(errors_path, relations.relations, s); !e.empty())
+  std::vector<FrameJoin> joins;
+  joins.reserve(s.errors.size());
+  {
+    DijkstraComposedPoses join_lookup(rows, graph, tolerance);
+    for (const RelationError& e : s.errors) {
+      const Relation& r = relations.relations[e.relation];
+      joins.push_back(FrameJoin::kSameFrame);
+      join_lookup(r.t1, r.t2, &joins.back());
+    }
+  }
+  if (std::string e = WriteRelationErrors(errors_path, relations.relations, s, joins); !e.empty())
     return Fail(e);
   const CompositionCounts& c = lookup.Counts();
   if (json) {
     std::printf(
         "{\"estimate\": %s, \"relations\": %s, \"poses\": %zu, \"frames\": %d, \"edges\": %zu, "
-        "\"matched\": %lld, \"same_frame\": %lld, \"cross_frame\": %lld, \"unconnected\": %lld, "
+        "\"matched\": %lld, \"same_frame\": %lld, \"cross_frame\": %lld, \"neighbours\": %lld, "
+        "\"through_map_match\": %lld, \"chain\": %lld, \"unconnected\": %lld, "
         "\"unmatched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s, \"parts\": {",
         JsonString(dir).c_str(), JsonString(relations_path).c_str(), poses, frames,
         edges.rows.size(), static_cast<long long>(s.matched), static_cast<long long>(c.same_frame),
-        static_cast<long long>(c.cross_frame), static_cast<long long>(c.unconnected),
-        static_cast<long long>(c.unmatched), StatsJson(s.translation_m).c_str(),
-        StatsJson(s.rotation_deg).c_str());
+        static_cast<long long>(c.cross_frame), static_cast<long long>(c.neighbours),
+        static_cast<long long>(c.through_map_match), static_cast<long long>(c.chain),
+        static_cast<long long>(c.unconnected), static_cast<long long>(c.unmatched),
+        StatsJson(s.translation_m).c_str(), StatsJson(s.rotation_deg).c_str());
     for (int k = 0; k < 4; ++k)
       std::printf("%s\"%s\": {\"matched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s}",
                   k > 0 ? ", " : "", kPartName[k], static_cast<long long>(part_score[k].matched),
@@ -154,6 +168,11 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
         static_cast<long long>(s.matched), static_cast<long long>(s.matched + s.unmatched),
         static_cast<long long>(c.same_frame), static_cast<long long>(c.cross_frame),
         static_cast<long long>(c.unconnected), static_cast<long long>(c.unmatched));
+    std::printf(
+        "cross-frame joins: %lld neighbouring frames, %lld through a map-match edge, %lld along a "
+        "chain of two or more Genesis or refined edges\n",
+        static_cast<long long>(c.neighbours), static_cast<long long>(c.through_map_match),
+        static_cast<long long>(c.chain));
     std::fputs(FormatStats("translational", "m", s.translation_m).c_str(), stdout);
     std::fputs(FormatStats("rotational", "deg", s.rotation_deg).c_str(), stdout);
     for (int k = 0; k < 4; ++k) {

@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -177,13 +178,17 @@ std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::strin
 }
 
 std::string FormatRelationErrors(const std::vector<Relation>& relations,
-                                 const RelationsScore& score) {
-  std::string out = "# atlas-eval relation errors: t1 t2 translation_m rotation_deg\n";
-  char buf[128];
-  for (const RelationError& e : score.errors) {
+                                 const RelationsScore& score, std::span<const FrameJoin> joins) {
+  assert(joins.empty() || joins.size() == score.errors.size());
+  std::string out = "# atlas-eval relation errors: t1 t2 translation_m rotation_deg";
+  out += joins.empty() ? "\n" : " join\n";
+  char buf[160];
+  for (size_t i = 0; i < score.errors.size(); ++i) {
+    const RelationError& e = score.errors[i];
     const Relation& r = relations[e.relation];
-    std::snprintf(buf, sizeof buf, "%.6f %.6f %.6f %.6f\n", ToSeconds(r.t1), ToSeconds(r.t2),
-                  e.translation_m, e.rotation_deg);
+    std::snprintf(buf, sizeof buf, "%.6f %.6f %.6f %.6f%s%s\n", ToSeconds(r.t1), ToSeconds(r.t2),
+                  e.translation_m, e.rotation_deg, joins.empty() ? "" : " ",
+                  joins.empty() ? "" : FrameJoinName(joins[i]));
     out += buf;
   }
   return out;

@@ -9,6 +9,7 @@
 //                     the frame of the pose at t1 (z, roll and pitch are ignored).
 
 #include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -58,9 +59,11 @@ EdgeRowsParse ParseGraphEdges(std::string_view text, const std::string& source);
 std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::string& comment);
 
 // atlas-eval --errors: "t1 t2 translation_m rotation_deg" per matched relation of `score`
-// (scored from `relations`), in the relations' order, with a header comment.
+// (scored from `relations`), in the relations' order, with a header comment. With `joins` (one
+// per score.errors entry), a fifth column: how the atlas joins the two poses (FrameJoinName).
 std::string FormatRelationErrors(const std::vector<Relation>& relations,
-                                 const RelationsScore& score);
+                                 const RelationsScore& score,
+                                 std::span<const FrameJoin> joins = {});
 
 // The odometry pose at the stamp of every laser scan among `events` (time-ordered), linearly
 // interpolated between the odometry samples around it (heading along the shorter arc). Scans

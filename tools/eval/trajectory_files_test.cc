@@ -74,6 +74,12 @@ TEST(TrajectoryFilesTest, RelationErrorsOnePerMatchedRelationInOrder) {
             "# atlas-eval relation errors: t1 t2 translation_m rotation_deg\n"
             "10.000000 11.000000 0.300000 0.000000\n"
             "11.000000 12.000000 0.000000 5.729578\n");
+  // With how the atlas joined each relation's poses (atlas-eval --atlas): a fifth column.
+  const FrameJoin joins[] = {FrameJoin::kChain, FrameJoin::kThroughMapMatch};
+  EXPECT_EQ(FormatRelationErrors(relations, s, joins),
+            "# atlas-eval relation errors: t1 t2 translation_m rotation_deg join\n"
+            "10.000000 11.000000 0.300000 0.000000 chain\n"
+            "11.000000 12.000000 0.000000 5.729578 map-match\n");
 }
 
 LaserScan ScanAt(double s) {
