@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
+
+#include "daemon/config/config_loader.h"
+#include "daemon/config/config_schema.h"
 
 namespace atlas {
 namespace {
@@ -70,6 +75,98 @@ TEST(DaemonSetup, LaserTimeOffsetReachesTheLoop) {
   o.laser.time_offset_s = -0.12;
   EXPECT_EQ(ToStepLoopOptions(o).laser_time_offset, std::chrono::milliseconds(-120));
   EXPECT_EQ(ValidateDerivedOptions(o), "");
+}
+
+// Sets the n-th end of the schema's ranges (both ends of a range, every allowed value of a list
+// or enum, both booleans) and names its key; key stays empty past the last end. Strings keep
+// their defaults.
+class RangeEnd {
+ public:
+  explicit RangeEnd(int n) : n_(n) {}
+  std::string key;
+
+  template <typename F>
+  void Section(const char* name, F body) {
+    const std::string saved = prefix_;
+    prefix_ += std::string(name) + ".";
+    body();
+    prefix_ = saved;
+  }
+  void Bool(const char* k, bool& v) {
+    Try(k, v, false);
+    Try(k, v, true);
+  }
+  void Int(const char* k, int& v, int lo, int hi) {
+    Try(k, v, lo);
+    Try(k, v, hi);
+  }
+  void IntOneOf(const char* k, int& v, std::initializer_list<int> allowed) {
+    for (int a : allowed) Try(k, v, a);
+  }
+  void Double(const char* k, double& v, double lo, double hi) {
+    Try(k, v, lo);
+    Try(k, v, hi);
+  }
+  void DoubleOneOf(const char* k, double& v, std::initializer_list<double> allowed) {
+    for (double a : allowed) Try(k, v, a);
+  }
+  void String(const char*, std::string&, config::StringCheck) {}
+  template <typename E, size_t N>
+  void Enum(const char* k, E& v, const config::EnumNames<E, N>& names) {
+    for (const auto& entry : names) Try(k, v, entry.second);
+  }
+  void IntList(const char* k, std::vector<int>& v, int lo, int hi, size_t) {
+    Try(k, v, std::vector<int>{lo});
+    Try(k, v, std::vector<int>{hi});
+  }
+
+ private:
+  template <typename T, typename U>
+  void Try(const char* k, T& v, const U& x) {
+    if (i_++ != n_) return;
+    v = x;
+    key = prefix_ + k;
+  }
+
+  int n_;
+  int i_ = 0;
+  std::string prefix_;
+};
+
+// The configuration file's ranges (config_schema.h) lie within what the options derived from
+// them accept: a file that --check-config passes does not fail the atlas, local maps, step loop
+// or device readers at start-up. Each end of each range, alone, on a laser, a sonar and a
+// laser+sonar configuration (the sonar options are checked only with the sonar enabled).
+TEST(DaemonSetup, EveryEndOfEveryConfigRangePassesTheDerivedOptions) {
+  std::vector<DaemonOptions> bases(3);
+  bases[1].sonar.enabled = true;
+  bases[1].localmap.sensors = LocalMapSensors::kSonar;
+  bases[2].sonar.enabled = true;
+  bases[2].localmap.sensors = LocalMapSensors::kBoth;
+  int checked = 0;
+  for (const DaemonOptions& base : bases) {
+    ASSERT_EQ(ValidateDerivedOptions(base), "");
+    for (int n = 0;; ++n) {
+      DaemonOptions o = base;
+      RangeEnd end(n);
+      config::VisitOptions(end, o);
+      if (end.key.empty()) break;
+      if (!o.Validate().empty()) continue;  // refused by a cross-field rule of the file
+      ++checked;
+      EXPECT_EQ(ValidateDerivedOptions(o), "")
+          << end.key << " = " << FlattenOptions(o).at(end.key) << " passes the schema";
+    }
+  }
+  EXPECT_GT(checked, 3 * 100);
+  // What the audit found: the schema allowed 1 for both, the atlas needs 2.
+  DaemonOptions o;
+  o.atlas.max_hypotheses = 1;
+  EXPECT_NE(o.Validate(), "");
+  EXPECT_NE(ValidateDerivedOptions(o), "");
+  o = DaemonOptions{};
+  o.atlas.frames_examined_per_step = 1;
+  EXPECT_NE(o.Validate(), "");
+  EXPECT_NE(ValidateDerivedOptions(o), "");
 }
 
 }  // namespace

@@ -55,6 +55,10 @@ void VisitMount(V& v, MountPose& m) {
   v.Double("theta_deg", m.theta_deg, -180.0, 180.0);
 }
 
+// A range here must lie within what the options it feeds accept (core/atlas AtlasOptions,
+// core/localmap LocalMapOptions, core/sonar, core/scanmatch, the device readers: their
+// Validate()); e.g. atlas.max_hypotheses and atlas.frames_examined_per_step (projection_max_frames)
+// need at least 2. daemon/atlasd/daemon_setup_test.cc checks both ends of every range.
 template <typename V>
 void VisitOptions(V& v, DaemonOptions& o) {
   v.Section("laser", [&] {
@@ -121,13 +125,13 @@ void VisitOptions(V& v, DaemonOptions& o) {
   v.Section("atlas", [&] {
     AtlasParameters& a = o.atlas;
     v.Int("map_capacity", a.map_capacity, 1, 1000);
-    v.Int("max_hypotheses", a.max_hypotheses, 1, 64);
+    v.Int("max_hypotheses", a.max_hypotheses, 2, 64);
     v.Int("probation_steps", a.probation_steps, 1, 100000);
     v.Double("quality_alpha", a.quality_alpha, 0.0, 1.0);
     v.Double("max_sigma_x", a.max_sigma_x, 0.001, 100.0);
     v.Double("max_sigma_y", a.max_sigma_y, 0.001, 100.0);
     v.Double("max_sigma_theta", a.max_sigma_theta, 0.0001, 3.15);
-    v.Int("frames_examined_per_step", a.frames_examined_per_step, 1, 1000);
+    v.Int("frames_examined_per_step", a.frames_examined_per_step, 2, 1000);
     v.Int("match_candidates_per_step", a.match_candidates_per_step, 1, 1000);
   });
   v.Section("lcm", [&] {
