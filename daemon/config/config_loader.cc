@@ -1,9 +1,13 @@
 #include "daemon/config/config_loader.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstring>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -371,6 +375,48 @@ ConfigResult LoadFromTable(const toml::table& root, const std::string& file) {
   return result;
 }
 
+// Reads the whole of path into *text. Empty when it did, else what went wrong and what to do:
+// a directory, a device or a short read must not be taken for an empty file (which is valid
+// TOML and would run on the defaults).
+std::string ReadRegularFile(const std::string& path, std::string* text) {
+  const char* const kCheckPath =
+      " (check the path given to atlasd --config or --check-config, and that the user atlasd runs "
+      "as may read it)";
+  struct stat st;
+  if (stat(path.c_str(), &st) != 0) {
+    return "cannot open the configuration file: " + std::string(std::strerror(errno)) + kCheckPath;
+  }
+  if (S_ISDIR(st.st_mode)) {
+    return "is a directory, not a configuration file (give the path of the TOML file itself, e.g. "
+           "/etc/atlasd/atlasd.toml)";
+  }
+  if (!S_ISREG(st.st_mode)) {
+    return "is not a regular file (a device, FIFO or socket), not a configuration file (give the "
+           "path of the TOML file itself, e.g. /etc/atlasd/atlasd.toml)";
+  }
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    return "cannot open the configuration file: " + std::string(std::strerror(errno)) + kCheckPath;
+  }
+  text->clear();
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(fd, buffer, sizeof buffer);
+    if (n > 0) {
+      text->append(buffer, static_cast<size_t>(n));
+    } else if (n == 0) {
+      break;
+    } else if (errno != EINTR) {
+      const std::string why = std::strerror(errno);
+      close(fd);
+      return "reading the configuration file failed after " + std::to_string(text->size()) +
+             " bytes: " + why + "; nothing of it was used (check the file and its file system)";
+    }
+  }
+  close(fd);
+  return "";
+}
+
 }  // namespace
 
 namespace config {
@@ -522,16 +568,13 @@ ConfigResult LoadConfigString(std::string_view toml_text, const std::string& sou
 }
 
 ConfigResult LoadConfigFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string text;
+  if (std::string problem = ReadRegularFile(path, &text); !problem.empty()) {
     ConfigResult result;
-    result.errors.push_back(
-        ConfigError{path, 0, 0, "", "cannot open the configuration file (check the path)"});
+    result.errors.push_back(ConfigError{path, 0, 0, "", problem});
     return result;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return LoadConfigString(text.str(), path);
+  return LoadConfigString(text, path);
 }
 
 int CheckConfigCommand(const std::string& path, std::ostream& out, std::ostream& err) {

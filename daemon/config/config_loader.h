@@ -7,6 +7,9 @@
 //   errors. Every error names the key (dotted: "laser.baud") and the file, line and column of
 //   the offending key or value. All errors are collected, not only the first.
 // - A file that is not valid TOML gives one error at the position the parser stopped.
+// - A path that does not name a regular file (a directory, a device), or a file that cannot be
+//   opened or read to its end, gives one error without position that says why (with the
+//   errno text) and what to do; it is never taken for an empty file (which means defaults).
 // - Never throws; options are meaningful only when errors is empty.
 //
 // `atlasd --check-config FILE` and `atlas-check-config FILE` call CheckConfigCommand(), which

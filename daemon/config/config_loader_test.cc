@@ -2,8 +2,11 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -249,10 +252,38 @@ TEST(ConfigLoader, InvalidTomlGivesThePosition) {
   EXPECT_THAT(r.errors[0].message, HasSubstr("not valid TOML"));
 }
 
-TEST(ConfigLoader, MissingFileIsAnError) {
+TEST(ConfigLoader, MissingFileIsAnErrorWithTheErrnoText) {
   const ConfigResult r = LoadConfigFile("/nonexistent/atlasd.toml");
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_THAT(r.errors[0].ToString(), HasSubstr("/nonexistent/atlasd.toml: cannot open"));
+  EXPECT_THAT(r.errors[0].message, HasSubstr(std::strerror(ENOENT)));
+  EXPECT_THAT(r.errors[0].message, HasSubstr("check the path"));
+}
+
+// A directory reads as empty text, which is valid TOML: it must not run on the defaults.
+TEST(ConfigLoader, DirectoryIsRefused) {
+  const std::string dir = testing::TempDir();
+  const ConfigResult r = LoadConfigFile(dir);
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].file, dir);
+  EXPECT_THAT(r.errors[0].message, HasSubstr("is a directory, not a configuration file"));
+  EXPECT_THAT(r.errors[0].message, HasSubstr("give the path of the TOML file itself"));
+  std::ostringstream out, err;
+  EXPECT_EQ(CheckConfigCommand(dir, out, err), kExitConfigError);
+  EXPECT_THAT(err.str(), HasSubstr(dir + ": is a directory"));
+  EXPECT_EQ(out.str(), "");
+}
+
+// A read that fails (here at once: /proc/self/mem at offset 0 gives EIO) is not an empty file.
+TEST(ConfigLoader, ReadErrorIsRefusedWithTheErrnoText) {
+  struct stat st;
+  ASSERT_EQ(stat("/proc/self/mem", &st), 0);
+  ASSERT_TRUE(S_ISREG(st.st_mode));
+  const ConfigResult r = LoadConfigFile("/proc/self/mem");
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_THAT(r.errors[0].message,
+              HasSubstr("reading the configuration file failed after 0 bytes"));
+  EXPECT_THAT(r.errors[0].message, HasSubstr(std::strerror(EIO)));
 }
 
 TEST(ConfigLoader, ValidateChecksProgrammaticOptions) {
@@ -261,7 +292,7 @@ TEST(ConfigLoader, ValidateChecksProgrammaticOptions) {
   o.atlas.max_hypotheses = 0;
   o.lcm.channels.graph = "has space";
   const std::string v = o.Validate();
-  EXPECT_THAT(v, HasSubstr("atlas.max_hypotheses: must be between 1 and 64, got 0"));
+  EXPECT_THAT(v, HasSubstr("atlas.max_hypotheses: must be between 2 and 64, got 0"));
   EXPECT_THAT(v, HasSubstr("lcm.channels.graph: must be printable ASCII"));
 }
 
