@@ -66,6 +66,7 @@
 
 #include "atlas/health_t.hpp"
 #include "atlas/pose_t.hpp"
+#include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
 #include "daemon/config/config_loader.h"
 #include "drivers/fake/fake_agilex_base.h"
@@ -308,7 +309,7 @@ void BM_TelegramToPoseReceived(benchmark::State& state) {
     return;
   }
   const std::string config_path = std::string(ATLAS_SOURCE_DIR) + "/config/atlasd.toml";
-  ConfigResult config = LoadConfigFile(config_path);
+  ConfigResult config = LoadConfigFile(config_path, ValidateDerivedOptions);
   if (!config.ok()) {
     state.SkipWithError((config_path + ": " + config.errors.front().ToString()).c_str());
     return;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "daemon/atlasd/atlas_export.h"
+#include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
 #include "daemon/atlasd/replay.h"
 #include "daemon/config/config_loader.h"
@@ -75,7 +76,7 @@ int main(int argc, char** argv) {
     } else if (a == "--check-config") {
       std::string file;
       if (!value(&file)) return Usage("--check-config needs a FILE");
-      return atlas::CheckConfigCommand(file, std::cout, std::cerr);
+      return atlas::CheckConfigCommand(file, atlas::ValidateDerivedOptions, std::cout, std::cerr);
     } else if (a == "--config") {
       if (!value(&flags.config_path)) return Usage("--config needs a FILE");
     } else if (a == "--replay") {
@@ -101,7 +102,8 @@ int main(int argc, char** argv) {
   if (flags.config_path.empty())
     flags.config_path =
         Exists("/etc/atlasd/atlasd.toml") ? "/etc/atlasd/atlasd.toml" : "config/atlasd.toml";
-  atlas::ConfigResult config = atlas::LoadConfigFile(flags.config_path);
+  atlas::ConfigResult config =
+      atlas::LoadConfigFile(flags.config_path, atlas::ValidateDerivedOptions);
   if (!config.ok()) {
     for (const auto& e : config.errors) std::fprintf(stderr, "%s\n", e.ToString().c_str());
     std::fprintf(stderr, "atlasd: configuration %s rejected (exit 78)\n",

@@ -442,7 +442,7 @@ int LiveDaemon::Run() {
     const Time now = Now();
     if (sig == SIGTERM || sig == SIGINT) break;
     if (sig == SIGHUP) {
-      ConfigResult r = LoadConfigFile(flags_.config_path);
+      ConfigResult r = LoadConfigFile(flags_.config_path, ValidateDerivedOptions);
       if (!r.ok()) {
         std::fprintf(stderr, "atlasd: reload refused, the running configuration stays:\n");
         for (const auto& e : r.errors) std::fprintf(stderr, "  %s\n", e.ToString().c_str());

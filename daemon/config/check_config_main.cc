@@ -3,6 +3,7 @@
 #include <iostream>
 #include <string>
 
+#include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
 
 namespace {
@@ -31,7 +32,8 @@ int main(int argc, char** argv) {
     }
   }
   for (int i = 1; i < argc; ++i) {
-    if (atlas::CheckConfigCommand(argv[i], std::cout, std::cerr) != 0) {
+    if (atlas::CheckConfigCommand(argv[i], atlas::ValidateDerivedOptions, std::cout, std::cerr) !=
+        0) {
       status = atlas::kExitConfigError;
     }
   }

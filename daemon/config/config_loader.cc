@@ -5,6 +5,8 @@
 #include <toml++/toml.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <any>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -360,18 +362,112 @@ class Flattener {
   std::string prefix_;
 };
 
-ConfigResult LoadFromTable(const toml::table& root, const std::string& file) {
+// Visits the schema to copy one key's value from one DaemonOptions into another.
+class KeyCopier {
+ public:
+  explicit KeyCopier(std::string key) : key_(std::move(key)) {}
+
+  void Copy(const DaemonOptions& from, DaemonOptions* to) {
+    DaemonOptions source = from;  // the visitor takes mutable references; nothing is changed
+    taking_ = true;
+    config::VisitOptions(*this, source);
+    taking_ = false;
+    config::VisitOptions(*this, *to);
+  }
+
+  template <typename F>
+  void Section(const char* name, F body) {
+    const std::string saved = prefix_;
+    prefix_ = Join(prefix_, name);
+    body();
+    prefix_ = saved;
+  }
+  void Bool(const char* k, bool& v) { At(k, v); }
+  void Int(const char* k, int& v, int, int) { At(k, v); }
+  void IntOneOf(const char* k, int& v, std::initializer_list<int>) { At(k, v); }
+  void Double(const char* k, double& v, double, double) { At(k, v); }
+  void DoubleOneOf(const char* k, double& v, std::initializer_list<double>) { At(k, v); }
+  void String(const char* k, std::string& v, config::StringCheck) { At(k, v); }
+  template <typename E, size_t N>
+  void Enum(const char* k, E& v, const config::EnumNames<E, N>&) {
+    At(k, v);
+  }
+  void IntList(const char* k, std::vector<int>& v, int, int, size_t) { At(k, v); }
+
+ private:
+  template <typename T>
+  void At(const char* k, T& v) {
+    if (Join(prefix_, k) != key_) return;
+    if (taking_) {
+      value_ = v;
+    } else {
+      v = std::any_cast<T>(value_);
+    }
+  }
+
+  std::string key_;
+  std::string prefix_;
+  bool taking_ = true;
+  std::any value_;
+};
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) lines.push_back(line);
+  }
+  return lines;
+}
+
+// The keys of the file that cause problem (a line of derived(options)): those set to something
+// other than their default without which the problem goes away.
+std::vector<std::string> KeysCausing(const std::string& problem, const DaemonOptions& options,
+                                     const DerivedCheck& derived) {
+  const DaemonOptions defaults;
+  const std::map<std::string, std::string> given = FlattenOptions(options);
+  const std::map<std::string, std::string> plain = FlattenOptions(defaults);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : given) {
+    if (plain.at(key) == value) continue;
+    DaemonOptions without = options;
+    KeyCopier(key).Copy(defaults, &without);
+    const std::vector<std::string> left = Lines(derived(without));
+    if (std::find(left.begin(), left.end(), problem) == left.end()) keys.push_back(key);
+  }
+  return keys;
+}
+
+ConfigResult LoadFromTable(const toml::table& root, const std::string& file,
+                           const DerivedCheck& derived) {
   ConfigResult result;
   TomlReader reader(root, file, &result.errors);
   config::VisitOptions(reader, result.options);
   reader.Finish();
   if (!result.ok()) return result;  // cross-field rules only make sense on valid fields
-  config::CrossCheck(result.options, [&](const std::string& key, const std::string& message) {
+  const auto report = [&](const std::string& key, const std::string& message) {
     const toml::node_view<const toml::node> n = root.at_path(key);
     const toml::source_region where = n ? n.node()->source() : toml::source_region{};
     result.errors.push_back(ConfigError{file, static_cast<int>(where.begin.line),
                                         static_cast<int>(where.begin.column), key, message});
-  });
+  };
+  config::CrossCheck(result.options, report);
+  if (!result.ok() || !derived) return result;
+  // What the modules (atlas, local maps, loop, device readers) refuse although the file's own
+  // ranges allow it: named at the keys that cause it, else at the file.
+  for (const std::string& problem : Lines(derived(result.options))) {
+    const std::vector<std::string> keys = KeysCausing(problem, result.options, derived);
+    for (const std::string& key : keys) {
+      report(key, "refused by the module it configures (" + problem +
+                      "); choose another value (config/atlasd.toml gives each key's range)");
+    }
+    if (keys.empty()) {
+      result.errors.push_back(ConfigError{
+          file, 0, 0, "",
+          "refused by the modules it configures (" + problem +
+              "); no single key of the file causes it: check the keys the message names"});
+    }
+  }
   return result;
 }
 
@@ -554,10 +650,11 @@ std::string ConfigError::ToString() const {
   return s + message;
 }
 
-ConfigResult LoadConfigString(std::string_view toml_text, const std::string& source_name) {
+ConfigResult LoadConfigString(std::string_view toml_text, const std::string& source_name,
+                              const DerivedCheck& derived) {
   try {
     const toml::table root = toml::parse(toml_text, source_name);
-    return LoadFromTable(root, source_name);
+    return LoadFromTable(root, source_name, derived);
   } catch (const toml::parse_error& e) {
     ConfigResult result;
     result.errors.push_back(ConfigError{source_name, static_cast<int>(e.source().begin.line),
@@ -567,18 +664,19 @@ ConfigResult LoadConfigString(std::string_view toml_text, const std::string& sou
   }
 }
 
-ConfigResult LoadConfigFile(const std::string& path) {
+ConfigResult LoadConfigFile(const std::string& path, const DerivedCheck& derived) {
   std::string text;
   if (std::string problem = ReadRegularFile(path, &text); !problem.empty()) {
     ConfigResult result;
     result.errors.push_back(ConfigError{path, 0, 0, "", problem});
     return result;
   }
-  return LoadConfigString(text, path);
+  return LoadConfigString(text, path, derived);
 }
 
-int CheckConfigCommand(const std::string& path, std::ostream& out, std::ostream& err) {
-  const ConfigResult r = LoadConfigFile(path);
+int CheckConfigCommand(const std::string& path, const DerivedCheck& derived, std::ostream& out,
+                       std::ostream& err) {
+  const ConfigResult r = LoadConfigFile(path, derived);
   if (!r.ok()) {
     for (const ConfigError& e : r.errors) err << e.ToString() << "\n";
     err << path << ": " << r.errors.size() << " error(s); see config/atlasd.toml for every key\n";

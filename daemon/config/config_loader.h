@@ -5,7 +5,8 @@
 // - A key absent from the file keeps its default (daemon_options.h).
 // - Unknown keys or sections, wrong types, values out of range and broken cross-field rules are
 //   errors. Every error names the key (dotted: "laser.baud") and the file, line and column of
-//   the offending key or value. All errors are collected, not only the first.
+//   the offending key or value. All errors are collected, not only the first. With a
+//   DerivedCheck (below), what the modules refuse is an error too.
 // - A file that is not valid TOML gives one error at the position the parser stopped.
 // - A path that does not name a regular file (a directory, a device), or a file that cannot be
 //   opened or read to its end, gives one error without position that says why (with the
@@ -16,6 +17,7 @@
 // exits 78 (EX_CONFIG from <sysexits.h>) on any error; systemd's RestartPreventExitStatus=78
 // then stops restarting a daemon whose configuration is broken.
 
+#include <functional>
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -45,9 +47,19 @@ struct ConfigResult {
   bool ok() const { return errors.empty(); }
 };
 
-ConfigResult LoadConfigFile(const std::string& path);
+// The options atlasd's modules derive from DaemonOptions (the atlas, the local maps, the step
+// loop, the device readers) have their own Validate(). A DerivedCheck runs them all: empty when
+// they accept the options, else one problem per line. atlasd and atlas-check-config pass
+// ValidateDerivedOptions (daemon/atlasd/daemon_setup.h), so that a file the check accepts does
+// not fail at start-up or at a reload; an empty DerivedCheck checks the file's own rules only.
+// A derived problem is reported at each key of the file without which it goes away (keys set
+// to their default are not suspects), else once for the file.
+using DerivedCheck = std::function<std::string(const DaemonOptions&)>;
+
+ConfigResult LoadConfigFile(const std::string& path, const DerivedCheck& derived);
 // source_name is used as the file name in errors.
-ConfigResult LoadConfigString(std::string_view toml_text, const std::string& source_name);
+ConfigResult LoadConfigString(std::string_view toml_text, const std::string& source_name,
+                              const DerivedCheck& derived = {});
 
 // Every key with its value as text ("laser.baud" -> "500000"; enums by their file names), in
 // key order: for logging the effective configuration and for comparing two of them.
@@ -64,8 +76,9 @@ struct ReloadDiff {
 };
 ReloadDiff DiffForReload(const DaemonOptions& running, const DaemonOptions& loaded);
 
-// Loads path; prints each error on err (one per line) and returns kExitConfigError, or prints
-// "PATH: configuration is valid" on out and returns 0.
-int CheckConfigCommand(const std::string& path, std::ostream& out, std::ostream& err);
+// Loads path (LoadConfigFile); prints each error on err (one per line) and returns
+// kExitConfigError, or prints "PATH: configuration is valid" on out and returns 0.
+int CheckConfigCommand(const std::string& path, const DerivedCheck& derived, std::ostream& out,
+                       std::ostream& err);
 
 }  // namespace atlas

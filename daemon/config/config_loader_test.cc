@@ -12,6 +12,8 @@
 #include <map>
 #include <sstream>
 
+#include "daemon/atlasd/daemon_setup.h"
+
 namespace atlas {
 namespace {
 
@@ -45,7 +47,7 @@ TEST(ConfigLoader, EveryShippedFileIsValid) {
   const auto files = ShippedConfigFiles();
   ASSERT_FALSE(files.empty()) << "no config/*.toml found";
   for (const auto& f : files) {
-    const ConfigResult r = LoadConfigFile(f.string());
+    const ConfigResult r = LoadConfigFile(f.string(), ValidateDerivedOptions);
     for (const ConfigError& e : r.errors) ADD_FAILURE() << e.ToString();
     EXPECT_EQ(r.options.Validate(), "") << f;
   }
@@ -57,7 +59,7 @@ TEST(ConfigLoader, ShippedFileSetsEveryKeyToItsDefault) {
   for (const auto& [key, value] : Dump(DaemonOptions{})) {
     EXPECT_TRUE(root.at_path(key)) << key << " is not in " << path;
   }
-  const ConfigResult r = LoadConfigFile(path);
+  const ConfigResult r = LoadConfigFile(path, ValidateDerivedOptions);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(Dump(r.options), Dump(DaemonOptions{}))
       << "config/atlasd.toml says it shows the defaults of daemon_options.h";
@@ -253,7 +255,7 @@ TEST(ConfigLoader, InvalidTomlGivesThePosition) {
 }
 
 TEST(ConfigLoader, MissingFileIsAnErrorWithTheErrnoText) {
-  const ConfigResult r = LoadConfigFile("/nonexistent/atlasd.toml");
+  const ConfigResult r = LoadConfigFile("/nonexistent/atlasd.toml", ValidateDerivedOptions);
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_THAT(r.errors[0].ToString(), HasSubstr("/nonexistent/atlasd.toml: cannot open"));
   EXPECT_THAT(r.errors[0].message, HasSubstr(std::strerror(ENOENT)));
@@ -263,13 +265,13 @@ TEST(ConfigLoader, MissingFileIsAnErrorWithTheErrnoText) {
 // A directory reads as empty text, which is valid TOML: it must not run on the defaults.
 TEST(ConfigLoader, DirectoryIsRefused) {
   const std::string dir = testing::TempDir();
-  const ConfigResult r = LoadConfigFile(dir);
+  const ConfigResult r = LoadConfigFile(dir, ValidateDerivedOptions);
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_EQ(r.errors[0].file, dir);
   EXPECT_THAT(r.errors[0].message, HasSubstr("is a directory, not a configuration file"));
   EXPECT_THAT(r.errors[0].message, HasSubstr("give the path of the TOML file itself"));
   std::ostringstream out, err;
-  EXPECT_EQ(CheckConfigCommand(dir, out, err), kExitConfigError);
+  EXPECT_EQ(CheckConfigCommand(dir, ValidateDerivedOptions, out, err), kExitConfigError);
   EXPECT_THAT(err.str(), HasSubstr(dir + ": is a directory"));
   EXPECT_EQ(out.str(), "");
 }
@@ -279,7 +281,7 @@ TEST(ConfigLoader, ReadErrorIsRefusedWithTheErrnoText) {
   struct stat st;
   ASSERT_EQ(stat("/proc/self/mem", &st), 0);
   ASSERT_TRUE(S_ISREG(st.st_mode));
-  const ConfigResult r = LoadConfigFile("/proc/self/mem");
+  const ConfigResult r = LoadConfigFile("/proc/self/mem", ValidateDerivedOptions);
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_THAT(r.errors[0].message,
               HasSubstr("reading the configuration file failed after 0 bytes"));
@@ -338,12 +340,70 @@ TEST(ConfigLoader, CheckConfigCommandExits78AndNamesTheKey) {
   const std::string bad = (dir / "atlas_bad_config.toml").string();
   std::ofstream(bad) << "[loop]\nstep_budget_ms = 0\n";
   std::ostringstream out, err;
-  EXPECT_EQ(CheckConfigCommand(bad, out, err), kExitConfigError);
+  EXPECT_EQ(CheckConfigCommand(bad, ValidateDerivedOptions, out, err), kExitConfigError);
   EXPECT_THAT(err.str(), HasSubstr(bad + ":2:18: loop.step_budget_ms: must be between 0.1"));
   std::ostringstream out2, err2;
-  EXPECT_EQ(CheckConfigCommand(ATLAS_SOURCE_DIR "/config/atlasd.toml", out2, err2), 0);
+  EXPECT_EQ(CheckConfigCommand(ATLAS_SOURCE_DIR "/config/atlasd.toml", ValidateDerivedOptions, out2,
+                               err2),
+            0);
   EXPECT_THAT(out2.str(), HasSubstr("configuration is valid"));
   std::filesystem::remove(bad);
+}
+
+// The audit's file: atlas.max_hypotheses = 1 passed --check-config, and atlasd then exited 78
+// with "atlas: atlas: max_hypotheses must lie in [2, 64]" and neither file, line nor key.
+TEST(ConfigLoader, TooFewHypothesesOrFramesAreRefusedAtTheirKey) {
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir());
+  const std::string bad = (dir / "atlas_one_hypothesis.toml").string();
+  for (const std::string key : {"max_hypotheses", "frames_examined_per_step"}) {
+    std::ofstream(bad) << "[atlas]\nprobation_steps = 20\n" << key << " = 1\n";
+    const ConfigResult r = LoadConfigFile(bad, ValidateDerivedOptions);
+    ASSERT_EQ(r.errors.size(), 1u) << key;
+    EXPECT_EQ(r.errors[0].file, bad);
+    EXPECT_EQ(r.errors[0].line, 3);
+    EXPECT_EQ(r.errors[0].key, "atlas." + key);
+    EXPECT_THAT(r.errors[0].message, HasSubstr("must be between 2 and "));
+    std::ostringstream out, err;
+    EXPECT_EQ(CheckConfigCommand(bad, ValidateDerivedOptions, out, err), kExitConfigError);
+    EXPECT_THAT(err.str(), HasSubstr(bad + ":3:" + std::to_string(key.size() + 4) + ": atlas." +
+                                     key + ": must be between 2 and "));
+    EXPECT_EQ(out.str(), "");
+    // The lowest value the file allows is one the atlas accepts.
+    std::ofstream(bad) << "[atlas]\n" << key << " = 2\n";
+    std::ostringstream out2, err2;
+    EXPECT_EQ(CheckConfigCommand(bad, ValidateDerivedOptions, out2, err2), 0) << err2.str();
+  }
+  std::filesystem::remove(bad);
+}
+
+// What the modules refuse although the file's ranges allow it (a stand-in check here: odd
+// hypothesis counts, or both counts 7) is named at the keys that cause it, with their line.
+TEST(ConfigLoader, DerivedProblemsAreNamedAtTheKeysThatCauseThem) {
+  const DerivedCheck odd = [](const DaemonOptions& o) -> std::string {
+    return o.atlas.max_hypotheses % 2 != 0 ? "atlas: max_hypotheses must be even\n" : "";
+  };
+  const std::string text = "[laser]\nbaud = 38400\n[atlas]\nmap_capacity = 7\nmax_hypotheses = 7\n";
+  ExpectOneError(LoadConfigString(text, "test.toml", odd), "atlas.max_hypotheses", 5,
+                 "refused by the module it configures (atlas: max_hypotheses must be even)");
+  EXPECT_TRUE(LoadConfigString(text, "test.toml").ok()) << "no derived check: the file's rules";
+  const DerivedCheck both = [](const DaemonOptions& o) -> std::string {
+    return o.atlas.max_hypotheses == o.atlas.map_capacity ? "atlas: both 7\n" : "";
+  };
+  const ConfigResult r = LoadConfigString(text, "test.toml", both);
+  ASSERT_EQ(r.errors.size(), 2u);
+  EXPECT_EQ(r.errors[0].ToString(),
+            "test.toml:4:16: atlas.map_capacity: refused by the module it configures (atlas: both "
+            "7); choose another value (config/atlasd.toml gives each key's range)");
+  EXPECT_EQ(r.errors[1].key, "atlas.max_hypotheses");
+  EXPECT_EQ(r.errors[1].line, 5);
+  // A problem no key of the file causes is reported for the file.
+  const DerivedCheck always = [](const DaemonOptions&) -> std::string { return "loop: broken\n"; };
+  const ConfigResult f = LoadConfigString(text, "test.toml", always);
+  ASSERT_EQ(f.errors.size(), 1u);
+  EXPECT_EQ(f.errors[0].line, 0);
+  EXPECT_EQ(f.errors[0].key, "");
+  EXPECT_THAT(f.errors[0].ToString(), HasSubstr("test.toml: refused by the modules it configures "
+                                                "(loop: broken); no single key"));
 }
 
 }  // namespace

@@ -146,15 +146,11 @@ int Main(int argc, char** argv) {
   // --config first, so that the other options override what it sets.
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) != "--config") continue;
-    const ConfigResult config = LoadConfigFile(argv[i + 1]);
+    const ConfigResult config = LoadConfigFile(argv[i + 1], ValidateDerivedOptions);
     if (!config.ok()) {
       std::fprintf(stderr, "atlas-replay: configuration rejected:\n");
       for (const ConfigError& e : config.errors)
         std::fprintf(stderr, "  %s\n", e.ToString().c_str());
-      return kExitConfigError;
-    }
-    if (std::string e = ValidateDerivedOptions(config.options); !e.empty()) {
-      std::fprintf(stderr, "atlas-replay: configuration rejected:\n%s", e.c_str());
       return kExitConfigError;
     }
     options.mapper = ToMapperSettings(config.options);
