@@ -301,9 +301,7 @@ bool LiveDaemon::OpenStore() {
   const StoreOpenResult opened = store_.Open(options_.state.directory);
   std::fprintf(stderr, "atlasd: %s\n", opened.message.c_str());
   if (!opened.ok()) {
-    std::fprintf(stderr,
-                 "atlasd: warning: the atlas will NOT be saved (check state.directory and its "
-                 "permissions)\n");
+    std::fprintf(stderr, "atlasd: warning: the atlas will NOT be saved (the reason is above)\n");
     return false;
   }
   const ResumeResult resumed = ResumeFromStore(&store_, atlas_.get());

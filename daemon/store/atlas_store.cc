@@ -1,12 +1,16 @@
 #include "daemon/store/atlas_store.h"
 
+#include <pwd.h>
 #include <sqlite3.h>
+#include <unistd.h>
 
 #include <bit>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <vector>
 
 namespace atlas {
 namespace {
@@ -31,13 +35,32 @@ std::string UtcStamp() {
   return buf;
 }
 
+// Whether p exists; false with *error when that cannot be told (e.g. a directory on the way
+// that cannot be searched).
+bool Exists(const std::string& p, bool* exists, std::string* error) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(p, ec);
+  *exists = st.type() != fs::file_type::not_found;
+  if (ec && *exists) {
+    *error = "cannot access " + p + ": " + ec.message();
+    return false;
+  }
+  return true;
+}
+
 // Renames path (and its -wal, -shm companions) to path.<kind>-<UTC stamp>[-n]; never replaces
-// an existing file.
+// an existing file. When a companion cannot follow, what was renamed is renamed back, so that
+// the file is never separated from its write-ahead log.
 bool MoveAside(const std::string& path, const char* kind, std::string* moved_to,
                std::string* error) {
   const std::string base = path + "." + kind + "-" + UtcStamp();
   std::string target = base;
-  for (int n = 2; fs::exists(target) || fs::exists(target + "-wal"); ++n) {
+  for (int n = 2;; ++n) {
+    bool taken = false, taken_wal = false;
+    if (!Exists(target, &taken, error) || !Exists(target + "-wal", &taken_wal, error)) {
+      return false;
+    }
+    if (!taken && !taken_wal) break;
     target = base + "-" + std::to_string(n);
   }
   std::error_code ec;
@@ -46,17 +69,114 @@ bool MoveAside(const std::string& path, const char* kind, std::string* moved_to,
     *error = "cannot rename " + path + " to " + target + ": " + ec.message();
     return false;
   }
+  std::vector<std::string> moved = {""};
   for (const char* suffix : {"-wal", "-shm"}) {
-    if (fs::exists(path + suffix)) fs::rename(path + suffix, target + suffix, ec);
+    bool present = false;
+    std::string why;
+    if (Exists(path + suffix, &present, &why) && present) {
+      fs::rename(path + suffix, target + suffix, ec);
+      if (!ec) {
+        moved.push_back(suffix);
+        continue;
+      }
+      why = "cannot rename " + path + suffix + " to " + target + suffix + ": " + ec.message();
+    }
+    if (why.empty()) continue;
+    for (const std::string& s : moved) fs::rename(target + s, path + s, ec);
+    *error = why + " (the store was left where it was)";
+    return false;
   }
   *moved_to = target;
   return true;
 }
 
+bool IsCorruption(int code) {
+  return (code & 0xff) == SQLITE_CORRUPT || (code & 0xff) == SQLITE_NOTADB;
+}
+
+// The SQLite message and code of db's last error, with the system's error text when the
+// operating system refused something.
 std::string ErrorText(sqlite3* db) {
   if (db == nullptr) return "out of memory";
-  return std::string(sqlite3_errmsg(db)) + ", SQLite code " +
-         std::to_string(sqlite3_extended_errcode(db));
+  const int code = sqlite3_extended_errcode(db);
+  std::string text = std::string(sqlite3_errmsg(db)) + ", SQLite code " + std::to_string(code);
+  const int primary = code & 0xff;
+  const int sys = sqlite3_system_errno(db);
+  if (sys != 0 && (primary == SQLITE_CANTOPEN || primary == SQLITE_IOERR ||
+                   primary == SQLITE_PERM || primary == SQLITE_READONLY)) {
+    text += ": " + std::string(std::strerror(sys));
+  }
+  return text;
+}
+
+std::string RunningAs() {
+  const uid_t uid = geteuid();
+  passwd pw{};
+  passwd* found = nullptr;
+  char buf[1024];
+  if (getpwuid_r(uid, &pw, buf, sizeof(buf), &found) == 0 && found != nullptr) {
+    return "user " + std::string(found->pw_name) + " (uid " + std::to_string(uid) + ")";
+  }
+  return "uid " + std::to_string(uid);
+}
+
+// What to do about an SQLite error `code` on the store file `path`, in plain words.
+std::string WhatToDo(int code, const std::string& path) {
+  const std::string dir = fs::path(path).parent_path().string();
+  switch (code & 0xff) {
+    case SQLITE_CANTOPEN:
+    case SQLITE_PERM:
+    case SQLITE_READONLY:
+    case SQLITE_AUTH:
+      return "check the owner and mode of " + path + " (and of its -wal and -shm files) and of " +
+             dir + ": atlasd runs as " + RunningAs() + " and must be able to read and write them";
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+      return "another process holds the store locked (a second atlasd on the same "
+             "state.directory, or a tool that has it open): stop that process, then try again";
+    case SQLITE_IOERR:
+      return "the operating system reported an I/O error: check the disk and the kernel log "
+             "(dmesg), then try again";
+    case SQLITE_FULL:
+      return "the disk is full: free some space on it, then try again";
+    case SQLITE_NOMEM:
+      return "the process ran out of memory: free some, then try again";
+    default:
+      return "fix the cause, then try again";
+  }
+}
+
+// The message of a state directory that cannot be searched or created.
+std::string DirectoryProblem(const std::string& directory, const std::string& error) {
+  return "cannot access state.directory " + directory + ": " + error +
+         "; check the owner and mode of " + directory +
+         " and of the directories above it: " + "atlasd runs as " + RunningAs() +
+         " and must be able to search and write it";
+}
+
+// Finds the store file: *size is 0 when there is none. False with *error when that cannot be
+// told, or when path is something else than a regular file.
+bool FindStoreFile(const std::string& directory, const std::string& path, uintmax_t* size,
+                   std::string* error) {
+  *size = 0;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (st.type() == fs::file_type::not_found) return true;
+  if (ec) {
+    *error = DirectoryProblem(directory, ec.message());
+    return false;
+  }
+  if (st.type() != fs::file_type::regular) {
+    *error = path + " is not a regular file (a directory or a special file stands in its place)" +
+             "; it was left as it is: move it away, then try again";
+    return false;
+  }
+  *size = fs::file_size(path, ec);
+  if (ec) {
+    *error = DirectoryProblem(directory, ec.message());
+    return false;
+  }
+  return true;
 }
 
 constexpr const char* kSchema = R"sql(
@@ -141,6 +261,7 @@ void AtlasStore::Close() {
 bool AtlasStore::Exec(const char* sql, std::string* error) {
   char* msg = nullptr;
   if (sqlite3_exec(db_, sql, nullptr, nullptr, &msg) == SQLITE_OK) return true;
+  error_code_ = sqlite3_extended_errcode(db_);
   *error = msg != nullptr ? msg : ErrorText(db_);
   sqlite3_free(msg);
   return false;
@@ -150,33 +271,44 @@ bool AtlasStore::Exec(const char* sql, std::string* error) {
 // by a killed process may need recovery, which a read-only connection cannot do (SQLITE_READONLY
 // and its extended codes): then the check runs on a read-write connection that recovers the WAL
 // index, but does not checkpoint into the main file when it closes.
-AtlasStore::Check AtlasStore::CheckExisting(std::string* why, int* found_version) {
-  Check verdict = Check::kOurs;
+//
+// Only what shows that the file itself is bad makes it kNotOurs: SQLite finding it corrupt or not
+// a database, a failed integrity_check, a missing schema. Any other failure (the file cannot be
+// opened, is locked, an I/O error, no memory, ...) says nothing about the file: kUnreadable, with
+// the SQLite error in *why and its code in *code.
+AtlasStore::Check AtlasStore::CheckExisting(std::string* why, int* found_version, int* code) {
   for (const bool read_only : {true, false}) {
+    Check verdict = Check::kOurs;
+    std::string error;
     sqlite3* db = nullptr;
     int rc = sqlite3_open_v2(path_.c_str(), &db,
                              read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE, nullptr);
     if (rc == SQLITE_OK) {
       sqlite3_busy_timeout(db, 2000);
       if (!read_only) sqlite3_db_config(db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
-      rc = CheckConnection(db, why, found_version, &verdict);
+      rc = CheckConnection(db, why, found_version, &verdict, &error);
+    } else {
+      error = ErrorText(db);
     }
-    const std::string error = ErrorText(db);
     sqlite3_close(db);
     if (read_only && (rc & 0xff) == SQLITE_READONLY) continue;  // needs recovery: retry writable
-    if (rc != SQLITE_OK && verdict == Check::kOurs) {
-      *why = rc == SQLITE_NOTADB ? "it is not an SQLite database"
-                                 : "SQLite cannot read it (" + error + ")";
-      verdict = Check::kNotOurs;
+    if (rc == SQLITE_OK) return verdict;
+    *code = rc;
+    if (IsCorruption(rc)) {
+      *why = (rc & 0xff) == SQLITE_NOTADB ? "it is not an SQLite database"
+                                          : "SQLite finds it corrupt (" + error + ")";
+      return Check::kNotOurs;
     }
+    *why = error;
     break;
   }
-  return verdict;
+  return Check::kUnreadable;
 }
 
-// Runs integrity_check and reads schema_version; returns the SQLite code of a failure to read,
-// or SQLITE_OK with *verdict set.
-int AtlasStore::CheckConnection(sqlite3* db, std::string* why, int* found_version, Check* verdict) {
+// Runs integrity_check and reads schema_version; returns the SQLite code of a failure to read
+// (with *error saying what it was), or SQLITE_OK with *verdict set.
+int AtlasStore::CheckConnection(sqlite3* db, std::string* why, int* found_version, Check* verdict,
+                                std::string* error) {
   sqlite3_stmt* st = nullptr;
   int rc = sqlite3_prepare_v2(db, "PRAGMA integrity_check", -1, &st, nullptr);
   if (rc == SQLITE_OK) {
@@ -190,6 +322,7 @@ int AtlasStore::CheckConnection(sqlite3* db, std::string* why, int* found_versio
       rc = SQLITE_OK;
     }
   }
+  if (rc != SQLITE_OK) *error = ErrorText(db);
   sqlite3_finalize(st);
   if (rc != SQLITE_OK || *verdict != Check::kOurs) return rc;
 
@@ -199,6 +332,7 @@ int AtlasStore::CheckConnection(sqlite3* db, std::string* why, int* found_versio
   rc = sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master", -1, &st, nullptr);
   if (rc == SQLITE_OK) rc = sqlite3_step(st) == SQLITE_ROW ? SQLITE_OK : sqlite3_errcode(db);
   const bool no_tables = rc == SQLITE_OK && sqlite3_column_int(st, 0) == 0;
+  if (rc != SQLITE_OK) *error = ErrorText(db);
   sqlite3_finalize(st);
   if (rc != SQLITE_OK) return rc;
   if (no_tables) {
@@ -206,12 +340,16 @@ int AtlasStore::CheckConnection(sqlite3* db, std::string* why, int* found_versio
     return SQLITE_OK;
   }
 
+  // No such table (SQLITE_ERROR) or no row: not our schema. Any other failure is a failure to
+  // read, not a verdict on the file.
   st = nullptr;
-  if (sqlite3_prepare_v2(db, "SELECT version FROM schema_version", -1, &st, nullptr) != SQLITE_OK ||
-      sqlite3_step(st) != SQLITE_ROW) {
+  rc = sqlite3_prepare_v2(db, "SELECT version FROM schema_version", -1, &st, nullptr);
+  if (rc == SQLITE_OK) rc = sqlite3_step(st);
+  if (rc == SQLITE_ERROR || rc == SQLITE_DONE) {
     *why = "it has no schema_version: it is not an atlasd store";
     *verdict = Check::kNotOurs;
-  } else {
+    rc = SQLITE_OK;
+  } else if (rc == SQLITE_ROW) {
     *found_version = sqlite3_column_int(st, 0);
     if (*found_version > kSchemaVersion) {
       *why = "it was written by a newer atlasd (schema version " + std::to_string(*found_version) +
@@ -221,9 +359,12 @@ int AtlasStore::CheckConnection(sqlite3* db, std::string* why, int* found_versio
       *why = "its schema_version " + std::to_string(*found_version) + " is invalid";
       *verdict = Check::kNotOurs;
     }
+    rc = SQLITE_OK;
+  } else {
+    *error = ErrorText(db);
   }
   sqlite3_finalize(st);
-  return SQLITE_OK;
+  return rc;
 }
 
 bool AtlasStore::Configure(std::string* error) {
@@ -240,7 +381,9 @@ bool AtlasStore::CreateSchema(std::string* error) {
                 .c_str(),
             error) ||
       !Exec("COMMIT", error)) {
+    const int code = error_code_;
     Exec("ROLLBACK", &ignored);
+    error_code_ = code;
     return false;
   }
   return true;
@@ -258,6 +401,7 @@ bool AtlasStore::Prepare(std::string* error) {
        "UPDATE SET value = CAST(value AS INTEGER) + 1"}};
   for (const auto& [stmt, sql] : statements) {
     if (sqlite3_prepare_v2(db_, sql, -1, stmt, nullptr) != SQLITE_OK) {
+      error_code_ = sqlite3_extended_errcode(db_);
       *error = ErrorText(db_);
       return false;
     }
@@ -271,17 +415,29 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
   std::error_code ec;
   fs::create_directories(directory, ec);
   if (ec) {
-    result.message = "cannot create the state directory " + directory + ": " + ec.message();
+    result.message = "cannot create the state directory " + directory + ": " + ec.message() +
+                     "; check the owner and mode of the directories above it: atlasd runs as " +
+                     RunningAs();
     return result;
   }
   path_ = (fs::path(directory) / kFileName).string();
-  const bool existed = fs::exists(path_) && fs::file_size(path_, ec) > 0;
+  uintmax_t size = 0;
+  if (!FindStoreFile(directory, path_, &size, &result.message)) return result;
+  const bool existed = size > 0;
 
   result.status = existed ? StoreOpenStatus::kOpened : StoreOpenStatus::kCreated;
   if (existed) {
     std::string why;
     int version = 0;
-    const Check check = CheckExisting(&why, &version);
+    int code = SQLITE_OK;
+    const Check check = CheckExisting(&why, &version, &code);
+    if (check == Check::kUnreadable) {
+      result.status = StoreOpenStatus::kFailed;
+      result.message =
+          "cannot read the atlas store " + path_ + " (" + why +
+          "); it was left as it is (nothing moved or changed): " + WhatToDo(code, path_);
+      return result;
+    }
     if (check == Check::kEmpty) result.status = StoreOpenStatus::kCreated;
     if (check == Check::kNotOurs || check == Check::kNewer) {
       const char* kind = check == Check::kNewer ? "newer" : "corrupt";
@@ -301,13 +457,18 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
   }
 
   std::string error;
+  error_code_ = SQLITE_OK;
   if (sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
           SQLITE_OK ||
       !Configure(&error) || !CreateSchema(&error) || !Prepare(&error)) {
     if (error.empty()) error = ErrorText(db_);
+    int code = error_code_;
+    if (code == SQLITE_OK) code = db_ != nullptr ? sqlite3_extended_errcode(db_) : SQLITE_NOMEM;
     Close();
     result.status = StoreOpenStatus::kFailed;
-    result.message = "cannot open the atlas store " + path_ + ": " + error;
+    result.message =
+        "cannot open the atlas store " + path_ + ": " + error + "; " + WhatToDo(code, path_) +
+        (result.moved_to.empty() ? "" : " (the refused file is " + result.moved_to + ")");
     return result;
   }
   if (result.status == StoreOpenStatus::kOpened) {

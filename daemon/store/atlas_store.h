@@ -11,7 +11,11 @@
 //   schema_version is newer than kSchemaVersion is refused as newer. A refused file is never
 //   overwritten: it is renamed (with its -wal and -shm companions) to
 //   atlas.sqlite.<corrupt|newer>-YYYYMMDDTHHMMSSZ, the result says so in plain words, and the
-//   store starts empty in a fresh file.
+//   store starts empty in a fresh file. Only those verdicts on the file move it: any other
+//   failure to open or read it (permissions, a lock held by another process, an I/O error, no
+//   memory, a directory in its place, a state directory that cannot be searched) leaves
+//   everything as it is and fails (kFailed) with a message naming the file, the error and what
+//   to do.
 // - WAL journal, synchronous=NORMAL: a committed Save() survives kill -9 of the process
 //   (not necessarily a power cut, which may lose the last transactions but never corrupts).
 // - Save() writes one batch in one transaction: after a crash the store holds a prefix of the
@@ -73,7 +77,8 @@ enum class StoreOpenStatus {
   kCreated,            // no store yet: a new empty one
   kMovedAsideCorrupt,  // refused as corrupt, renamed; a new empty store is open
   kMovedAsideNewer,    // refused as written by a newer atlasd, renamed; a new empty store is open
-  kFailed,             // nothing is open (directory unusable, rename failed, ...)
+  kFailed,  // nothing is open (directory unusable, file unreadable or locked, rename failed, ...);
+            // nothing was moved unless moved_to says so
 };
 
 struct StoreOpenResult {
@@ -111,9 +116,10 @@ class AtlasStore {
   bool Load(StoredAtlas* out, std::string* error);
 
  private:
-  enum class Check { kOurs, kEmpty, kNotOurs, kNewer };
-  Check CheckExisting(std::string* why, int* found_version);
-  static int CheckConnection(sqlite3* db, std::string* why, int* found_version, Check* verdict);
+  enum class Check { kOurs, kEmpty, kNotOurs, kNewer, kUnreadable };
+  Check CheckExisting(std::string* why, int* found_version, int* code);
+  static int CheckConnection(sqlite3* db, std::string* why, int* found_version, Check* verdict,
+                             std::string* error);
   bool CreateSchema(std::string* error);
   bool Configure(std::string* error);
   bool Prepare(std::string* error);
@@ -121,6 +127,7 @@ class AtlasStore {
   void FinalizeStatements();
 
   sqlite3* db_ = nullptr;
+  int error_code_ = 0;  // extended SQLite code of the last failed Exec() or Prepare()
   std::string path_;
   sqlite3_stmt* upsert_frame_ = nullptr;
   sqlite3_stmt* upsert_edge_ = nullptr;

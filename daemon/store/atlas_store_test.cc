@@ -1,6 +1,7 @@
 #include "daemon/store/atlas_store.h"
 
 #include <gmock/gmock.h>
+#include <grp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sqlite3.h>
@@ -9,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <thread>
 
@@ -301,6 +303,175 @@ TEST_F(StoreDir, UnusableDirectoryFailsWithAMessage) {
   EXPECT_EQ(r.status, StoreOpenStatus::kFailed);
   EXPECT_THAT(r.message, HasSubstr("cannot create the state directory"));
   EXPECT_FALSE(store.is_open());
+}
+
+// Saves a few frames and closes the store (which checkpoints the WAL into the main file).
+void SaveFrames(const std::string& dir, int n) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir).ok());
+  AtlasSnapshot b;
+  for (int i = 0; i < n; ++i) b.frames.push_back({i, Blob(i, 0), 0});
+  std::string error;
+  ASSERT_TRUE(store.Save(b, &error)) << error;
+}
+
+// The names in dir, sorted: what was created, moved or left.
+std::vector<std::string> Names(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// What an Open() run in a child process returned. The child runs as nobody when the tests run
+// as root (root reads files whatever their mode), so that permission problems are real.
+struct ChildResult {
+  std::string skip;  // non-empty: the child could not set itself up
+  StoreOpenStatus status = StoreOpenStatus::kFailed;
+  std::string message;
+};
+
+ChildResult OpenInUnprivilegedChild(const fs::path& reach,
+                                    const std::function<StoreOpenResult(AtlasStore&)>& open) {
+  ChildResult out;
+  int fds[2];
+  if (pipe(fds) != 0) {
+    ADD_FAILURE() << "pipe failed";
+    return out;
+  }
+  const pid_t child = fork();
+  if (child == 0) {
+    close(fds[0]);
+    std::string reply;
+    if (geteuid() == 0 &&
+        (setgroups(0, nullptr) != 0 || setgid(65534) != 0 || setuid(65534) != 0)) {
+      reply = "Scannot become uid 65534";
+    } else if (access(reach.c_str(), X_OK) != 0) {
+      reply = "S" + std::to_string(geteuid()) + " cannot search " + reach.string();
+    } else {
+      try {
+        AtlasStore store;
+        const StoreOpenResult r = open(store);
+        reply = "R" + std::to_string(static_cast<int>(r.status)) + r.message;
+      } catch (const std::exception& e) {
+        reply = std::string("Ethrew ") + e.what();
+      }
+    }
+    const bool written = write(fds[1], reply.data(), reply.size()) == ssize_t(reply.size());
+    _exit(written ? 0 : 1);
+  }
+  close(fds[1]);
+  if (child < 0) {
+    close(fds[0]);
+    ADD_FAILURE() << "fork failed";
+    return out;
+  }
+  std::string reply;
+  char buf[4096];
+  ssize_t n;
+  while ((n = read(fds[0], buf, sizeof(buf))) > 0) reply.append(buf, n);
+  close(fds[0]);
+  int status = 0;
+  EXPECT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << "the child died (signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0) << ")";
+  if (reply.empty()) {
+    ADD_FAILURE() << "no reply from the child";
+  } else if (reply[0] == 'S') {
+    out.skip = reply.substr(1);
+  } else if (reply[0] == 'E') {
+    ADD_FAILURE() << "Open() " << reply.substr(1);
+  } else {
+    out.status = static_cast<StoreOpenStatus>(reply[1] - '0');
+    out.message = reply.substr(2);
+  }
+  return out;
+}
+
+// Defect of the audit: a healthy store that could not be opened was taken for corrupt and
+// moved aside. Now only a verdict on the file itself moves it.
+TEST_F(StoreDir, UnreadableFileIsReportedNotMovedAside) {
+  SaveFrames(dir_.string(), 3);
+  const std::string bytes = ReadFile(db());
+  const std::vector<std::string> before = Names(dir_);
+  fs::permissions(db(), fs::perms::none);
+  const ChildResult r =
+      OpenInUnprivilegedChild(dir_, [&](AtlasStore& s) { return s.Open(dir_.string()); });
+  fs::permissions(db(), fs::perms::owner_read | fs::perms::owner_write);
+  if (!r.skip.empty()) GTEST_SKIP() << r.skip;
+  EXPECT_EQ(r.status, StoreOpenStatus::kFailed) << r.message;
+  EXPECT_THAT(r.message, HasSubstr("cannot read the atlas store " + db()));
+  EXPECT_THAT(r.message, HasSubstr("Permission denied"));
+  EXPECT_THAT(r.message, HasSubstr("check the owner and mode of " + db()));
+  EXPECT_THAT(r.message, HasSubstr("nothing moved or changed"));
+  EXPECT_EQ(Names(dir_), before);
+  EXPECT_TRUE(ReadFile(db()) == bytes) << "the store file changed";
+  AtlasStore store;  // the owner can still open it, whole
+  ASSERT_EQ(store.Open(dir_.string()).status, StoreOpenStatus::kOpened);
+  StoredAtlas a;
+  std::string error;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  EXPECT_EQ(a.frames.size(), 3u);
+}
+
+// The same as root too: another process holds the store locked (SQLITE_BUSY).
+TEST_F(StoreDir, LockedStoreIsReportedNotMovedAside) {
+  SaveFrames(dir_.string(), 3);
+  const std::string bytes = ReadFile(db());
+  sqlite3* holder = nullptr;
+  ASSERT_EQ(sqlite3_open(db().c_str(), &holder), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(holder, "PRAGMA locking_mode=EXCLUSIVE; BEGIN EXCLUSIVE;", nullptr,
+                         nullptr, nullptr),
+            SQLITE_OK);
+  const std::vector<std::string> before = Names(dir_);
+  {
+    AtlasStore store;
+    const StoreOpenResult r = store.Open(dir_.string());
+    EXPECT_EQ(r.status, StoreOpenStatus::kFailed) << r.message;
+    EXPECT_FALSE(store.is_open());
+    EXPECT_TRUE(r.moved_to.empty());
+    EXPECT_THAT(r.message, HasSubstr("cannot read the atlas store " + db()));
+    EXPECT_THAT(r.message, HasSubstr("database is locked"));
+    EXPECT_THAT(r.message, HasSubstr("another process holds the store locked"));
+    EXPECT_EQ(Names(dir_), before);
+  }
+  ASSERT_EQ(sqlite3_exec(holder, "COMMIT", nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(holder);
+  EXPECT_TRUE(ReadFile(db()) == bytes) << "the store file changed";
+  AtlasStore store;
+  ASSERT_EQ(store.Open(dir_.string()).status, StoreOpenStatus::kOpened);
+  StoredAtlas a;
+  std::string error;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  EXPECT_EQ(a.frames.size(), 3u);
+}
+
+TEST_F(StoreDir, DirectoryInPlaceOfTheFileIsReportedNotMovedAside) {
+  fs::create_directories(dir_ / AtlasStore::kFileName);
+  std::ofstream(dir_ / AtlasStore::kFileName / "keep") << "x";
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  EXPECT_EQ(r.status, StoreOpenStatus::kFailed) << r.message;
+  EXPECT_THAT(r.message, HasSubstr(db() + " is not a regular file"));
+  EXPECT_EQ(Names(dir_), std::vector<std::string>{AtlasStore::kFileName});
+  EXPECT_EQ(ReadFile((dir_ / AtlasStore::kFileName / "keep").string()), "x");
+}
+
+// Defect of the audit: std::filesystem's throwing calls aborted the daemon ("terminate called
+// ... Permission denied") on a state directory it cannot search.
+TEST_F(StoreDir, UnsearchableDirectoryIsAnErrorNotAnException) {
+  SaveFrames(dir_.string(), 2);
+  const std::string bytes = ReadFile(db());
+  fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_write);  // no search (x)
+  const ChildResult r = OpenInUnprivilegedChild(
+      dir_.parent_path(), [&](AtlasStore& s) { return s.Open(dir_.string()); });
+  fs::permissions(dir_, fs::perms::owner_all);
+  if (!r.skip.empty()) GTEST_SKIP() << r.skip;
+  EXPECT_EQ(r.status, StoreOpenStatus::kFailed) << r.message;
+  EXPECT_THAT(r.message, HasSubstr("cannot access state.directory " + dir_.string() +
+                                   ": Permission denied; check the owner and mode of"));
+  EXPECT_EQ(Names(dir_), std::vector<std::string>{AtlasStore::kFileName});
+  EXPECT_TRUE(ReadFile(db()) == bytes) << "the store file changed";
 }
 
 // Logical batch k (1, 2, ...) adds frame k, edge (k-1, k) and rewrites frame 0 and
