@@ -97,6 +97,34 @@ TEST_F(CheckpointTest, ExportWritesOneGraphRowPerEdgeAndOneMapRowPerLine) {
   EXPECT_EQ(rows("points.tsv"), cells);
 }
 
+// --export-atlas only reads: a missing store is not created, a corrupt one is not moved aside.
+TEST_F(CheckpointTest, ExportOfAMissingOrCorruptStoreChangesNothing) {
+  DaemonOptions options;
+  options.state.directory = (dir_ / "state").string();
+  const fs::path out = dir_ / "out";
+  EXPECT_EQ(ExportSavedAtlas(options, out.string()), 1);
+  EXPECT_FALSE(fs::exists(options.state.directory));
+  EXPECT_FALSE(fs::exists(out));
+
+  fs::create_directories(options.state.directory);
+  const fs::path file = fs::path(options.state.directory) / AtlasStore::kFileName;
+  EXPECT_EQ(ExportSavedAtlas(options, out.string()), 1);
+  EXPECT_TRUE(fs::is_empty(options.state.directory));
+
+  const std::string garbage(5000, 'x');
+  std::ofstream(file, std::ios::binary) << garbage;
+  EXPECT_EQ(ExportSavedAtlas(options, out.string()), 1);
+  int names = 0;
+  for (const auto& e : fs::directory_iterator(options.state.directory)) {
+    EXPECT_EQ(e.path(), file);
+    ++names;
+  }
+  EXPECT_EQ(names, 1);
+  std::ifstream in(file, std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), garbage);
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(CheckpointTest, EmptyStoreLeavesTheAtlasEmpty) {
   AtlasStore store;
   ASSERT_TRUE(store.Open(dir_.string()).ok());

@@ -76,8 +76,10 @@ std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
 
 int ExportSavedAtlas(const DaemonOptions& options, const std::string& dir) {
   AtlasStore store;
-  const StoreOpenResult opened = store.Open(options.state.directory);
-  if (!opened.ok() || opened.status != StoreOpenStatus::kOpened) {
+  // Read-only: an export never creates, changes or moves the store (a corrupt one is only
+  // reported; atlasd moves it aside when it starts).
+  const StoreOpenResult opened = store.OpenReadOnly(options.state.directory);
+  if (!opened.ok()) {
     std::fprintf(stderr, "atlasd: --export-atlas: %s\n", opened.message.c_str());
     return 1;
   }

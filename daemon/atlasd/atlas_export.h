@@ -3,8 +3,9 @@
 // files of atlas-replay's output (docs/formats.md, "atlas-replay output"): graph.tsv (every
 // edge), maps.tsv (every frame's lines) and points.tsv (the laser points each frame keeps for
 // map-matching), so that atlas-render --atlas draws what the daemon built. trajectory.tsv comes
-// from the poses atlasd published (scripts/demo.sh records them). Reads the store only; refuses
-// (non-zero exit, message) a store it cannot resume from.
+// from the poses atlasd published (scripts/demo.sh records them). Reads the store only
+// (AtlasStore::OpenReadOnly: creates, changes and moves no file); refuses (non-zero exit,
+// message) a store that is missing, unreadable, corrupt, or one it cannot resume from.
 
 #include <string>
 

@@ -179,6 +179,24 @@ bool FindStoreFile(const std::string& directory, const std::string& path, uintma
   return true;
 }
 
+// A file: URI for path (RFC 3986 escapes for the characters SQLite's URI parser gives meaning
+// to).
+std::string FileUri(const std::string& path) {
+  std::string uri = path.starts_with('/') ? "file://" : "file:";
+  for (const char c : path) {
+    if (c == '%') {
+      uri += "%25";
+    } else if (c == '?') {
+      uri += "%3f";
+    } else if (c == '#') {
+      uri += "%23";
+    } else {
+      uri += c;
+    }
+  }
+  return uri;
+}
+
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);
 CREATE TABLE IF NOT EXISTS metadata (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -411,6 +429,7 @@ bool AtlasStore::Prepare(std::string* error) {
 
 StoreOpenResult AtlasStore::Open(const std::string& directory) {
   Close();
+  read_only_ = false;
   StoreOpenResult result;
   std::error_code ec;
   fs::create_directories(directory, ec);
@@ -479,10 +498,93 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
   return result;
 }
 
+StoreOpenResult AtlasStore::OpenReadOnly(const std::string& directory) {
+  Close();
+  read_only_ = true;
+  StoreOpenResult result;
+  path_ = (fs::path(directory) / kFileName).string();
+  std::error_code ec;
+  const fs::file_status dir = fs::status(directory, ec);
+  if (dir.type() == fs::file_type::not_found) {
+    result.message = "there is no saved atlas: the state directory " + directory +
+                     " does not exist (check state.directory in the configuration)";
+    return result;
+  }
+  if (ec) {
+    result.message = DirectoryProblem(directory, ec.message());
+    return result;
+  }
+  if (dir.type() != fs::file_type::directory) {
+    result.message = "state.directory " + directory + " is not a directory";
+    return result;
+  }
+  uintmax_t size = 0;
+  if (!FindStoreFile(directory, path_, &size, &result.message)) return result;
+  bool present = true;
+  if (size == 0 && (!Exists(path_, &present, &result.message) || !present)) {
+    if (!present) result.message = "there is no saved atlas: " + path_ + " does not exist";
+    return result;
+  }
+  if (size == 0) {
+    result.message = "there is no saved atlas: " + path_ + " is empty";
+    return result;
+  }
+  // Without a -wal file the last connection checkpointed everything into the main file, which
+  // is then read as an immutable file (a read-only connection would otherwise create -wal and
+  // -shm files, owned by whoever runs the export). With one, the existing -wal and -shm are
+  // read as they are (readonly_shm: the -shm is never created or written).
+  bool wal = false;
+  if (!Exists(path_ + "-wal", &wal, &result.message)) {
+    result.message = DirectoryProblem(directory, result.message);
+    return result;
+  }
+  const std::string uri = FileUri(path_) + (wal ? "?mode=ro&readonly_shm=1" : "?immutable=1");
+  Check verdict = Check::kOurs;
+  std::string why, error;
+  int version = 0;
+  int rc = sqlite3_open_v2(uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
+  if (rc == SQLITE_OK) {
+    sqlite3_busy_timeout(db_, 2000);
+    rc = CheckConnection(db_, &why, &version, &verdict, &error);
+  } else {
+    error = ErrorText(db_);
+  }
+  if (rc != SQLITE_OK) {
+    Close();
+    result.message = "cannot read the atlas store " + path_ + " (" + error + "); ";
+    if (IsCorruption(rc)) {
+      result.message += "SQLite finds it corrupt";
+    } else {
+      result.message += WhatToDo(rc, path_);
+      const int primary = rc & 0xff;
+      if (wal && (primary == SQLITE_CANTOPEN || primary == SQLITE_READONLY)) {
+        result.message += "; if they are readable, its write-ahead log " + path_ +
+                          "-wal needs a recovery that a read-only reader cannot do: start " +
+                          "atlasd once (it recovers the log), stop it, and export again";
+      }
+    }
+    result.message += " (nothing was changed)";
+    return result;
+  }
+  if (verdict != Check::kOurs) {
+    Close();
+    result.message =
+        verdict == Check::kEmpty
+            ? "there is no saved atlas: " + path_ + " holds no table yet"
+            : "refused the atlas store " + path_ + " because " + why +
+                  " (it was left as it is; atlasd moves such a file aside when it starts)";
+    return result;
+  }
+  result.status = StoreOpenStatus::kOpened;
+  result.message = "opened the atlas store " + path_ + " read-only";
+  return result;
+}
+
 StoreOpenResult AtlasStore::RefuseAndStartEmpty(bool newer, const std::string& why) {
   StoreOpenResult result;
-  if (db_ == nullptr) {
-    result.message = "the atlas store is not open";
+  if (db_ == nullptr || read_only_) {
+    result.message = db_ == nullptr ? "the atlas store is not open"
+                                    : "the atlas store " + path_ + " is open read-only";
     return result;
   }
   const std::string directory = fs::path(path_).parent_path().string();
@@ -504,8 +606,9 @@ StoreOpenResult AtlasStore::RefuseAndStartEmpty(bool newer, const std::string& w
 
 bool AtlasStore::Save(const AtlasSnapshot& batch, std::string* error) {
   error->clear();
-  if (db_ == nullptr) {
-    *error = "the atlas store is not open";
+  if (db_ == nullptr || read_only_) {
+    *error = db_ == nullptr ? "the atlas store is not open"
+                            : "the atlas store " + path_ + " is open read-only";
     return false;
   }
   if (!Exec("BEGIN IMMEDIATE", error)) return false;

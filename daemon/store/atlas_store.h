@@ -16,6 +16,8 @@
 //   memory, a directory in its place, a state directory that cannot be searched) leaves
 //   everything as it is and fails (kFailed) with a message naming the file, the error and what
 //   to do.
+// - OpenReadOnly() (atlasd --export-atlas) reads an existing store and never creates, changes
+//   or moves a file: a missing, unreadable, corrupt or newer store is only reported.
 // - WAL journal, synchronous=NORMAL: a committed Save() survives kill -9 of the process
 //   (not necessarily a power cut, which may lose the last transactions but never corrupts).
 // - Save() writes one batch in one transaction: after a crash the store holds a prefix of the
@@ -100,6 +102,11 @@ class AtlasStore {
 
   // Opens <directory>/atlas.sqlite, creating the directory when needed.
   StoreOpenResult Open(const std::string& directory);
+  // Opens an existing <directory>/atlas.sqlite for Load() only: kOpened, or kFailed with the
+  // reason (no directory or file, unreadable, corrupt, newer, empty). Creates, changes and moves
+  // nothing (not even -wal or -shm files: without a -wal file the main file is read as it is,
+  // with one the existing -wal and -shm are read, not created). Save() then fails.
+  StoreOpenResult OpenReadOnly(const std::string& directory);
   void Close();
   bool is_open() const { return db_ != nullptr; }
   const std::string& path() const { return path_; }
@@ -127,6 +134,7 @@ class AtlasStore {
   void FinalizeStatements();
 
   sqlite3* db_ = nullptr;
+  bool read_only_ = false;
   int error_code_ = 0;  // extended SQLite code of the last failed Exec() or Prepare()
   std::string path_;
   sqlite3_stmt* upsert_frame_ = nullptr;

@@ -465,13 +465,82 @@ TEST_F(StoreDir, UnsearchableDirectoryIsAnErrorNotAnException) {
   fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_write);  // no search (x)
   const ChildResult r = OpenInUnprivilegedChild(
       dir_.parent_path(), [&](AtlasStore& s) { return s.Open(dir_.string()); });
+  const ChildResult ro = OpenInUnprivilegedChild(
+      dir_.parent_path(), [&](AtlasStore& s) { return s.OpenReadOnly(dir_.string()); });
   fs::permissions(dir_, fs::perms::owner_all);
   if (!r.skip.empty()) GTEST_SKIP() << r.skip;
   EXPECT_EQ(r.status, StoreOpenStatus::kFailed) << r.message;
   EXPECT_THAT(r.message, HasSubstr("cannot access state.directory " + dir_.string() +
                                    ": Permission denied; check the owner and mode of"));
+  EXPECT_EQ(ro.status, StoreOpenStatus::kFailed) << ro.message;
+  EXPECT_THAT(ro.message, HasSubstr("Permission denied"));
   EXPECT_EQ(Names(dir_), std::vector<std::string>{AtlasStore::kFileName});
   EXPECT_TRUE(ReadFile(db()) == bytes) << "the store file changed";
+}
+
+TEST_F(StoreDir, ReadOnlyOpenReadsAndCreatesNothing) {
+  SaveFrames(dir_.string(), 4);
+  const std::vector<std::string> before = Names(dir_);
+  ASSERT_EQ(before, std::vector<std::string>{AtlasStore::kFileName});
+  const std::string bytes = ReadFile(db());
+  {
+    AtlasStore store;
+    const StoreOpenResult r = store.OpenReadOnly(dir_.string());
+    ASSERT_EQ(r.status, StoreOpenStatus::kOpened) << r.message;
+    StoredAtlas a;
+    std::string error;
+    ASSERT_TRUE(store.Load(&a, &error)) << error;
+    EXPECT_EQ(a.frames.size(), 4u);
+    EXPECT_FALSE(store.Save(Batch(1), &error));
+    EXPECT_THAT(error, HasSubstr("read-only"));
+    EXPECT_EQ(Names(dir_), before);  // no -wal, no -shm
+  }
+  EXPECT_EQ(Names(dir_), before);
+  EXPECT_TRUE(ReadFile(db()) == bytes) << "the store file changed";
+}
+
+// A store in use (or left by a killed writer) keeps its last commits in the -wal file: the
+// read-only open reads them, and creates nothing.
+TEST_F(StoreDir, ReadOnlyOpenReadsTheWriteAheadLogOfAStoreInUse) {
+  AtlasStore writer;
+  ASSERT_TRUE(writer.Open(dir_.string()).ok());
+  std::string error;
+  for (int k = 1; k <= 3; ++k) ASSERT_TRUE(writer.Save(Batch(k), &error)) << error;
+  const std::vector<std::string> before = Names(dir_);
+  ASSERT_EQ(before.size(), 3u);  // the file, -shm, -wal
+  AtlasStore reader;
+  const StoreOpenResult r = reader.OpenReadOnly(dir_.string());
+  ASSERT_EQ(r.status, StoreOpenStatus::kOpened) << r.message;
+  StoredAtlas a;
+  ASSERT_TRUE(reader.Load(&a, &error)) << error;
+  ExpectConsistentPrefix(a, 3);
+  EXPECT_EQ(Names(dir_), before);
+}
+
+TEST_F(StoreDir, ReadOnlyOpenOfNoStoreCreatesNothing) {
+  AtlasStore store;
+  StoreOpenResult r = store.OpenReadOnly(dir_.string());
+  EXPECT_EQ(r.status, StoreOpenStatus::kFailed);
+  EXPECT_THAT(r.message, HasSubstr("there is no saved atlas: the state directory"));
+  EXPECT_FALSE(fs::exists(dir_));
+  fs::create_directories(dir_);
+  r = store.OpenReadOnly(dir_.string());
+  EXPECT_EQ(r.status, StoreOpenStatus::kFailed);
+  EXPECT_THAT(r.message, HasSubstr("there is no saved atlas: " + db() + " does not exist"));
+  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_FALSE(store.is_open());
+}
+
+TEST_F(StoreDir, ReadOnlyOpenOfACorruptStoreMovesNothing) {
+  fs::create_directories(dir_);
+  const std::string garbage(5000, 'x');
+  std::ofstream(db(), std::ios::binary) << garbage;
+  AtlasStore store;
+  const StoreOpenResult r = store.OpenReadOnly(dir_.string());
+  EXPECT_EQ(r.status, StoreOpenStatus::kFailed);
+  EXPECT_THAT(r.message, HasSubstr("SQLite finds it corrupt"));
+  EXPECT_EQ(Names(dir_), std::vector<std::string>{AtlasStore::kFileName});
+  EXPECT_TRUE(ReadFile(db()) == garbage) << "the store file changed";
 }
 
 // Logical batch k (1, 2, ...) adds frame k, edge (k-1, k) and rewrites frame 0 and
