@@ -94,6 +94,7 @@ OdometryReaderOptions ToOdometryReaderOptions(const DaemonOptions& o) {
   r.odometry.track_width_m = o.odometry.track_width_m;
   r.odometry.max_speed_mps = o.odometry.max_speed_mps;
   r.odometry.slack_m = o.odometry.slack_m;
+  r.odometry.max_gap_s = o.odometry.max_gap_s;
   r.queue_capacity = static_cast<size_t>(o.odometry.queue_capacity);
   r.reconnect.realtime_priority = ReaderPriority(o);
   return r;

@@ -80,6 +80,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
     v.Double("track_width_m", d.track_width_m, 0.05, 5.0);
     v.Double("max_speed_mps", d.max_speed_mps, 0.1, 100.0);
     v.Double("slack_m", d.slack_m, 0.0, 10.0);
+    v.Double("max_gap_s", d.max_gap_s, 0.02, 10.0);
     v.Int("queue_capacity", d.queue_capacity, 1, 4096);
   });
   v.Section("sonar", [&] {

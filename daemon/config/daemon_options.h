@@ -51,6 +51,8 @@ struct OdometryOptions {
   double max_speed_mps = 3.0;
   // Allowance on top of max_speed_mps * dt, for stamp jitter and counter quantisation.
   double slack_m = 0.02;
+  // After a longer gap between frames the counters are re-referenced (a discontinuity).
+  double max_gap_s = 0.2;
   int queue_capacity = 64;  // odometry samples between the reader thread and the loop
 };
 

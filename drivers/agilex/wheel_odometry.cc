@@ -14,7 +14,23 @@ std::string WheelOdometryOptions::Validate() const {
     return "max_speed_mps must be a positive speed in m/s";
   }
   if (!(slack_m >= 0.0) || !std::isfinite(slack_m)) return "slack_m must be >= 0 metres";
+  if (!(max_gap_s > 0.0) || !std::isfinite(max_gap_s))
+    return "max_gap_s must be a positive number of seconds (a few 20 ms frame periods)";
   return {};
+}
+
+const char* ToString(DiscontinuityCause c) {
+  switch (c) {
+    case DiscontinuityCause::kNone:
+      return "none";
+    case DiscontinuityCause::kImplausibleChange:
+      return "counters jumped";
+    case DiscontinuityCause::kGap:
+      return "gap between frames";
+    case DiscontinuityCause::kRereferenced:
+      return "reconnected";
+  }
+  return "?";
 }
 
 WheelOdometryIntegrator::WheelOdometryIntegrator(const WheelOdometryOptions& options)
@@ -27,20 +43,28 @@ OdometryStep WheelOdometryIntegrator::Update(Time stamp, const WheelDistances& c
   const Time previous_stamp = last_stamp_;
   const WheelDistances previous = last_;
   const bool had_reference = have_reference_;
+  const bool rereference = rereference_;
   last_ = counters;
   last_stamp_ = stamp;
   have_reference_ = true;
+  rereference_ = false;
   sample_.stamp = stamp;
   if (!had_reference) return OdometryStep::kFirst;
+  auto discontinuity = [&](DiscontinuityCause cause) {
+    ++discontinuities_;
+    last_cause_ = cause;
+    return cause == DiscontinuityCause::kImplausibleChange ? OdometryStep::kDiscontinuity
+                                                           : OdometryStep::kRereferenced;
+  };
+  if (rereference) return discontinuity(DiscontinuityCause::kRereferenced);
 
   const double dt = std::max(0.0, ToSeconds(stamp - previous_stamp));
+  if (dt > options_.max_gap_s) return discontinuity(DiscontinuityCause::kGap);
   const double dl = (static_cast<int64_t>(counters.left_mm) - previous.left_mm) * 1e-3;
   const double dr = (static_cast<int64_t>(counters.right_mm) - previous.right_mm) * 1e-3;
   const double limit = options_.max_speed_mps * dt + options_.slack_m;
-  if (std::abs(dl) > limit || std::abs(dr) > limit) {
-    ++discontinuities_;
-    return OdometryStep::kDiscontinuity;
-  }
+  if (std::abs(dl) > limit || std::abs(dr) > limit)
+    return discontinuity(DiscontinuityCause::kImplausibleChange);
   const double ds = 0.5 * (dl + dr);
   const double dtheta = (dr - dl) / options_.track_width_m;
   Pose2 step;

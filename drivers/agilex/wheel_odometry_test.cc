@@ -29,6 +29,11 @@ TEST(WheelOdometryOptions, Validate) {
   o = {};
   o.slack_m = std::nan("");
   EXPECT_NE(o.Validate(), "");
+  o = {};
+  o.max_gap_s = 0.0;
+  EXPECT_NE(o.Validate().find("max_gap_s"), std::string::npos);
+  o.max_gap_s = INFINITY;
+  EXPECT_NE(o.Validate(), "");
 }
 
 TEST(WheelOdometry, FirstSampleIsTheReference) {
@@ -99,11 +104,12 @@ TEST(WheelOdometry, PlausibilityScalesWithElapsedTime) {
   // 20 ms allow 3 m/s * 0.02 s + 0.02 m = 0.08 m.
   EXPECT_EQ(odo.Update(Ms(20), {79, 79}), OdometryStep::kIntegrated);
   EXPECT_EQ(odo.Update(Ms(40), {79 + 81, 79}), OdometryStep::kDiscontinuity);
-  // After a one-second gap 2 m is plausible.
-  EXPECT_EQ(odo.Update(Ms(1040), {2160, 2079}), OdometryStep::kIntegrated);
+  // Within max_gap_s (0.2 s), 0.15 s allow 0.47 m.
+  EXPECT_EQ(odo.Update(Ms(190), {79 + 81 + 460, 79}), OdometryStep::kIntegrated);
   // A stamp that does not advance only allows the slack.
-  EXPECT_EQ(odo.Update(Ms(1040), {2170, 2089}), OdometryStep::kIntegrated);
-  EXPECT_EQ(odo.Update(Ms(1000), {2200, 2089}), OdometryStep::kDiscontinuity);
+  EXPECT_EQ(odo.Update(Ms(190), {630, 89}), OdometryStep::kIntegrated);
+  EXPECT_EQ(odo.Update(Ms(150), {660, 89}), OdometryStep::kDiscontinuity);
+  EXPECT_EQ(odo.last_cause(), DiscontinuityCause::kImplausibleChange);
   EXPECT_EQ(odo.discontinuities(), 2u);
   EXPECT_EQ(odo.updates(), 6u);
 }
@@ -113,10 +119,45 @@ TEST(WheelOdometry, RereferenceKeepsThePose) {
   odo.Update(Ms(0), {0, 0});
   odo.Update(Ms(20), {50, 50});
   odo.Rereference();
-  EXPECT_EQ(odo.Update(Ms(5000), {900000, -900000}), OdometryStep::kFirst);
+  // Even a change small enough to be motion is only the new reference.
+  EXPECT_EQ(odo.Update(Ms(40), {60, 60}), OdometryStep::kRereferenced);
+  EXPECT_EQ(odo.last_cause(), DiscontinuityCause::kRereferenced);
   EXPECT_NEAR(odo.sample().pose.x, 0.05, 1e-12);
-  EXPECT_EQ(odo.Update(Ms(5020), {900010, -899990}), OdometryStep::kIntegrated);
+  EXPECT_EQ(odo.Update(Ms(60), {70, 70}), OdometryStep::kIntegrated);
   EXPECT_NEAR(odo.sample().pose.x, 0.06, 1e-12);
+  EXPECT_EQ(odo.discontinuities(), 1u);
+}
+
+TEST(WheelOdometry, RereferenceBeforeAnyCountersIsNotADiscontinuity) {
+  WheelOdometryIntegrator odo(Options());
+  odo.Rereference();
+  EXPECT_EQ(odo.Update(Ms(0), {500, 500}), OdometryStep::kFirst);
+  EXPECT_EQ(odo.discontinuities(), 0u);
+}
+
+// A base reboot: 3 s without frames, then counters reset to near zero. The reset (2 m back) is
+// well within max_speed * 3 s, so only the gap gives it away: no pose jump, one discontinuity.
+TEST(WheelOdometry, RebootAfterAGapIsOneDiscontinuityNotAJump) {
+  WheelOdometryIntegrator odo(Options());
+  odo.Update(Ms(0), {2000, 2000});
+  ASSERT_EQ(odo.Update(Ms(20), {2040, 2040}), OdometryStep::kIntegrated);
+  const Pose2 before = odo.sample().pose;
+  EXPECT_EQ(odo.Update(Ms(3020), {3, 2}), OdometryStep::kRereferenced);
+  EXPECT_EQ(odo.last_cause(), DiscontinuityCause::kGap);
+  EXPECT_EQ(odo.sample().pose.x, before.x);
+  EXPECT_EQ(odo.sample().pose.y, before.y);
+  EXPECT_EQ(odo.sample().pose.theta, before.theta);
+  EXPECT_EQ(odo.Update(Ms(3040), {23, 22}), OdometryStep::kIntegrated);
+  EXPECT_NEAR(odo.sample().pose.x, 0.04 + 0.02, 1e-12);
+  EXPECT_EQ(odo.discontinuities(), 1u);
+  // The reader also re-references on the reconnect that the 3 s silence causes: still one.
+  WheelOdometryIntegrator reopened(Options());
+  reopened.Update(Ms(0), {2000, 2000});
+  reopened.Update(Ms(20), {2040, 2040});
+  reopened.Rereference();
+  EXPECT_EQ(reopened.Update(Ms(3020), {3, 2}), OdometryStep::kRereferenced);
+  EXPECT_NEAR(reopened.sample().pose.x, 0.04, 1e-12);
+  EXPECT_EQ(reopened.discontinuities(), 1u);
 }
 
 }  // namespace

@@ -1,10 +1,14 @@
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
+#include <filesystem>
 #include <thread>
 
+#include "drivers/agilex/agilex_messages.h"
 #include "drivers/device/laser_reader.h"
 #include "drivers/device/odometry_reader.h"
 #include "drivers/device/sonar_reader.h"
+#include "drivers/fake/fake_can_bus.h"
 #include "drivers/serial/pseudo_terminal.h"
 
 namespace atlas {
@@ -46,6 +50,9 @@ TEST(DeviceReaderTest, OptionsAreValidated) {
   EXPECT_EQ(o.Validate(), "");
   o.interface_name = "unix:";
   EXPECT_NE(o.Validate(), "");
+  o.interface_name = "can0";
+  o.odometry.max_gap_s = -1;
+  EXPECT_NE(o.Validate().find("max_gap_s"), std::string::npos);
 
   SonarReaderOptions s;
   s.device = "/dev/ttyS0";
@@ -113,6 +120,61 @@ TEST(DeviceReaderTest, SilentLineNamesTheRatesTried) {
   // It did probe at every rate: the last one it set on the line is the last probe rate.
   EXPECT_EQ(pty.SlaveBaud(), 19200);
   r.Stop();
+}
+
+// Waits (up to 5 s) until `done` holds.
+template <typename Done>
+bool WaitFor(Done&& done) {
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (!done() && Now() < deadline) std::this_thread::sleep_for(milliseconds(2));
+  return done();
+}
+
+// A base reboot seen by the reader: the bus goes away, comes back, and the counters start again
+// near zero. The reset (137 mm back) would be plausible motion over the reconnect's gap; the
+// re-reference on the reconnect skips it as one discontinuity and the pose goes on.
+TEST(DeviceReaderTest, OdometryReconnectReReferencesTheCounters) {
+  char tmp[] = "/tmp/atlas_odo_XXXXXX";
+  const std::string dir = mkdtemp(tmp);
+  const std::string path = dir + "/bus";
+  fake::FakeCanBus bus;
+  std::string err;
+  ASSERT_TRUE(bus.Listen(path, &err)) << err;
+  OdometryReaderOptions o;
+  o.interface_name = "unix:" + path;
+  o.reconnect.initial_backoff = milliseconds(100);
+  o.reconnect.max_backoff = milliseconds(200);
+  OdometryReader r(o);
+  r.Start();
+  ASSERT_TRUE(WaitFor([&] { return bus.AcceptPending() >= 1; }));
+  OdometrySample s, last;
+  int got = 0;
+  auto pop_until = [&](int n) {
+    return WaitFor([&] {
+      while (r.Pop(&s)) {
+        last = s;
+        ++got;
+      }
+      return got >= n;
+    });
+  };
+  for (int mm : {120, 130, 140}) bus.Broadcast(agilex::EncodeOdometry({mm, mm}));
+  ASSERT_TRUE(pop_until(3)) << got;  // the first frame is the reference, at the origin
+  EXPECT_NEAR(last.pose.x, 0.02, 1e-9);
+  bus.Close();
+  ASSERT_TRUE(WaitFor([&] { return r.Health().disconnects >= 1; }));
+  ASSERT_TRUE(bus.Listen(path, &err)) << err;
+  ASSERT_TRUE(WaitFor([&] { return bus.AcceptPending() >= 1; }));
+  for (int mm : {3, 13}) bus.Broadcast(agilex::EncodeOdometry({mm, mm}));
+  ASSERT_TRUE(pop_until(5)) << got;  // the new reference is a sample at the kept pose
+  EXPECT_NEAR(last.pose.x, 0.03, 1e-9);
+  const DriverHealth h = r.Health();
+  EXPECT_EQ(h.discontinuities, 1u);
+  EXPECT_EQ(h.reconnects, 1u);
+  EXPECT_NE(h.last_error.find("reconnected"), std::string::npos) << h.last_error;
+  r.Stop();
+  bus.Close();
+  std::filesystem::remove_all(dir);
 }
 
 TEST(DeviceReaderTest, StateNames) {

@@ -22,7 +22,13 @@ OdometryReader::OdometryReader(const OdometryReaderOptions& options)
 
 OdometryReader::~OdometryReader() { Stop(); }
 
-bool OdometryReader::Connect(std::string* error) { return transport_->Open(error); }
+bool OdometryReader::Connect(std::string* error) {
+  if (!transport_->Open(error)) return false;
+  // Whatever the base did meanwhile (a reboot resets its counters), the counters of the last
+  // session are no reference for this one.
+  integrator_.Rereference();
+  return true;
+}
 
 void OdometryReader::Disconnect() { transport_->Close(); }
 
@@ -33,12 +39,16 @@ void OdometryReader::HandleFrame(const CanReadResult& r) {
     case agilex::FrameKind::kOdometry: {
       health_.CountMessage(r.stamp);
       const agilex::OdometryStep step = integrator_.Update(r.stamp, m.odometry);
-      if (step == agilex::OdometryStep::kDiscontinuity) {
+      if (step == agilex::OdometryStep::kDiscontinuity ||
+          step == agilex::OdometryStep::kRereferenced) {
         health_.discontinuities.fetch_add(1, std::memory_order_relaxed);
-        health_.SetError("odometry counters jumped (left " + std::to_string(m.odometry.left_mm) +
-                         " mm, right " + std::to_string(m.odometry.right_mm) +
-                         " mm): step skipped");
-        return;
+        health_.SetError(std::string("odometry step skipped (") +
+                         agilex::ToString(integrator_.last_cause()) + ", counters left " +
+                         std::to_string(m.odometry.left_mm) + " mm, right " +
+                         std::to_string(m.odometry.right_mm) + " mm): re-referenced");
+        // An implausible frame is skipped; a new reference is a sample at the kept pose, as
+        // the first one is.
+        if (step == agilex::OdometryStep::kDiscontinuity) return;
       }
       queue_.Push(integrator_.sample());
       health_.samples.fetch_add(1, std::memory_order_relaxed);

@@ -5,8 +5,9 @@
 // counted), each integrated step pushed as an OdometrySample stamped at arrival (the kernel's
 // SO_TIMESTAMP on SocketCAN). 0x211 system state and CAN error frames are reported in the
 // health, never fatal. A closed bus / ENETDOWN ends the session; the transport is reopened
-// with capped backoff. The integrator keeps its counters across a reconnect, so the pose goes
-// on where it was (a base reboot shows up as one discontinuity).
+// with capped backoff. The pose goes on where it was across a reconnect, but the counters are
+// re-referenced on every (re)connect and after a gap longer than odometry.max_gap_s: a base
+// reboot (counters reset, seconds of silence) is one discontinuity, never a jump.
 
 #include <memory>
 #include <string>
