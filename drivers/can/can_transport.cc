@@ -44,6 +44,18 @@ std::string CanErrnoText(const std::string& name, int err) {
   }
 }
 
+CanRead CanReadStatusForErrno(int err) {
+  switch (err) {
+    case ENETDOWN:
+      return CanRead::kNetDown;
+    case ENODEV:
+    case ENXIO:
+      return CanRead::kGone;
+    default:
+      return CanRead::kError;
+  }
+}
+
 namespace {
 
 // Waits for input on fd; returns 1 ready, 0 timeout, -1 error (errno set).
@@ -120,8 +132,7 @@ class SocketCanTransport final : public CanTransport {
     const ssize_t n = k < 0 ? -1 : recvmsg(fd_, &msg, 0);
     if (n < 0) {
       if (errno == EAGAIN || errno == EINTR) return r;
-      r.status = (errno == ENETDOWN || errno == ENODEV || errno == ENXIO) ? CanRead::kGone
-                                                                          : CanRead::kError;
+      r.status = CanReadStatusForErrno(errno);
       r.error = CanErrnoText(name_, errno);
       return r;
     }

@@ -26,7 +26,9 @@ enum class CanRead {
   kFrame,     // a frame (possibly an error frame: frame.is_error())
   kTimeout,   // nothing within the timeout
   kBadFrame,  // a datagram that is not one struct can_frame (fake bus): counted, skipped
-  kGone,      // peer closed, ENETDOWN, ENODEV: close and reopen
+  kNetDown,   // SocketCAN ENETDOWN: the interface is down; the socket stays bound and frames
+              // come again once it is up (as candump keeps reading): report, keep reading
+  kGone,      // peer closed, ENODEV (interface removed): close and reopen
   kError,     // anything else
 };
 
@@ -59,6 +61,9 @@ inline const std::vector<uint32_t>& AgilexFilterIds() {
 
 // "unix:PATH" -> fake bus; anything else is a SocketCAN interface name. Never null.
 std::unique_ptr<CanTransport> MakeCanTransport(const std::string& interface_name);
+
+// What a SocketCAN read failing with errno `err` means (EAGAIN/EINTR aside).
+CanRead CanReadStatusForErrno(int err);
 
 // For tests: the plain-words text for errno `err` when opening `interface_name`.
 std::string CanErrnoText(const std::string& interface_name, int err);

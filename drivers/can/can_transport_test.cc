@@ -36,6 +36,15 @@ TEST(CanTransportTest, ErrnoTextsForTheInterfaceProblems) {
   EXPECT_NE(CanErrnoText("can0", ENETDOWN).find("ip link set can0 up"), std::string::npos);
 }
 
+// As candump: a down interface is waited for on the same socket (it stays bound and frames come
+// again once the interface is up); only a removed interface needs a reopen.
+TEST(CanTransportTest, ReadErrnosThatKeepTheSocketAndThatDoNot) {
+  EXPECT_EQ(CanReadStatusForErrno(ENETDOWN), CanRead::kNetDown);
+  EXPECT_EQ(CanReadStatusForErrno(ENODEV), CanRead::kGone);
+  EXPECT_EQ(CanReadStatusForErrno(ENXIO), CanRead::kGone);
+  EXPECT_EQ(CanReadStatusForErrno(EIO), CanRead::kError);
+}
+
 TEST(CanTransportTest, FakeBusWithNobodyListening) {
   auto t = MakeCanTransport("unix:/nonexistent/atlas_bus");
   std::string err;

@@ -82,11 +82,12 @@ void DeviceReader::Loop() {
       health_.SetError("SCHED_FIFO priority " + std::to_string(reconnect_.realtime_priority) +
                        " refused (" + strerror(err) + "): running at normal priority");
   }
-  int failures = 0;
+  int failures = 0;  // consecutive attempts without data (see BackoffDelay)
   bool ever_connected = false;
   while (!Stopping()) {
     health_.SetState(ever_connected ? DriverState::kReconnecting : DriverState::kConnecting);
     std::string error;
+    const uint64_t messages_before = health_.messages.load(std::memory_order_relaxed);
     if (!Connect(&error)) {
       Disconnect();
       ++failures;
@@ -96,12 +97,11 @@ void DeviceReader::Loop() {
         health_.SetState(DriverState::kFailed);
         return;
       }
-      if (!SleepFor(BackoffDelay(reconnect_, failures))) break;
+      if (!BackoffSleep(BackoffDelay(reconnect_, failures))) break;
       continue;
     }
     if (ever_connected) health_.reconnects.fetch_add(1, std::memory_order_relaxed);
     ever_connected = true;
-    failures = 0;
     last_data_ = Time{};
     stalled_ = false;
     health_.SetState(DriverState::kRunning);
@@ -111,10 +111,11 @@ void DeviceReader::Loop() {
     health_.disconnects.fetch_add(1, std::memory_order_relaxed);
     health_.SetError(error);
     health_.SetState(DriverState::kReconnecting);
-    // The first reopen is immediate only after a backoff step: a device that closes at once
-    // after every open must not make us spin.
+    // Only a session that delivered data starts the backoff again from initial_backoff; one
+    // that opened and died at once is a failure like a failed open, so the backoff grows.
+    if (health_.messages.load(std::memory_order_relaxed) > messages_before) failures = 0;
     ++failures;
-    if (!SleepFor(BackoffDelay(reconnect_, failures))) break;
+    if (!BackoffSleep(BackoffDelay(reconnect_, failures))) break;
   }
   health_.SetState(DriverState::kStopped);
 }

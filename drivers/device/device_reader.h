@@ -26,7 +26,9 @@ namespace atlas {
 struct ReconnectOptions {
   Duration initial_backoff = std::chrono::milliseconds(100);
   Duration max_backoff = std::chrono::seconds(2);
-  int max_attempts = 0;  // consecutive failed attempts before kFailed; 0 = never give up
+  // Consecutive attempts that brought no data (failed opens, and sessions that ended before a
+  // single message was decoded) at which a failed open gives up with kFailed; 0 = never.
+  int max_attempts = 0;
   // A connected device silent for this long is stalled (counted once per silence) ...
   Duration stall_timeout = std::chrono::milliseconds(1000);
   // ... and after this long it is reopened (a power-cycled device needs its start-up again).
@@ -39,6 +41,9 @@ struct ReconnectOptions {
 };
 
 // Backoff after `failures` consecutive failures (1, 2, ...): initial * 2^(failures-1), capped.
+// A failure is a failed open or a session that decoded no message (a device that opens and
+// dies at once, e.g. SocketCAN on a down interface, must not be reopened at the initial rate
+// forever); only a session that delivered data resets the count.
 Duration BackoffDelay(const ReconnectOptions& options, int failures);
 
 class DeviceReader {
@@ -68,6 +73,8 @@ class DeviceReader {
   bool Stopping() const { return stop_.load(std::memory_order_acquire); }
   // Interruptible sleep; false if stopped meanwhile.
   bool SleepFor(Duration d);
+  // The sleep between reconnect attempts (SleepFor; tests record the delays).
+  virtual bool BackoffSleep(Duration d) { return SleepFor(d); }
   // Silence bookkeeping for ReadUntilGone: call on every read with or without data. Returns
   // true when the silence has lasted reopen_after_silence (the session should end as gone).
   bool TrackSilence(bool got_data, Time now);

@@ -2,7 +2,9 @@
 #include <stdlib.h>
 
 #include <filesystem>
+#include <mutex>
 #include <thread>
+#include <vector>
 
 #include "drivers/agilex/agilex_messages.h"
 #include "drivers/device/laser_reader.h"
@@ -59,6 +61,67 @@ TEST(DeviceReaderTest, OptionsAreValidated) {
   EXPECT_EQ(s.Validate(), "");
   s.pulse_period = std::chrono::seconds(3);
   EXPECT_NE(s.Validate().find("watchdog"), std::string::npos);
+}
+
+// A device that opens and dies at once (SocketCAN on a down interface: bind succeeds, the
+// first read gives ENETDOWN), except in session `deliver_in`, which decodes one message. The
+// backoff delays the reader asks for are recorded instead of slept (nothing here is timed).
+class FlappingDevice final : public DeviceReader {
+ public:
+  FlappingDevice(const ReconnectOptions& o, int deliver_in)
+      : DeviceReader("flapping", o), deliver_in_(deliver_in) {}
+  ~FlappingDevice() override { Stop(); }
+  std::vector<Duration> delays() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return delays_;
+  }
+
+ protected:
+  bool Connect(std::string*) override {
+    ++sessions_;
+    return true;
+  }
+  SessionEnd ReadUntilGone(std::string* error) override {
+    if (sessions_ == deliver_in_) health_.CountMessage(Now());
+    *error = "CAN can0: interface is down (ENETDOWN)";
+    return SessionEnd::kGone;
+  }
+  void Disconnect() override {}
+  uint64_t QueueDrops() const override { return 0; }
+  bool BackoffSleep(Duration d) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    delays_.push_back(d);
+    const bool enough = delays_.size() >= 8;
+    lock.unlock();
+    return enough ? SleepFor(std::chrono::hours(1)) : !Stopping();  // Stop() interrupts
+  }
+
+ private:
+  const int deliver_in_;
+  int sessions_ = 0;
+  mutable std::mutex mutex_;
+  std::vector<Duration> delays_;
+};
+
+TEST(DeviceReaderTest, BackoffGrowsWhileSessionsBringNoData) {
+  ReconnectOptions o;
+  o.initial_backoff = milliseconds(5);
+  o.max_backoff = milliseconds(80);
+  FlappingDevice d(o, /*deliver_in=*/4);
+  d.Start();
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (d.delays().size() < 8 && Now() < deadline) std::this_thread::sleep_for(milliseconds(1));
+  d.Stop();
+  // Sessions 1-3 bring nothing: 5, 10, 20 ms; session 4 decodes a message, so the count starts
+  // again: 5; then 10, 20, 40 and the cap, 80.
+  const std::vector<Duration> want = {milliseconds(5),  milliseconds(10), milliseconds(20),
+                                      milliseconds(5),  milliseconds(10), milliseconds(20),
+                                      milliseconds(40), milliseconds(80)};
+  EXPECT_EQ(d.delays(), want);
+  const DriverHealth h = d.Health();
+  EXPECT_EQ(h.connect_failures, 0u);
+  EXPECT_EQ(h.disconnects, 8u);
+  EXPECT_EQ(h.messages, 1u);
 }
 
 // A device that is not there: the reader keeps trying with backoff, says why, and stops

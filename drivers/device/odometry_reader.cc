@@ -94,6 +94,12 @@ DeviceReader::SessionEnd OdometryReader::ReadUntilGone(std::string* error) {
         health_.bad_messages.fetch_add(1, std::memory_order_relaxed);
         health_.SetError(r.error);
         break;
+      case CanRead::kNetDown:
+        // The socket stays bound to the interface: frames come again once it is up. Said in
+        // the health; the silence rule below still reopens after reopen_after_silence, with
+        // a backoff that grows while no frame comes (DeviceReader).
+        health_.SetError(r.error + "; waiting for it to come up");
+        break;
       case CanRead::kGone:
       case CanRead::kError:
         *error = r.error;
