@@ -61,6 +61,14 @@ TEST(DeviceReaderTest, OptionsAreValidated) {
   EXPECT_EQ(s.Validate(), "");
   s.pulse_period = std::chrono::seconds(3);
   EXPECT_NE(s.Validate().find("watchdog"), std::string::npos);
+  // A 1 s period is sent on the next read turn, after the second is up.
+  s.pulse_period = std::chrono::seconds(1);
+  EXPECT_NE(s.Validate().find("watchdog"), std::string::npos);
+  s.pulse_period = std::chrono::milliseconds(850);
+  s.truncation_gap = std::chrono::milliseconds(200);
+  EXPECT_NE(s.Validate().find("watchdog"), std::string::npos);
+  s.truncation_gap = std::chrono::milliseconds(100);
+  EXPECT_EQ(s.Validate(), "");
 }
 
 // A device that opens and dies at once (SocketCAN on a down interface: bind succeeds, the

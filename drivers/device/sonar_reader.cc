@@ -10,10 +10,15 @@ std::string SonarReaderOptions::Validate() const {
   for (int r : probe_rates)
     if (!IsSupportedBaud(r)) return "sonar " + device + ": bad probe rate " + std::to_string(r);
   if (std::string e = sonar.Validate(); !e.empty()) return "sonar " + device + ": " + e;
-  if (pulse_period <= Duration::zero() || pulse_period > std::chrono::seconds(1))
-    return "sonar " + device + ": pulse_period must be in (0, 1 s] (the controller's watchdog)";
   if (reply_timeout <= Duration::zero() || truncation_gap <= Duration::zero())
     return "sonar " + device + ": timeouts must be > 0";
+  // A PULSE goes out on the first read turn at or after pulse_period; a turn waits at most
+  // max(truncation_gap, 50 ms) (DeviceReader::ReadSerialUntilGone).
+  const Duration turn = std::max<Duration>(truncation_gap, std::chrono::milliseconds(50));
+  if (pulse_period <= Duration::zero() || pulse_period + turn >= std::chrono::seconds(1))
+    return "sonar " + device +
+           ": pulse_period plus one read turn (max(truncation_gap, 50 ms)) must stay under 1 s "
+           "(the controller's watchdog wants a PULSE at least once a second)";
   if (queue_capacity == 0) return "sonar " + device + ": queue_capacity must be > 0";
   return reconnect.Validate();
 }

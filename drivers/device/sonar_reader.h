@@ -3,7 +3,8 @@
 // 9600 8N1 raw (or the next probe rate if no SYNC0 echo comes; SIPs instead of an echo mean
 // the controller is still open from an earlier session: CLOSE, then SYNC0 again), the
 // SYNC0/SYNC1/SYNC2 handshake (each echoed; SYNC2's echo names the robot), OPEN, sonar on (command
-// 28, 1); then a PULSE at least every pulse_period or the controller closes the connection.
+// 28, 1); then a PULSE about every pulse_period (the controller closes the connection when
+// none comes for a second).
 // Standard SIPs are decoded by drivers/p2os, their sonar returns converted with the configured
 // range factor and ring geometry, and each SIP with returns is pushed as a SonarReading stamped at
 // arrival. Bad checksums, bad counts, garbage and truncated packets are counted; EOF/EIO ends the
@@ -27,7 +28,10 @@ struct SonarReaderOptions {
   std::string device;
   std::vector<int> probe_rates = {9600, 19200, 38400, 57600, 115200};
   p2os::SonarOptions sonar;
-  Duration pulse_period = std::chrono::milliseconds(1000);
+  // The controller wants a PULSE at least once a second. It is sent on the first read turn at
+  // or after pulse_period, so the interval is up to one turn longer (a turn waits at most
+  // max(truncation_gap, 50 ms)); Validate() keeps pulse_period plus a turn under 1 s.
+  Duration pulse_period = std::chrono::milliseconds(500);
   Duration reply_timeout = std::chrono::milliseconds(300);
   Duration truncation_gap = std::chrono::milliseconds(100);  // see LaserReaderOptions
   size_t queue_capacity = 64;

@@ -44,6 +44,11 @@ void FakeP2os::OnPowerUp() {
   host_decoder_.Reset();
 }
 
+std::vector<Time> FakeP2os::PulseTimes() const {
+  std::lock_guard<std::mutex> lock(sent_mutex_);
+  return pulse_times_;
+}
+
 std::vector<SonarReading> FakeP2os::SentIntact() const {
   std::lock_guard<std::mutex> lock(sent_mutex_);
   return sent_intact_;
@@ -74,6 +79,8 @@ void FakeP2os::OnHostBytes(std::span<const uint8_t> bytes, Time now) {
     } else if (s == State::kOpen || s == State::kReady) {
       if (c->command == p2os::kCmdPulse) {
         pulses_.fetch_add(1);
+        std::lock_guard<std::mutex> lock(sent_mutex_);
+        pulse_times_.push_back(now);
       } else if (c->command == p2os::kCmdClose) {
         state_.store(State::kWaitSync0);
         sonar_on_ = false;

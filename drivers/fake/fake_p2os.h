@@ -45,6 +45,8 @@ class FakeP2os final : public FakeSerialDevice {
   uint64_t watchdog_closes() const { return watchdog_closes_.load(); }
   // The readings carried by the SIPs sent intact (with at least one return), in order.
   std::vector<SonarReading> SentIntact() const;
+  // When each PULSE arrived (the fake's clock), in order.
+  std::vector<Time> PulseTimes() const;
 
  protected:
   void OnPowerUp() override;
@@ -66,6 +68,7 @@ class FakeP2os final : public FakeSerialDevice {
   std::atomic<uint64_t> watchdog_closes_{0};
   mutable std::mutex sent_mutex_;
   std::vector<SonarReading> sent_intact_;
+  std::vector<Time> pulse_times_;  // under sent_mutex_
 };
 
 }  // namespace atlas::fake
