@@ -12,6 +12,7 @@
 #include "drivers/device/sonar_reader.h"
 #include "drivers/fake/fake_can_bus.h"
 #include "drivers/serial/pseudo_terminal.h"
+#include "drivers/sick/lms_messages.h"
 
 namespace atlas {
 namespace {
@@ -246,6 +247,66 @@ TEST(DeviceReaderTest, OdometryReconnectReReferencesTheCounters) {
   r.Stop();
   bus.Close();
   std::filesystem::remove_all(dir);
+}
+
+// A scanner still streaming from an earlier session answers the start-up status request after
+// two scans, all in one burst of bytes. The scans are stamped with the arrival of that burst,
+// not with the time each is processed: on_scan takes 30 ms, yet both carry the same stamp,
+// taken before the first was handed on.
+TEST(DeviceReaderTest, ScansDuringStartUpAreStampedAtArrival) {
+  PseudoTerminal pty;
+  std::string err;
+  ASSERT_TRUE(pty.Create("", &err)) << err;
+  std::mutex mutex;
+  Time first_handed_on{};
+  LaserReaderOptions o;
+  o.device = pty.slave_path();
+  o.baud = 9600;
+  o.reply_timeout = milliseconds(300);
+  o.on_scan = [&] {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (first_handed_on == Time{}) first_handed_on = Now();
+    }
+    std::this_thread::sleep_for(milliseconds(30));
+  };
+  LaserReader r(o);
+  r.Start();
+  // The status request, 02 00 01 00 31 15 12.
+  const std::vector<uint8_t> request = sick::EncodeStatusRequest();
+  std::vector<uint8_t> got;
+  uint8_t buf[64];
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (got.size() < request.size() && Now() < deadline) {
+    const long n = pty.Read(buf, sizeof(buf), 50);
+    if (n > 0) got.insert(got.end(), buf, buf + n);
+  }
+  ASSERT_EQ(got, request);
+  LaserScan scan;
+  scan.ranges.assign(181, 2.0f);
+  std::vector<uint8_t> burst;
+  for (int k = 0; k < 2; ++k) {
+    const auto b0 = sick::EncodeMeasuredValues(scan, sick::Unit::kMillimetre, 0x10);
+    ASSERT_TRUE(b0.has_value());
+    burst.insert(burst.end(), b0->begin(), b0->end());
+  }
+  const std::vector<uint8_t> status = sick::EncodeStatusReply(0x10);
+  burst.insert(burst.end(), status.begin(), status.end());
+  ASSERT_LT(burst.size(), 1024u);  // one read of the reader's start-up buffer
+  const Time written = Now();
+  ASSERT_TRUE(pty.WriteAll(burst.data(), burst.size()));
+  std::vector<LaserScan> scans;
+  while (scans.size() < 2 && Now() < deadline) {
+    LaserScan s;
+    while (r.Pop(&s)) scans.push_back(std::move(s));
+    std::this_thread::sleep_for(milliseconds(2));
+  }
+  r.Stop();
+  ASSERT_EQ(scans.size(), 2u);
+  EXPECT_EQ(scans[0].stamp, scans[1].stamp);
+  EXPECT_GE(scans[0].stamp, written);
+  std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_LE(scans[1].stamp, first_handed_on);
 }
 
 TEST(DeviceReaderTest, StateNames) {

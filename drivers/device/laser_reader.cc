@@ -60,6 +60,7 @@ LaserReader::Reply LaserReader::Transact(const std::vector<uint8_t>& command, ui
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Now());
     if (left.count() <= 0) break;
     SerialResult r = port_.Read(buf, sizeof(buf), static_cast<int>(left.count()));
+    const Time arrival = Now();  // the stamp of every scan in these bytes, as in a session
     if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
       *error = r.error;
       return Reply::kGone;
@@ -73,7 +74,7 @@ LaserReader::Reply LaserReader::Transact(const std::vector<uint8_t>& command, ui
         done = true;
       } else if (e.kind == sick::StreamEventKind::kTelegram) {
         if (e.telegram.command == sick::kReplyValues && reply_code != sick::kReplyValues) {
-          HandleTelegram(e.telegram, Now());  // a scan already streaming: keep it
+          HandleTelegram(e.telegram, arrival);  // a scan already streaming: keep it
         } else if (e.telegram.command == reply_code) {
           result = accept(e.telegram) ? Reply::kOk : Reply::kRejected;
           done = true;
