@@ -66,6 +66,37 @@ int WaitReadable(int fd, int timeout_ms) {
   return k;
 }
 
+// The kernel's receive stamp in `msg` (SCM_TIMESTAMP or SCM_TIMESTAMPNS, both CLOCK_REALTIME)
+// carried over to the monotonic clock by its age: `arrival` (Now() right after the receive)
+// minus how long ago the kernel stamped. False when there is none or it is implausible (more
+// than a second old, or in the future: the real-time clock was stepped).
+bool KernelArrival(msghdr& msg, Time arrival, Time* stamp) {
+  for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
+    if (c->cmsg_level != SOL_SOCKET) continue;
+    int64_t sec = 0, nsec = 0;
+    if (c->cmsg_type == SCM_TIMESTAMP) {
+      timeval tv;
+      memcpy(&tv, CMSG_DATA(c), sizeof(tv));
+      sec = tv.tv_sec;
+      nsec = static_cast<int64_t>(tv.tv_usec) * 1000;
+    } else if (c->cmsg_type == SCM_TIMESTAMPNS) {
+      timespec ts;
+      memcpy(&ts, CMSG_DATA(c), sizeof(ts));
+      sec = ts.tv_sec;
+      nsec = ts.tv_nsec;
+    } else {
+      continue;
+    }
+    timespec now_rt;
+    clock_gettime(CLOCK_REALTIME, &now_rt);
+    const int64_t age_ns = (now_rt.tv_sec - sec) * 1000000000LL + (now_rt.tv_nsec - nsec);
+    if (age_ns < 0 || age_ns >= 1000000000LL) return false;
+    *stamp = arrival - Duration(age_ns);
+    return true;
+  }
+  return false;
+}
+
 class SocketCanTransport final : public CanTransport {
  public:
   explicit SocketCanTransport(std::string name) : name_(std::move(name)) {}
@@ -145,21 +176,7 @@ class SocketCanTransport final : public CanTransport {
     r.status = CanRead::kFrame;
     r.frame = FromLinuxCanFrame(raw);
     r.stamp = arrival;
-    for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
-      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMP) {
-        timeval tv;
-        memcpy(&tv, CMSG_DATA(c), sizeof(tv));
-        // SO_TIMESTAMP is CLOCK_REALTIME: carry its age over to the monotonic clock.
-        timespec now_rt;
-        clock_gettime(CLOCK_REALTIME, &now_rt);
-        const int64_t age_ns = (now_rt.tv_sec - tv.tv_sec) * 1000000000LL +
-                               (now_rt.tv_nsec - static_cast<int64_t>(tv.tv_usec) * 1000);
-        if (age_ns >= 0 && age_ns < 1000000000LL) {
-          r.stamp = arrival - Duration(age_ns);
-          r.kernel_stamp = true;
-        }
-      }
-    }
+    r.kernel_stamp = KernelArrival(msg, arrival, &r.stamp);
     return r;
   }
 
@@ -201,6 +218,9 @@ class FakeBusTransport final : public CanTransport {
       *error = CanErrnoText(name_, errno);
       return false;
     }
+    // Kernel arrival stamps, as on SocketCAN (without them, Now() after the receive).
+    const int on = 1;
+    (void)setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof(on));
     if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
       const int err = errno;
       ::close(fd);
@@ -222,7 +242,14 @@ class FakeBusTransport final : public CanTransport {
     const int k = WaitReadable(fd_, timeout_ms);
     if (k == 0) return r;
     uint8_t buf[64];
-    const ssize_t n = k < 0 ? -1 : ::recv(fd_, buf, sizeof(buf), MSG_TRUNC);
+    char control[CMSG_SPACE(sizeof(timespec))];
+    iovec iov{buf, sizeof(buf)};
+    msghdr msg{};
+    msg.msg_iov = &iov;
+    msg.msg_iovlen = 1;
+    msg.msg_control = control;
+    msg.msg_controllen = sizeof(control);
+    const ssize_t n = k < 0 ? -1 : ::recvmsg(fd_, &msg, MSG_TRUNC);
     if (n == 0) {
       r.status = CanRead::kGone;
       r.error = "CAN " + name_ + ": the fake bus closed the connection";
@@ -235,7 +262,9 @@ class FakeBusTransport final : public CanTransport {
       r.error = CanErrnoText(name_, errno);
       return r;
     }
-    r.stamp = Now();
+    const Time arrival = Now();
+    r.stamp = arrival;
+    r.kernel_stamp = KernelArrival(msg, arrival, &r.stamp);
     if (n != static_cast<ssize_t>(sizeof(struct can_frame))) {
       r.status = CanRead::kBadFrame;
       r.error = "CAN " + name_ + ": datagram of " + std::to_string(n) +

@@ -7,7 +7,8 @@
 //                         handed up as frames with the ERR flag: reported, never fatal), kernel
 //                         receive stamps (SO_TIMESTAMP) mapped onto CLOCK_MONOTONIC.
 //   "unix:PATH"           the fake bus: a Unix SOCK_SEQPACKET connection to PATH, every datagram
-//                         exactly one 16-byte struct can_frame. The fake device listens.
+//                         exactly one 16-byte struct can_frame. The fake device listens. Kernel
+//                         receive stamps too (SO_TIMESTAMPNS), mapped the same way.
 //
 // The reader thread is the same for both; only the opening differs. This file owns sockets and
 // knows nothing of the AgileX payloads beyond the ids to filter.
@@ -36,7 +37,7 @@ struct CanReadResult {
   CanRead status = CanRead::kTimeout;
   CanFrame frame;
   Time stamp{};               // arrival: the kernel's stamp when there is one, else Now()
-  bool kernel_stamp = false;  // stamp came from SO_TIMESTAMP
+  bool kernel_stamp = false;  // stamp came from the kernel (SO_TIMESTAMP / SO_TIMESTAMPNS)
   std::string error;
 };
 

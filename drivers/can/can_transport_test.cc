@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <string>
+#include <thread>
 
 namespace atlas {
 namespace {
@@ -84,6 +85,18 @@ TEST(CanTransportTest, FakeBusDatagrams) {
   EXPECT_EQ(r.frame.id, 0x311u);
   EXPECT_EQ(r.frame.dlc, 8);
   EXPECT_EQ(memcmp(r.frame.data.data(), payload, 8), 0);
+
+  // The stamp is the kernel's arrival, not the time of the read: a frame read 30 ms after it
+  // came is stamped before the read (the 1 ms is for mapping the real-time stamp).
+  const Time before_send = Now();
+  ASSERT_EQ(send(peer, &f, sizeof(f), 0), 16);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  const Time before_read = Now();
+  r = t->Read(500);
+  ASSERT_EQ(r.status, CanRead::kFrame) << r.error;
+  EXPECT_TRUE(r.kernel_stamp);
+  EXPECT_LT(r.stamp, before_read);
+  EXPECT_GE(r.stamp, before_send - std::chrono::milliseconds(1));
 
   ASSERT_EQ(send(peer, payload, 5, 0), 5);
   EXPECT_EQ(t->Read(500).status, CanRead::kBadFrame);

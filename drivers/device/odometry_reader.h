@@ -3,13 +3,13 @@
 // CanTransport (SocketCAN "can0" or the fake bus "unix:PATH"), decoded by drivers/agilex,
 // 0x311 wheel distances integrated by WheelOdometryIntegrator (discontinuities skipped and
 // counted), each integrated step pushed as an OdometrySample stamped at arrival (the kernel's
-// SO_TIMESTAMP on SocketCAN). 0x211 system state and CAN error frames are reported in the
-// health, never fatal. ENETDOWN (interface down) is reported and the socket kept, as candump
-// does; a closed bus or a removed interface ends the session, and the transport is reopened
-// with capped backoff (growing while sessions bring no frame). The pose goes on where it was
-// across a reconnect, but the counters are re-referenced on every (re)connect and after a gap
-// longer than odometry.max_gap_s: a base reboot (counters reset, seconds of silence) is one
-// discontinuity, never a jump.
+// SO_TIMESTAMP on SocketCAN, SO_TIMESTAMPNS on the fake bus). 0x211 system state and CAN error
+// frames are reported in the health, never fatal. ENETDOWN (interface down) is reported and the
+// socket kept, as candump does; a closed bus or a removed interface ends the session, and the
+// transport is reopened with capped backoff (growing while sessions bring no frame). The pose goes
+// on where it was across a reconnect, but the counters are re-referenced on every (re)connect and
+// after a gap longer than odometry.max_gap_s: a base reboot (counters reset, seconds of silence) is
+// one discontinuity, never a jump.
 
 #include <memory>
 #include <string>
