@@ -52,7 +52,7 @@ struct OdometryOptions {
   // Allowance on top of max_speed_mps * dt, for stamp jitter and counter quantisation.
   double slack_m = 0.02;
   // After a longer gap between frames the counters are re-referenced (a discontinuity).
-  double max_gap_s = 0.2;
+  double max_gap_s = 1.0;
   int queue_capacity = 64;  // odometry samples between the reader thread and the loop
 };
 

@@ -28,8 +28,10 @@ struct WheelOdometryOptions {
   double max_speed_mps = 3.0;   // fastest plausible wheel speed
   double slack_m = 0.02;        // allowance for stamp jitter and counter quantisation
   // Longest gap between two 0x311 frames (nominal period 20 ms) across which a change is still
-  // integrated; after a longer one the counters are re-referenced (one discontinuity).
-  double max_gap_s = 0.2;
+  // integrated; after a longer one the counters are re-referenced (one discontinuity) and the
+  // motion across the gap is lost. 1 s: far longer than a loaded machine's delays, far shorter
+  // than a base reboot.
+  double max_gap_s = 1.0;
   // Empty when valid, else what is wrong.
   std::string Validate() const;
 };

@@ -104,7 +104,7 @@ TEST(WheelOdometry, PlausibilityScalesWithElapsedTime) {
   // 20 ms allow 3 m/s * 0.02 s + 0.02 m = 0.08 m.
   EXPECT_EQ(odo.Update(Ms(20), {79, 79}), OdometryStep::kIntegrated);
   EXPECT_EQ(odo.Update(Ms(40), {79 + 81, 79}), OdometryStep::kDiscontinuity);
-  // Within max_gap_s (0.2 s), 0.15 s allow 0.47 m.
+  // Within max_gap_s (1 s), 0.15 s allow 0.47 m.
   EXPECT_EQ(odo.Update(Ms(190), {79 + 81 + 460, 79}), OdometryStep::kIntegrated);
   // A stamp that does not advance only allows the slack.
   EXPECT_EQ(odo.Update(Ms(190), {630, 89}), OdometryStep::kIntegrated);
