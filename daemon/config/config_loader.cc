@@ -273,11 +273,9 @@ class TomlReader {
   std::vector<Frame> frames_;
 };
 
-// Visits the schema against values already in DaemonOptions (for Validate()).
-class ValueChecker {
+// The dotted key a schema visitor (config_schema.h) is at: its sections, joined.
+class KeyPath {
  public:
-  explicit ValueChecker(std::vector<std::string>* problems) : problems_(problems) {}
-
   template <typename F>
   void Section(const char* name, F body) {
     const std::string saved = prefix_;
@@ -285,6 +283,16 @@ class ValueChecker {
     body();
     prefix_ = saved;
   }
+
+ protected:
+  std::string prefix_;
+};
+
+// Visits the schema against values already in DaemonOptions (for Validate()).
+class ValueChecker : public KeyPath {
+ public:
+  explicit ValueChecker(std::vector<std::string>* problems) : problems_(problems) {}
+
   void Bool(const char*, bool&) {}
   void Int(const char* key, int& v, int lo, int hi) { Note(key, RangeProblem(v, lo, hi)); }
   void IntOneOf(const char* key, int& v, std::initializer_list<int> allowed) {
@@ -315,22 +323,14 @@ class ValueChecker {
     if (!problem.empty()) problems_->push_back(Join(prefix_, key) + ": " + problem);
   }
 
-  std::string prefix_;
   std::vector<std::string>* problems_;
 };
 
 // Visits the schema writing every value as text (FlattenOptions()).
-class Flattener {
+class Flattener : public KeyPath {
  public:
   std::map<std::string, std::string> values;
 
-  template <typename F>
-  void Section(const char* name, F body) {
-    const std::string saved = prefix_;
-    prefix_ = Join(prefix_, name);
-    body();
-    prefix_ = saved;
-  }
   void Bool(const char* k, bool& v) { values[Join(prefix_, k)] = v ? "true" : "false"; }
   void Int(const char* k, int& v, int, int) { values[Join(prefix_, k)] = FormatNumber(v); }
   void IntOneOf(const char* k, int& v, std::initializer_list<int>) {
@@ -357,13 +357,10 @@ class Flattener {
     for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + FormatNumber(v[i]);
     values[Join(prefix_, k)] = s + "]";
   }
-
- private:
-  std::string prefix_;
 };
 
 // Visits the schema to copy one key's value from one DaemonOptions into another.
-class KeyCopier {
+class KeyCopier : public KeyPath {
  public:
   explicit KeyCopier(std::string key) : key_(std::move(key)) {}
 
@@ -375,13 +372,6 @@ class KeyCopier {
     config::VisitOptions(*this, *to);
   }
 
-  template <typename F>
-  void Section(const char* name, F body) {
-    const std::string saved = prefix_;
-    prefix_ = Join(prefix_, name);
-    body();
-    prefix_ = saved;
-  }
   void Bool(const char* k, bool& v) { At(k, v); }
   void Int(const char* k, int& v, int, int) { At(k, v); }
   void IntOneOf(const char* k, int& v, std::initializer_list<int>) { At(k, v); }
@@ -406,7 +396,6 @@ class KeyCopier {
   }
 
   std::string key_;
-  std::string prefix_;
   bool taking_ = true;
   std::any value_;
 };
