@@ -12,6 +12,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <memory>
 #include <mutex>
@@ -27,6 +28,9 @@
 
 namespace atlas {
 namespace {
+
+// sysexits.h EX_SOFTWARE: the step loop stopped on an internal error (systemd restarts atlasd).
+constexpr int kExitSoftware = 70;
 
 Duration SecondsToDuration(double s) {
   return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s));
@@ -66,6 +70,7 @@ struct Shared {
   std::atomic<bool> stop{false};
   std::atomic<int64_t> heartbeat_ns{0};
   std::atomic<bool> loop_running{false};
+  std::atomic<bool> loop_failed{false};  // the loop thread stopped on an exception
   std::atomic<int64_t> stall_until_ns{0};
   std::mutex mutex;
   std::string status;  // one-line summary, under mutex
@@ -128,6 +133,7 @@ class LiveDaemon {
 
  private:
   void LoopThread();
+  void RunLoop();  // the steps, until shared_.stop
   void Drain();
   void PublishHealth(Time now);
   std::vector<DriverEntry> Drivers() const;
@@ -324,6 +330,22 @@ void LiveDaemon::SubmitCheckpoint() {
 void LiveDaemon::LoopThread() {
   ApplyScheduling(options_.scheduling);
   shared_.loop_running.store(true);
+  // The steps throw nothing on input (typed results); what is left (out of memory) ends the
+  // loop without a last checkpoint, whose atlas could be half-updated: the store keeps the one
+  // before, and Run() exits so that systemd restarts atlasd from it.
+  try {
+    RunLoop();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "atlasd: the step loop stopped: %s\n", e.what());
+    shared_.loop_running.store(false);
+    shared_.loop_failed.store(true, std::memory_order_release);
+    return;
+  }
+  SubmitCheckpoint();  // the last steps, saved by Run() before it returns
+  shared_.loop_running.store(false);
+}
+
+void LiveDaemon::RunLoop() {
   while (!shared_.stop.load(std::memory_order_acquire)) {
     const Time now = Now();
     if (shared_.stall_until_ns.load() > now.time_since_epoch().count()) {
@@ -362,8 +384,6 @@ void LiveDaemon::LoopThread() {
       });
     }
   }
-  SubmitCheckpoint();  // the last steps, saved by Run() before it returns
-  shared_.loop_running.store(false);
 }
 
 int LiveDaemon::Run() {
@@ -439,6 +459,14 @@ int LiveDaemon::Run() {
     const int sig = sigtimedwait(&signals, &info, &timeout);
     const Time now = Now();
     if (sig == SIGTERM || sig == SIGINT) break;
+    if (shared_.loop_failed.load(std::memory_order_acquire)) {
+      std::fprintf(stderr,
+                   "atlasd: exiting: the atlas is saved up to its last checkpoint (%.1f s or "
+                   "less ago), from which the next start resumes\n",
+                   options_.state.save_period_s);
+      exit_code = kExitSoftware;
+      break;
+    }
     if (sig == SIGHUP) {
       ConfigResult r = LoadConfigFile(flags_.config_path, ValidateDerivedOptions);
       if (!r.ok()) {

@@ -1,6 +1,8 @@
 #include "daemon/store/atlas_store_writer.h"
 
 #include <cassert>
+#include <exception>
+#include <string>
 
 namespace atlas {
 
@@ -18,7 +20,20 @@ void AtlasStoreWriter::Start() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (thread_.joinable()) return;
   stopping_ = false;
-  thread_ = std::thread([this] { Run(); });
+  thread_ = std::thread([this] {
+    // Out of memory while merging or saving: the writer stops and says so in its stats (what
+    // the store already holds stays), instead of terminating atlasd.
+    try {
+      Run();
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++stats_.errors;
+      stats_.last_error = std::string("the writer stopped: ") + e.what();
+      stopping_ = true;
+      busy_ = false;
+      idle_.notify_all();
+    }
+  });
 }
 
 SubmitResult AtlasStoreWriter::Submit(AtlasSnapshot batch) {

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include <algorithm>
+#include <exception>
 
 namespace atlas {
 
@@ -34,7 +35,16 @@ DeviceReader::~DeviceReader() { Stop(); }
 void DeviceReader::Start() {
   if (thread_.joinable()) return;
   stop_.store(false, std::memory_order_release);
-  thread_ = std::thread([this] { Loop(); });
+  thread_ = std::thread([this] {
+    // Nothing a device sends throws; what is left (out of memory) stops this reader, said in
+    // its health, instead of terminating atlasd.
+    try {
+      Loop();
+    } catch (const std::exception& e) {
+      health_.SetError(std::string("the reader stopped: ") + e.what());
+      health_.SetState(DriverState::kFailed);
+    }
+  });
 }
 
 void DeviceReader::Stop() {

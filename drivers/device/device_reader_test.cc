@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <mutex>
+#include <new>
 #include <thread>
 #include <vector>
 
@@ -131,6 +132,33 @@ TEST(DeviceReaderTest, BackoffGrowsWhileSessionsBringNoData) {
   EXPECT_EQ(h.connect_failures, 0u);
   EXPECT_EQ(h.disconnects, 8u);
   EXPECT_EQ(h.messages, 1u);
+}
+
+// A session that throws (what is left once no input can: out of memory) stops that reader,
+// said in its health, and leaves the process running.
+class ThrowingDevice final : public DeviceReader {
+ public:
+  ThrowingDevice() : DeviceReader("throwing", ReconnectOptions{}) {}
+  ~ThrowingDevice() override { Stop(); }
+
+ protected:
+  bool Connect(std::string*) override { return true; }
+  SessionEnd ReadUntilGone(std::string*) override { throw std::bad_alloc(); }
+  void Disconnect() override {}
+  uint64_t QueueDrops() const override { return 0; }
+};
+
+TEST(DeviceReaderTest, AnExceptionStopsOnlyThatReaderAndSaysSo) {
+  ThrowingDevice d;
+  d.Start();
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (d.Health().state != DriverState::kFailed && Now() < deadline)
+    std::this_thread::sleep_for(milliseconds(1));
+  const DriverHealth h = d.Health();
+  EXPECT_EQ(h.state, DriverState::kFailed);
+  EXPECT_NE(h.last_error.find("the reader stopped"), std::string::npos) << h.last_error;
+  EXPECT_NE(h.last_error.find("bad_alloc"), std::string::npos) << h.last_error;
+  d.Stop();
 }
 
 // A device that is not there: the reader keeps trying with backoff, says why, and stops
