@@ -9,6 +9,7 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <utility>
 
 namespace atlas {
@@ -177,35 +178,46 @@ SerialResult SerialPort::Read(uint8_t* buf, size_t cap, int timeout_ms) {
     r.error = "serial " + options_.device + ": not open";
     return r;
   }
-  pollfd p{fd_, POLLIN, 0};
-  const int k = ::poll(&p, 1, timeout_ms);
-  if (k < 0) {
-    if (errno == EINTR) return r;
-    r.status = SerialIo::kError;
-    r.error = ErrnoText(options_.device, errno);
-    return r;
-  }
-  if (k == 0) return r;
-  if (p.revents & (POLLIN | POLLHUP | POLLERR)) {
-    const ssize_t n = ::read(fd_, buf, cap);
-    if (n > 0) {
-      r.status = SerialIo::kData;
-      r.n = static_cast<size_t>(n);
-    } else if (n == 0 || IsGoneErrno(errno)) {
-      r.status = SerialIo::kGone;
-      r.error = "serial " + options_.device + ": device went away (" +
-                (n == 0 ? std::string("EOF") : std::string(strerror(errno))) + ")";
-    } else if (errno != EAGAIN && errno != EINTR) {
+  // A signal (EINTR) or a wake-up with nothing to read (EAGAIN) is not the timeout: wait out
+  // the rest of it, so that a caller's "no byte for timeout_ms" really means that.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (int wait_ms = timeout_ms;;) {
+    pollfd p{fd_, POLLIN, 0};
+    const int k = ::poll(&p, 1, wait_ms);
+    if (k < 0 && errno != EINTR) {
       r.status = SerialIo::kError;
       r.error = ErrnoText(options_.device, errno);
+      return r;
     }
-    return r;
+    if (k > 0 && (p.revents & (POLLIN | POLLHUP | POLLERR))) {
+      const ssize_t n = ::read(fd_, buf, cap);
+      if (n > 0) {
+        r.status = SerialIo::kData;
+        r.n = static_cast<size_t>(n);
+        return r;
+      }
+      if (n == 0 || IsGoneErrno(errno)) {
+        r.status = SerialIo::kGone;
+        r.error = "serial " + options_.device + ": device went away (" +
+                  (n == 0 ? std::string("EOF") : std::string(strerror(errno))) + ")";
+        return r;
+      }
+      if (errno != EAGAIN && errno != EINTR) {
+        r.status = SerialIo::kError;
+        r.error = ErrnoText(options_.device, errno);
+        return r;
+      }
+    } else if (k > 0 && (p.revents & POLLNVAL)) {
+      r.status = SerialIo::kGone;
+      r.error = "serial " + options_.device + ": descriptor invalid";
+      return r;
+    }
+    if (k == 0 || timeout_ms <= 0) return r;  // timed out (or only polled)
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return r;
+    wait_ms = static_cast<int>(left.count());
   }
-  if (p.revents & POLLNVAL) {
-    r.status = SerialIo::kGone;
-    r.error = "serial " + options_.device + ": descriptor invalid";
-  }
-  return r;
 }
 
 SerialResult SerialPort::WriteAll(const uint8_t* data, size_t len, int timeout_ms) {

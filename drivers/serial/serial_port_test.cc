@@ -2,11 +2,16 @@
 
 #include <errno.h>
 #include <gtest/gtest.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "drivers/serial/pseudo_terminal.h"
@@ -112,6 +117,39 @@ TEST(SerialPortTest, RawBytesBothWaysAndTimeout) {
     got.insert(got.end(), buf, buf + n);
   }
   EXPECT_EQ(got, out);
+}
+
+// A signal that interrupts the wait (poll's EINTR) is not the timeout: the read waits on and
+// returns the byte that comes after it.
+TEST(SerialPortTest, ASignalDoesNotEndTheWait) {
+  struct sigaction quiet {};
+  quiet.sa_handler = [](int) {};
+  sigemptyset(&quiet.sa_mask);
+  quiet.sa_flags = 0;  // no SA_RESTART: poll() returns EINTR
+  struct sigaction before {};
+  ASSERT_EQ(sigaction(SIGUSR2, &quiet, &before), 0);
+  PseudoTerminal pty;
+  std::string err;
+  ASSERT_TRUE(pty.Create("", &err)) << err;
+  SerialPort port;
+  ASSERT_TRUE(port.Open({pty.slave_path(), 9600, true}, &err)) << err;
+  std::atomic<bool> reading{false};
+  SerialResult r;
+  std::thread reader([&] {
+    uint8_t buf[8];
+    reading = true;
+    r = port.Read(buf, sizeof buf, 20000);
+  });
+  while (!reading) std::this_thread::yield();
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // let it block in poll()
+  ASSERT_EQ(pthread_kill(reader.native_handle(), SIGUSR2), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const uint8_t byte = 0x42;
+  ASSERT_TRUE(pty.WriteAll(&byte, 1));
+  reader.join();
+  sigaction(SIGUSR2, &before, nullptr);
+  EXPECT_EQ(r.status, SerialIo::kData) << r.error;
+  EXPECT_EQ(r.n, 1u);
 }
 
 TEST(SerialPortTest, ReopenChangesTheRateIncluding500k) {
