@@ -82,9 +82,10 @@ class DeviceReader {
   // The session loop of a serial device (laser, sonar): polls `port`, feeds every byte to
   // `decoder` (and records it in `resync`), hands what the decoder finds to
   // on_event(event, arrival_time), abandons a partial frame after a silent `gap` (counted as
-  // truncated), calls before_read() first on every turn (false: the device is gone, *error
-  // set), keeps the counters in step with sync_counters(), and ends the session as gone after
-  // reopen_after_silence without a byte (*error = who + ": silent ..." + what_next).
+  // truncated; what refeeding the recorded bytes then finds keeps the arrival time of the last
+  // bytes read, not the end of the gap), calls before_read() first on every turn (false: the device
+  // is gone, *error set), keeps the counters in step with sync_counters(), and ends the session as
+  // gone after reopen_after_silence without a byte (*error = who + ": silent ..." + what_next).
   template <typename Decoder, std::size_t N, typename OnEvent, typename BeforeRead,
             typename SyncCounters>
   SessionEnd ReadSerialUntilGone(SerialPort& port, Decoder& decoder, GapResync<N>& resync,
@@ -94,12 +95,12 @@ class DeviceReader {
     uint8_t buf[4096];
     const int gap_ms = static_cast<int>(
         std::max<int64_t>(1, std::chrono::duration_cast<std::chrono::milliseconds>(gap).count()));
+    Time last_arrival = Now();  // of the last bytes read
     while (!Stopping()) {
       if (!before_read()) return SessionEnd::kGone;
       const int timeout = decoder.buffered() > 0 ? gap_ms : 50;
       const SerialResult r = port.Read(buf, sizeof(buf), timeout);
       const Time now = Now();
-      auto handle = [&](const auto& event) { on_event(event, now); };
       if (r.status == SerialIo::kGone || r.status == SerialIo::kError) {
         *error = r.error;
         sync_counters();
@@ -107,11 +108,14 @@ class DeviceReader {
       }
       if (r.status == SerialIo::kTimeout && decoder.buffered() > 0) {
         health_.truncated.fetch_add(1, std::memory_order_relaxed);
-        resync.Resync(decoder, handle);
+        // What refeeding finds came with the bytes already read, a gap ago.
+        resync.Resync(decoder, [&](const auto& event) { on_event(event, last_arrival); });
       }
       if (r.status == SerialIo::kData) {
+        last_arrival = now;
         resync.Record(std::span<const uint8_t>(buf, r.n));
-        decoder.FeedAll(std::span<const uint8_t>(buf, r.n), handle);
+        decoder.FeedAll(std::span<const uint8_t>(buf, r.n),
+                        [&](const auto& event) { on_event(event, now); });
       }
       sync_counters();
       if (TrackSilence(r.status == SerialIo::kData, now)) {

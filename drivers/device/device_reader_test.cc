@@ -8,12 +8,15 @@
 #include <vector>
 
 #include "drivers/agilex/agilex_messages.h"
+#include "drivers/device/gap_resync.h"
 #include "drivers/device/laser_reader.h"
 #include "drivers/device/odometry_reader.h"
 #include "drivers/device/sonar_reader.h"
 #include "drivers/fake/fake_can_bus.h"
 #include "drivers/serial/pseudo_terminal.h"
+#include "drivers/serial/serial_port.h"
 #include "drivers/sick/lms_messages.h"
+#include "drivers/sick/lms_telegram.h"
 
 namespace atlas {
 namespace {
@@ -335,6 +338,70 @@ TEST(DeviceReaderTest, ScansDuringStartUpAreStampedAtArrival) {
   EXPECT_GE(scans[0].stamp, written);
   std::lock_guard<std::mutex> lock(mutex);
   EXPECT_LE(scans[1].stamp, first_handed_on);
+}
+
+// A serial session as the laser reader runs it (ReadSerialUntilGone with the LMS decoder),
+// recording the arrival stamp of every telegram.
+class LmsSession final : public DeviceReader {
+ public:
+  LmsSession(std::string path, Duration gap)
+      : DeviceReader("lms session", ReconnectOptions{}), path_(std::move(path)), gap_(gap) {}
+  ~LmsSession() override { Stop(); }
+  std::vector<Time> stamps() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stamps_;
+  }
+
+ protected:
+  bool Connect(std::string* error) override { return port_.Open({path_, 9600, true}, error); }
+  SessionEnd ReadUntilGone(std::string* error) override {
+    return ReadSerialUntilGone(
+        port_, decoder_, resync_, gap_,
+        [&](const sick::StreamEvent& e, Time arrival) {
+          if (e.kind != sick::StreamEventKind::kTelegram) return;
+          std::lock_guard<std::mutex> lock(mutex_);
+          stamps_.push_back(arrival);
+        },
+        [] { return true; }, [] {}, "lms session", "reopening", error);
+  }
+  void Disconnect() override { port_.Close(); }
+  uint64_t QueueDrops() const override { return 0; }
+
+ private:
+  const std::string path_;
+  const Duration gap_;
+  SerialPort port_;
+  sick::StreamDecoder decoder_;
+  GapResync<sick::StreamDecoder::kWindow> resync_;
+  mutable std::mutex mutex_;
+  std::vector<Time> stamps_;
+};
+
+// A false STX that announces a long telegram holds the real one until the line has been silent
+// for the truncation gap; the telegram found then was already there: it is stamped with the
+// arrival of its bytes, not with the end of the gap (2 s here).
+TEST(DeviceReaderTest, ATelegramFoundAfterAFalseStxKeepsItsArrivalStamp) {
+  PseudoTerminal pty;
+  std::string err;
+  ASSERT_TRUE(pty.Create("", &err)) << err;
+  LmsSession session(pty.slave_path(), std::chrono::seconds(2));
+  session.Start();
+  const Time deadline = Now() + std::chrono::seconds(10);
+  while (session.Health().state != DriverState::kRunning && Now() < deadline)
+    std::this_thread::sleep_for(milliseconds(2));
+  ASSERT_EQ(session.Health().state, DriverState::kRunning);
+  std::vector<uint8_t> bytes = {0x02, 0x80, 0x00, 0x03};  // STX, address, LEN 768
+  const std::vector<uint8_t> status = sick::EncodeStatusReply(0x10);
+  bytes.insert(bytes.end(), status.begin(), status.end());
+  const Time written = Now();
+  ASSERT_TRUE(pty.WriteAll(bytes.data(), bytes.size()));
+  while (session.stamps().empty() && Now() < deadline) std::this_thread::sleep_for(milliseconds(5));
+  session.Stop();
+  const std::vector<Time> stamps = session.stamps();
+  ASSERT_EQ(stamps.size(), 1u);
+  EXPECT_GE(stamps[0], written);
+  EXPECT_LT(ToSeconds(stamps[0] - written), 1.0) << "stamped at the end of the 2 s gap";
+  EXPECT_EQ(session.Health().truncated, 1u);
 }
 
 TEST(DeviceReaderTest, StateNames) {
