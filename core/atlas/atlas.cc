@@ -154,6 +154,13 @@ const StepStats& Atlas::LocalizeWith(const Pose2& odometry_delta, const Mat3* in
   stats_ = StepStats{};
   stats_.step = ++step_;
   const bool first = graph_.FrameCount() == 0;
+  if (!UsableInput(odometry_delta, increment_cov, scan, first)) {
+    ++stats_.rejected_input;
+    FindDominant();
+    stats_.frames = graph_.FrameCount();
+    stats_.hypotheses_alive = static_cast<int>(hypotheses_.size());
+    return stats_;
+  }
   if (first) StartUnconnectedFrame();
   UpdateHypotheses(odometry_delta, increment_cov, scan, sonar, first);
   JudgeJuveniles();
@@ -165,6 +172,18 @@ const StepStats& Atlas::LocalizeWith(const Pose2& odometry_delta, const Mat3* in
   stats_.frames = graph_.FrameCount();
   stats_.hypotheses_alive = static_cast<int>(hypotheses_.size());
   return stats_;
+}
+
+bool Atlas::UsableInput(const Pose2& odometry_delta, const Mat3* increment_cov,
+                        const LaserScan* scan, bool first) {
+  auto finite = [](const Pose2& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+  };
+  if (scan != nullptr && !finite(scan->sensor_pose)) return false;
+  if (first) return true;  // the first step's odometry is not used
+  return finite(odometry_delta) &&
+         std::hypot(odometry_delta.x, odometry_delta.y) <= kMaxStepTranslation &&
+         (increment_cov == nullptr || increment_cov->allFinite());
 }
 
 const StepStats& Atlas::MaintainGraph() {

@@ -167,6 +167,10 @@ struct AtlasOptions {
   std::string Validate() const;  // empty when valid
 };
 
+// The largest odometry translation one step may carry (metres); more is a fault of the
+// odometry, not motion (StepStats::rejected_input).
+inline constexpr double kMaxStepTranslation = 1000.0;
+
 struct StepStats {
   int64_t step = 0;
   int frames = 0;
@@ -187,6 +191,11 @@ struct StepStats {
   // accepted match whose edge could not be added counts as kMatched and as match_rejected.
   std::array<int, kMapMatchReasonCount> match_reasons{};
   int refined = 0;
+  // 1 when this step's input could not be used and nothing was updated (Atlas::Step): its
+  // odometry is not finite or moves more than kMaxStepTranslation, its increment covariance
+  // is not finite, or the scan's sensor mounting is not finite. The motion of such a step is
+  // lost; NaN must never reach a map, which it would poison for good.
+  int rejected_input = 0;
   // Refinement observations outside the gate (a hypothesis disagrees with the edge), and mature
   // hypotheses retired for contradicting the dominant one across an edge.
   int refine_rejected = 0;
@@ -268,6 +277,9 @@ class Atlas {
   LocalMap& MapOf(Hypothesis& h);
   // Exactly one of `scan`, `sonar` is non-null.
   // `increment_cov`: the increment's covariance, or null for the maps' odometry model.
+  // Whether a step's input can be used (StepStats::rejected_input).
+  static bool UsableInput(const Pose2& odometry_delta, const Mat3* increment_cov,
+                          const LaserScan* scan, bool first);
   const StepStats& LocalizeWith(const Pose2& odometry_delta, const Mat3* increment_cov,
                                 const LaserScan* scan, const SonarReading* sonar);
   void UpdateHypotheses(const Pose2& odometry_delta, const Mat3* increment_cov,

@@ -473,6 +473,41 @@ TEST(Atlas, SerializeRoundTripsAndRejectsGarbage) {
   EXPECT_TRUE(c.Serialize() == before);
 }
 
+// Odometry that is not finite (or absurd), an increment covariance that is not finite, or a
+// scan whose sensor mounting is not finite is refused for that step: nothing is updated, the
+// dominant pose stays finite, later steps go on, and the image still round-trips. Without the
+// check one NaN step left the dominant pose NaN for good and made frames without end.
+TEST(Atlas, UnusableInputIsRefusedAndPoisonsNothing) {
+  TestWorld w;
+  Atlas a(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  // The first step's odometry is not used: NaN there is harmless.
+  EXPECT_EQ(a.Step(Pose2{NAN, 0.0, 0.0}, TestScan()).rejected_input, 0);
+  for (int i = 0; i < 10; ++i) a.Step(Pose2{0.25, 0.0, 0.0}, TestScan());
+  const Pose2 before = a.Dominant().pose.mean;
+  const int frames = a.Graph().FrameCount();
+  for (const Pose2& bad :
+       {Pose2{NAN, 0.0, 0.0}, Pose2{0.0, 0.0, INFINITY}, Pose2{1e200, 0.0, 0.0}}) {
+    EXPECT_EQ(a.Step(bad, TestScan()).rejected_input, 1);
+    EXPECT_EQ(a.Dominant().pose.mean.x, before.x);
+  }
+  LaserScan bad_scan = TestScan();
+  bad_scan.sensor_pose.theta = NAN;
+  EXPECT_EQ(a.Step(Pose2{0.25, 0.0, 0.0}, bad_scan).rejected_input, 1);
+  UncertainPose bad_increment;
+  bad_increment.mean = Pose2{0.25, 0.0, 0.0};
+  bad_increment.cov = Mat3::Identity() * NAN;
+  EXPECT_EQ(a.Localize(bad_increment, TestScan()).rejected_input, 1);
+  a.MaintainGraph();
+  EXPECT_EQ(a.Graph().FrameCount(), frames);
+  for (int i = 0; i < 10; ++i) {
+    EXPECT_EQ(a.Step(Pose2{0.25, 0.0, 0.0}, TestScan()).rejected_input, 0);
+    const UncertainPose p = a.Dominant().pose;
+    EXPECT_TRUE(std::isfinite(p.mean.x) && std::isfinite(p.mean.y) && p.cov.allFinite());
+  }
+  Atlas b(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  EXPECT_TRUE(b.Deserialize(a.Serialize()));
+}
+
 // A scan of 181 returns 2 m from the sensor, over a half turn; the sensor 3 cm ahead of and
 // 3 cm left of the robot (so that the endpoints lie inside cells, not on their borders).
 LaserScan HalfTurnScan() {

@@ -18,8 +18,11 @@ std::string HypothesisQualityOptions::Validate() const {
 double HypothesisQuality(const Mat3& robot_cov, double explanation,
                          const HypothesisQualityOptions& o) {
   const double det_star = std::pow(o.sigma_x * o.sigma_y * o.sigma_theta, 2);
-  const double det = std::max(0.0, robot_cov.determinant());
-  const double certainty = std::clamp(1.0 - det / det_star, 0.0, 1.0);
+  // A covariance that is not finite (or not positive) carries no certainty; NaN must not
+  // pass as a determinant of 0, which would read as fully certain.
+  const double det = robot_cov.determinant();
+  const double certainty =
+      std::isfinite(det) && det >= 0.0 ? std::clamp(1.0 - det / det_star, 0.0, 1.0) : 0.0;
   return o.alpha * certainty + (1.0 - o.alpha) * std::clamp(explanation, 0.0, 1.0);
 }
 

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 namespace atlas {
 namespace {
 
@@ -18,6 +21,11 @@ TEST(HypothesisQuality, Eq5) {
   // Too uncertain: first term clamps at 0.
   EXPECT_NEAR(HypothesisQuality(Mat3::Identity() * 10, 1.0, o), 0.7, 1e-12);
   EXPECT_NEAR(HypothesisQuality(Mat3::Zero(), 1.0, o), 1.0, 1e-12);
+  // A covariance that is not finite carries no certainty (NaN is not a determinant of 0).
+  Mat3 nan_cov = cov;
+  nan_cov(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NEAR(HypothesisQuality(nan_cov, 0.75, o), 0.7 * 0.75, 1e-12);
+  EXPECT_NEAR(HypothesisQuality(Mat3::Identity() * INFINITY, 0.75, o), 0.7 * 0.75, 1e-12);
 }
 
 TEST(QualityWindow, SlidesOverTheLastScans) {
