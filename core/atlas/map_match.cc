@@ -35,6 +35,8 @@ std::string MapMatchOptions::Validate() const {
   if (point_min_hits < 1) return "map_match.point_min_hits must be at least 1";
   if (!(point_rival_ratio > 0 && point_rival_ratio < 1))
     return "map_match.point_rival_ratio must lie in (0, 1)";
+  if (!(point_max_shift > 0 && point_max_shift <= 100))
+    return "map_match.point_max_shift must lie in (0, 100] metres";
   return "";
 }
 
@@ -394,6 +396,7 @@ bool PointPlacements::FixesDirection(const Pose2& t, int t_hits, const Vec2& dir
                                      const UncertainPose* prior, const MapMatchOptions& o) const {
   if (t_hits < o.point_min_hits) return false;
   const double reach = prior == nullptr ? 3.0 : std::sqrt(GateReachSquared(*prior, direction, o));
+  if (!(reach <= o.point_max_shift)) return false;  // too far to search (or not finite)
   const double step = a->options().cell;
   for (double d = o.distinct_translation; d <= reach; d += step)
     for (double sign : {-1.0, 1.0}) {

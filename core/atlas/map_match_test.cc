@@ -278,6 +278,50 @@ TEST(MapMatch, DirectionFixedBySinglePairIsAmbiguous) {
   EXPECT_NEAR(both.b_in_a.mean.y, truth.y, 0.05);
 }
 
+// The points fix a direction that one pair alone fixes only by a search out to the prior's
+// gate, one placement per cell of shift: a gate beyond point_max_shift leaves it unfixed, so
+// that a loose prior cannot make the search long. A corridor with a jamb every 4 m (A) of
+// which B saw one: the lines place B at every jamb inside the gate, the legs of a bench that
+// both scans saw single out the true one, and the along-corridor direction rests on the one
+// jamb pair, so the points must fix it too.
+TEST(MapMatch, PointsFixADirectionOnlyWithinTheirSearchBound) {
+  MapMatchOptions o;
+  const Pose2 truth{2.0, 0.0, 0.0};
+  const std::pair<Vec2, Vec2> south{{-10, -1.2}, {24, -1.2}}, north{{-10, 1.2}, {24, 1.2}};
+  auto jamb = [](double x) { return std::pair<Vec2, Vec2>{{x, 1.2}, {x, 2.2}}; };
+  const auto a = InA({south, north, jamb(-2), jamb(2), jamb(6), jamb(10), jamb(14)});
+  const auto b = SeenFrom({south, north, jamb(6)}, truth);
+  FramePointsOptions po;
+  po.enabled = true;
+  FramePoints pa(po), pb(po);
+  // What the scans saw: the walls and the jamb near x = 6, and the legs of a bench, across
+  // the corridor at uneven spacing.
+  std::vector<std::pair<Vec2, Vec2>> seen{{{5, -1.2}, {7, -1.2}}, {{5, 1.2}, {7, 1.2}}, jamb(6)};
+  for (double x : {4.3, 4.75, 5.6, 6.45, 7.05, 7.9}) seen.push_back({{x, -1.1}, {x, -0.5}});
+  AddSegmentPoints(seen, Pose2{}, &pa);
+  AddSegmentPoints(seen, truth, &pb);
+  const SelfMatch self_a = SelfMatchMap(a, o), self_b = SelfMatchMap(b, o);
+  // Sigma 1 m along the corridor: the gate (+-4 m) holds three jambs and is wider than the
+  // prior may vouch for (redundancy_prior_halfwidth 2 m); the points choose and fix it.
+  const UncertainPose near{Pose2{2.3, 0.0, 0.0}, Vec3(1.0, 0.04, 0.001).asDiagonal()};
+  EXPECT_EQ(MatchMaps(a, self_a, b, self_b, &near, o).result, MapMatchResult::kAmbiguous);
+  const MapMatch fixed = MatchMaps(a, self_a, b, self_b, &near, o, &pa, &pb);
+  ASSERT_EQ(fixed.result, MapMatchResult::kAccepted) << MapMatchReasonName(fixed.reason);
+  EXPECT_TRUE(fixed.by_points);
+  EXPECT_NEAR(fixed.b_in_a.mean.x, truth.x, 0.05);
+  // Sigma 3 m: the gate reaches 12 m, beyond point_max_shift (10 m): not searched, not fixed.
+  const UncertainPose loose{Pose2{2.3, 0.0, 0.0}, Vec3(9.0, 0.04, 0.001).asDiagonal()};
+  // (The refusal keeps the lines' reason; the points found their placement all the same.)
+  const MapMatch unsearched = MatchMaps(a, self_a, b, self_b, &loose, o, &pa, &pb);
+  EXPECT_EQ(unsearched.result, MapMatchResult::kAmbiguous);
+  EXPECT_FALSE(unsearched.by_points);
+  EXPECT_GE(unsearched.point_hits, o.point_min_hits);
+  EXPECT_EQ(unsearched.point_rival_hits, 0);
+  o.point_max_shift = 20.0;
+  const MapMatch searched = MatchMaps(a, self_a, b, self_b, &loose, o, &pa, &pb);
+  EXPECT_EQ(searched.result, MapMatchResult::kAccepted) << MapMatchReasonName(searched.reason);
+}
+
 // csail, edge 6-2 (docs/atlas.md session 15): the pair that alone fixes one direction of t
 // has an alternative 1.7 m away that the maps do not show. Here a corridor with one jamb: A
 // mapped the jamb at x = 6, B (seen from x = 2) only another at x = 7.7 (world), so pairing the
