@@ -48,8 +48,10 @@ std::string ScanMatchOptions::Validate() const {
   if (max_iterations > 100) return "scan_match: max_iterations must be at most 100";
   if (!(heading_search >= 0.0) || heading_search > 1.0)
     return "scan_match: heading_search must be 0 to 1 rad";
-  if (heading_search > 0.0 && (!Positive(heading_step) || heading_search / heading_step > 200.0))
-    return "scan_match: heading_step must be > 0 and at least heading_search / 200";
+  if ((heading_search > 0.0 || recovery_heading_search > 0.0) && !Positive(heading_step))
+    return "scan_match: heading_step must be > 0 (the heading searches step by it)";
+  if (heading_search > 0.0 && heading_search / heading_step > 200.0)
+    return "scan_match: heading_step must be at least heading_search / 200";
   if (!Positive(coarse_distance)) return "scan_match: coarse_distance must be > 0";
   if (!(recovery_heading_search >= 0.0) || recovery_heading_search > 1.6)
     return "scan_match: recovery_heading_search must be 0 to 1.6 rad";

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "core/localmap/fake_wall_scanner.h"
@@ -187,6 +188,14 @@ TEST(ScanMatcher, ValidateNamesTheBadOption) {
   o.heading_search = 0.3;
   o.heading_step = 0.0;
   EXPECT_NE(o.Validate().find("heading_step"), std::string::npos);
+  // The recovery search steps by heading_step too, with or without heading_search.
+  o = ScanMatchOptions{};
+  o.heading_search = 0.0;
+  o.recovery_heading_search = 0.5;
+  for (double step : {0.0, -0.01, std::numeric_limits<double>::quiet_NaN()}) {
+    o.heading_step = step;
+    EXPECT_NE(o.Validate().find("heading_step"), std::string::npos) << step;
+  }
 }
 
 }  // namespace
