@@ -60,6 +60,7 @@ class RecordingSink final : public StepSink {
     match_rejected += s.match_rejected;
     match_ambiguous += s.match_ambiguous;
     match_by_points += s.match_by_points;
+    rejected_input += s.rejected_input;
     for (int r = 0; r < kMapMatchReasonCount; ++r) match_reasons[r] += s.match_reasons[r];
     seeded += s.seeded;
     matured += s.matured;
@@ -78,6 +79,7 @@ class RecordingSink final : public StepSink {
   std::vector<StampedFramePose> trajectory;
   std::vector<TimingRow> timing;
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0, match_by_points = 0;
+  int64_t rejected_input = 0;
   std::array<int64_t, kMapMatchReasonCount> match_reasons{};
   int64_t seeded = 0, matured = 0, deleted = 0, killed_by_w = 0;
   int64_t refine_rejected = 0, contradicting = 0;
@@ -248,6 +250,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   sum.match_rejected = sink.match_rejected;
   sum.match_ambiguous = sink.match_ambiguous;
   sum.match_by_points = sink.match_by_points;
+  sum.rejected_input = sink.rejected_input;
   sum.match_reasons = sink.match_reasons;
   sum.seeded = sink.seeded;
   sum.matured = sink.matured;
@@ -445,6 +448,7 @@ std::string SummaryJson(const ReplaySummary& s) {
          static_cast<long long>(s.match_accepted), static_cast<long long>(s.match_rejected),
          static_cast<long long>(s.match_ambiguous));
   Append(t, "\"match_by_points\": %lld, ", static_cast<long long>(s.match_by_points));
+  Append(t, "\"rejected_input\": %lld, ", static_cast<long long>(s.rejected_input));
   t += "\"match_reasons\": {";
   for (int r = 0; r < kMapMatchReasonCount; ++r)
     Append(t, "%s\"%s\": %lld", r > 0 ? ", " : "",
@@ -496,6 +500,11 @@ std::string SummaryText(const ReplaySummary& s) {
   if (s.scan_matches + s.scan_match_fallbacks > 0)
     Append(t, "scan matching        %lld increments matched, %lld fell back to the odometry\n",
            static_cast<long long>(s.scan_matches), static_cast<long long>(s.scan_match_fallbacks));
+  if (s.rejected_input > 0)
+    Append(t,
+           "input refused        %lld steps (odometry, its covariance or the laser mounting not "
+           "finite, or a jump of more than %.0f m): nothing was updated\n",
+           static_cast<long long>(s.rejected_input), kMaxStepTranslation);
   Append(t, "frames               %d\n", s.frames);
   Append(t,
          "edges                %d (now: genesis %d, map-match %d, refined %d; made by "

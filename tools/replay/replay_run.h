@@ -67,6 +67,8 @@ struct ReplaySummary {
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0;
   // Accepted matches whose placement the frames' points chose (core/atlas/map_match.h, "Points").
   int64_t match_by_points = 0;
+  // Steps whose input the atlas refused (StepStats::rejected_input).
+  int64_t rejected_input = 0;
   // Map-matching outcomes by MapMatchReason (index static_cast<int>(reason)).
   std::array<int64_t, kMapMatchReasonCount> match_reasons{};
   // Traversal (III-E): juveniles seeded, matured, deleted (of which killed because w failed).
