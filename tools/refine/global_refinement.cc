@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/atlas/dijkstra_projection.h"
+#include "core/geometry/covariance.h"
 
 namespace atlas::refine {
 namespace {
@@ -69,40 +70,114 @@ RefineResult RefineGlobal(const AtlasGraph& graph, const RefineOptions& options)
   result.refined.assign(static_cast<size_t>(n), std::nullopt);
   if (n == 0) return result;
 
-  const Projection projection = DijkstraProjection(graph, 0);
-  std::vector<std::array<double, 3>> x(static_cast<size_t>(n));
-  std::vector<uint8_t> placed(static_cast<size_t>(n), 0);
-  for (const ProjectedFrame& f : projection.entries) {
-    const Pose2& p = f.pose.mean;
-    x[static_cast<size_t>(f.frame)] = {p.x, p.y, p.theta};
-    placed[static_cast<size_t>(f.frame)] = 1;
-    result.initial[static_cast<size_t>(f.frame)] = p;
+  // The usable constraints: an edge whose covariance is not finite, has a negative variance, or
+  // is not positive definite once symmetrised and floored cannot weigh a residual; it is left
+  // out and counted.
+  struct Constraint {
+    FrameId a, b;
+    Pose2 b_in_a;
+    Mat3 sqrt_info;
+  };
+  std::vector<Constraint> constraints;
+  for (const AtlasEdge& e : graph.Edges()) {
+    if (e.a < 0 || e.b < 0 || e.a >= n || e.b >= n) continue;
+    Mat3 cov = 0.5 * (e.b_in_a.cov + e.b_in_a.cov.transpose());
+    bool usable = cov.allFinite() && cov.diagonal().minCoeff() >= 0.0;
+    if (usable) {
+      for (int i = 0; i < 3; ++i) cov(i, i) = std::max(cov(i, i), options.min_variance);
+      usable = IsPositiveDefiniteCovariance(cov);
+    }
+    std::optional<Mat3> sqrt_info;
+    if (usable) {
+      // Information^(1/2): L^T with L L^T = information, so |L^T e|^2 = e^T info e.
+      const Mat3 info = cov.inverse();
+      Eigen::LLT<Mat3> llt(0.5 * (info + info.transpose()));
+      if (llt.info() == Eigen::Success && llt.matrixL().toDenseMatrix().allFinite())
+        sqrt_info = llt.matrixL().transpose();
+    }
+    if (!sqrt_info) {
+      ++result.skipped_edges;
+      continue;
+    }
+    constraints.push_back({e.a, e.b, e.b_in_a.mean, *sqrt_info});
   }
-  result.frames = static_cast<int>(projection.entries.size());
+
+  // The frames reached from frame 0 through usable constraints; the initial arrangement is the
+  // Dijkstra projection from frame 0.
+  std::vector<std::vector<FrameId>> adjacent(static_cast<size_t>(n));
+  for (const Constraint& c : constraints) {
+    adjacent[static_cast<size_t>(c.a)].push_back(c.b);
+    adjacent[static_cast<size_t>(c.b)].push_back(c.a);
+  }
+  std::vector<uint8_t> placed(static_cast<size_t>(n), 0);
+  std::vector<FrameId> todo{0};
+  placed[0] = 1;
+  while (!todo.empty()) {
+    const FrameId f = todo.back();
+    todo.pop_back();
+    for (FrameId g : adjacent[static_cast<size_t>(f)])
+      if (!placed[static_cast<size_t>(g)]) {
+        placed[static_cast<size_t>(g)] = 1;
+        todo.push_back(g);
+      }
+  }
+  std::vector<std::array<double, 3>> x(static_cast<size_t>(n));
+  std::vector<uint8_t> started(static_cast<size_t>(n), 0);  // x holds an initial value
+  for (const ProjectedFrame& f : DijkstraProjection(graph, 0).entries) {
+    const Pose2& p = f.pose.mean;
+    if (f.frame < 0 || f.frame >= n || !placed[static_cast<size_t>(f.frame)] ||
+        !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta))
+      continue;
+    x[static_cast<size_t>(f.frame)] = {p.x, p.y, p.theta};
+    started[static_cast<size_t>(f.frame)] = 1;
+  }
+  x[0] = {0.0, 0.0, 0.0};
+  started[0] = 1;
+  // A reached frame the projection did not place starts where a usable constraint puts it.
+  for (bool grew = true; grew;) {
+    grew = false;
+    const auto start = [&](FrameId from, FrameId to, const Pose2& to_in_from) {
+      if (!started[static_cast<size_t>(from)] || started[static_cast<size_t>(to)]) return;
+      const auto& v = x[static_cast<size_t>(from)];
+      const Pose2 p = Compose(Pose2{v[0], v[1], v[2]}, to_in_from);
+      x[static_cast<size_t>(to)] = {p.x, p.y, p.theta};
+      started[static_cast<size_t>(to)] = 1;
+      grew = true;
+    };
+    for (const Constraint& c : constraints) {
+      start(c.a, c.b, c.b_in_a);
+      start(c.b, c.a, Inverse(c.b_in_a));
+    }
+  }
+  for (int f = 0; f < n; ++f) {
+    if (!placed[static_cast<size_t>(f)]) {
+      ++result.unreached;
+      continue;
+    }
+    const auto& v = x[static_cast<size_t>(f)];
+    result.initial[static_cast<size_t>(f)] = Pose2{v[0], v[1], v[2]};
+    ++result.frames;
+  }
 
   ceres::Problem problem;
-  for (const AtlasEdge& e : graph.Edges()) {
-    if (!placed[static_cast<size_t>(e.a)] || !placed[static_cast<size_t>(e.b)]) continue;
-    Mat3 cov = 0.5 * (e.b_in_a.cov + e.b_in_a.cov.transpose());
-    for (int i = 0; i < 3; ++i) cov(i, i) = std::max(cov(i, i), options.min_variance);
-    // Information^(1/2): L^T with L L^T = information, so |L^T e|^2 = e^T info e.
-    const Mat3 info = cov.inverse();
-    Eigen::LLT<Mat3> llt(0.5 * (info + info.transpose()));
-    if (llt.info() != Eigen::Success) {
-      cov += Mat3::Identity() * options.min_variance * 1e3;
-      llt.compute(cov.inverse());
-      if (llt.info() != Eigen::Success) continue;
-    }
-    const Mat3 sqrt_info = llt.matrixL().transpose();
+  for (const Constraint& c : constraints) {
+    if (!placed[static_cast<size_t>(c.a)] || !placed[static_cast<size_t>(c.b)]) continue;
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EdgeResidual, 3, 3, 3>(
-                                 new EdgeResidual(e.b_in_a.mean, sqrt_info)),
-                             nullptr, x[static_cast<size_t>(e.a)].data(),
-                             x[static_cast<size_t>(e.b)].data());
+                                 new EdgeResidual(c.b_in_a, c.sqrt_info)),
+                             nullptr, x[static_cast<size_t>(c.a)].data(),
+                             x[static_cast<size_t>(c.b)].data());
     ++result.edges;
   }
   if (result.edges == 0) {
+    // Frame 0 alone.
     result.status = RefineStatus::kConverged;
     result.refined = result.initial;
+    return result;
+  }
+  // Every constraint added joins frames reached from frame 0, so frame 0 has a block.
+  if (!problem.HasParameterBlock(x[0].data())) {
+    result.status = RefineStatus::kFailed;
+    result.message = "frame 0 has no usable constraint";
     return result;
   }
   problem.SetParameterBlockConstant(x[0].data());
@@ -132,6 +207,12 @@ RefineResult RefineGlobal(const AtlasGraph& graph, const RefineOptions& options)
   for (int f = 0; f < n; ++f) {
     if (!placed[static_cast<size_t>(f)]) continue;
     const auto& v = x[static_cast<size_t>(f)];
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+      result.status = RefineStatus::kFailed;
+      result.message = "the solution is not finite: " + result.message;
+      result.refined.assign(static_cast<size_t>(n), std::nullopt);
+      return result;
+    }
     result.refined[static_cast<size_t>(f)] = Pose2{v[0], v[1], WrapAngle(v[2])};
   }
   return result;

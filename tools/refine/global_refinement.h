@@ -9,9 +9,11 @@
 //   r_ab = S_ab^(-1/2) [ R(theta_a)^T (t_b - t_a) - t_ab ;  wrap(theta_b - theta_a - theta_ab) ]
 // (the error expressed in frame a, where S_ab lives), and the refined arrangement minimises
 // sum |r_ab|^2 (Ceres, sparse Cholesky Levenberg-Marquardt). The initial arrangement is the
-// Dijkstra projection from frame 0 (Section III-A). Frames not connected to frame 0 are left
-// out. A covariance is floored at `min_variance` on its diagonal (a Genesis edge made right after
-// an update can carry a near-singular covariance).
+// Dijkstra projection from frame 0 (Section III-A). A covariance is floored at `min_variance` on
+// its diagonal (a Genesis edge made right after an update can carry a near-singular
+// covariance); an edge whose covariance is then still not usable (not finite, a negative
+// variance, not positive definite) is left out and counted in `skipped_edges`. Frames not
+// connected to frame 0 through the usable edges are left out and counted in `unreached`.
 //
 // Never in the step loop: its cost grows with the whole graph.
 
@@ -39,7 +41,9 @@ struct RefineResult {
   std::vector<std::optional<Pose2>> initial;  // the Dijkstra projection from frame 0
   std::vector<std::optional<Pose2>> refined;
   int frames = 0;                               // frames placed
+  int unreached = 0;                            // frames not connected to frame 0 (left out)
   int edges = 0;                                // constraints used
+  int skipped_edges = 0;                        // edges left out: covariance not usable
   double initial_cost = 0.0, final_cost = 0.0;  // 1/2 sum |r|^2
   int iterations = 0;
   std::string message;  // the solver's report line

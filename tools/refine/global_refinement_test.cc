@@ -52,6 +52,8 @@ TEST(GlobalRefinement, ConsistentLoopIsKeptExactly) {
   }
   EXPECT_FALSE(r.refined[4].has_value());
   EXPECT_FALSE(r.initial[4].has_value());
+  EXPECT_EQ(r.unreached, 1);
+  EXPECT_EQ(r.skipped_edges, 0);
 }
 
 // A triangle whose loop does not close: the chain 0-1-2 says frame 2 is at (1, 1) (frame 1 is
@@ -89,6 +91,43 @@ TEST(GlobalRefinement, LoopErrorIsSharedByInverseCovariance) {
   ASSERT_TRUE(r.initial[2]);
   EXPECT_NEAR(r.initial[2]->x, 1.3, 1e-12);
   EXPECT_LT(r.final_cost, r.initial_cost);
+}
+
+// An edge from frame 0 whose covariance is unusable (negative variances, or singular) is left
+// out and counted; the frames it alone joined are reported as not reached, and the solve does
+// not touch a frame 0 that has no constraint left (Ceres aborted on setting it constant).
+TEST(GlobalRefinement, UnusableCovarianceFromFrameZeroIsLeftOut) {
+  for (const double v : {-1.0, 1.0}) {
+    AtlasGraph g = Frames(3);
+    UncertainPose bad = Edge(1, 0, 0, 0.01, 0.001);
+    bad.cov = v < 0 ? Mat3(-Mat3::Identity()) : Mat3(Mat3::Ones());
+    ASSERT_EQ(g.AddEdge(0, 1, bad, EdgeKind::kGenesis), AddEdgeResult::kAdded);
+    ASSERT_EQ(g.AddEdge(1, 2, Edge(1, 0, 0, 0.01, 0.001), EdgeKind::kGenesis),
+              AddEdgeResult::kAdded);
+    const RefineResult r = RefineGlobal(g, RefineOptions{});
+    EXPECT_EQ(r.status, RefineStatus::kConverged) << v;
+    EXPECT_EQ(r.skipped_edges, 1) << v;
+    EXPECT_EQ(r.edges, 0) << v;
+    EXPECT_EQ(r.frames, 1) << v;
+    EXPECT_EQ(r.unreached, 2) << v;
+    ASSERT_TRUE(r.refined[0].has_value());
+    EXPECT_FALSE(r.refined[1].has_value());
+    EXPECT_FALSE(r.refined[2].has_value());
+  }
+}
+
+// A zero covariance is floored at min_variance (as a near-singular Genesis edge is) and used.
+TEST(GlobalRefinement, ZeroCovarianceIsFlooredAndUsed) {
+  AtlasGraph g = Frames(2);
+  UncertainPose zero = Edge(1, 2, 0.5, 0.0, 0.0);
+  ASSERT_EQ(g.AddEdge(0, 1, zero, EdgeKind::kGenesis), AddEdgeResult::kAdded);
+  const RefineResult r = RefineGlobal(g, RefineOptions{});
+  ASSERT_EQ(r.status, RefineStatus::kConverged) << r.message;
+  EXPECT_EQ(r.skipped_edges, 0);
+  EXPECT_EQ(r.unreached, 0);
+  ASSERT_TRUE(r.refined[1].has_value());
+  EXPECT_NEAR(r.refined[1]->x, 1.0, 1e-9);
+  EXPECT_NEAR(r.refined[1]->y, 2.0, 1e-9);
 }
 
 TEST(GlobalRefinement, EmptyGraphAndBadOptions) {
