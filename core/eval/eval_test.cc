@@ -218,6 +218,17 @@ TEST(ReferenceScoreTest, ScaleErrorOnAStraightLine) {
   EXPECT_NEAR(s.alignment.x, -0.5, 1e-9);
   EXPECT_NEAR(s.ate_translation_m.max, 0.5, 1e-9);
   EXPECT_NEAR(s.ate_translation_m.mean, 0.3 * 10 / 11, 1e-9);  // (0.5+0.4+..+0+..+0.5) / 11
+  EXPECT_NEAR(s.reference_path_m, 10.0, 1e-9);
+
+  // Pairs farther apart than the path is long: none, and the caller must say so (atlas-eval
+  // fails rather than print 0 +- 0 over no pair).
+  by_distance.segment_length_m = 10.5;
+  s = ScoreAgainstReference(TimedTrajectory(est), TimedTrajectory(ref), by_distance);
+  EXPECT_EQ(s.pairs, 0);
+  EXPECT_EQ(s.rpe_translation_m.count, 0);
+  by_step.step_count = 11;
+  s = ScoreAgainstReference(TimedTrajectory(est), TimedTrajectory(ref), by_step);
+  EXPECT_EQ(s.pairs, 0);
 }
 
 }  // namespace

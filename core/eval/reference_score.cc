@@ -18,7 +18,7 @@ std::string ReferenceScoreOptions::Validate() const {
     return "segment_length_m must be >= 0";
   }
   if ((step_count > 0) == (segment_length_m > 0.0)) {
-    return "set exactly one of step_count and segment_length_m";
+    return "set exactly one of step_count (--step) and segment_length_m (--segment)";
   }
   return {};
 }
@@ -81,6 +81,7 @@ ReferenceScore ScoreAgainstReference(const TimedTrajectory& estimate,
     for (size_t k = 1; k < n; ++k) {
       along[k] = along[k - 1] + std::hypot(ref[k].x - ref[k - 1].x, ref[k].y - ref[k - 1].y);
     }
+    score.reference_path_m = along[n - 1];
     size_t j = 1;
     for (size_t i = 0; i + 1 < n; ++i) {
       if (j <= i) j = i + 1;

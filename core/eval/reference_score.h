@@ -23,7 +23,7 @@ namespace atlas::eval {
 
 struct ReferenceScoreOptions {
   Duration match_tolerance = kDefaultMatchTolerance;
-  // Exactly one of the two is > 0.
+  // Exactly one of the two is > 0 (atlas-eval: --step N or --segment M).
   int step_count = 0;
   double segment_length_m = 1.0;
 
@@ -34,7 +34,8 @@ struct ReferenceScoreOptions {
 struct ReferenceScore {
   int64_t matched = 0;    // estimated poses with a reference pose within the tolerance
   int64_t unmatched = 0;  // estimated poses without one
-  int64_t pairs = 0;      // RPE pairs
+  int64_t pairs = 0;      // RPE pairs (0: no pair was that far apart; the RPE means nothing)
+  double reference_path_m = 0.0;  // reference path length over the matched poses
   ErrorStats rpe_translation_m;
   ErrorStats rpe_rotation_deg;
   ErrorStats ate_translation_m;

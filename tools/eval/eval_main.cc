@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
@@ -48,13 +49,20 @@ Options:
   --atlas DIR          score atlas-replay output (DIR/trajectory.tsv, DIR/graph.tsv)
   --tolerance S        stamp matching tolerance in seconds (default 0.001)
   --segment M          reference scoring: RPE pairs M metres of travel apart (default 1.0)
-  --step N             reference scoring: RPE pairs N poses apart (instead of --segment)
+  --step N             reference scoring: RPE pairs N poses apart (instead of --segment;
+                       give one of the two)
   --json               print a JSON object instead of text
   --errors FILE        relations scoring: write each matched relation's error to FILE, one
                        row "t1 t2 translation_m rotation_deg" in the relations' order
   -h, --help           this text
 
-Exit status: 0 scored, 1 bad input (message on stderr), 2 bad command line.
+Input files are checked as they are read: a malformed line, a value out of range (|t| > 4e9 s,
+|x|, |y| > 1e7 m, |angle| > 1e3 rad), two poses with the same stamp, an edge whose covariance
+is not positive definite or that names a frame DIR/frames.tsv does not list is an error naming
+the file and line.
+
+Exit status: 0 scored, 1 bad input or nothing to score (no relation or pose matched, no RPE
+pair; message on stderr), 2 bad command line.
 )";
 
 int Usage(const std::string& what) {
@@ -93,7 +101,22 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
   if (!gf.error.empty()) return Fail(gf.error);
   const EdgeRowsParse edges = ParseGraphEdges(gf.text, graph_path);
   if (!edges.error.empty()) return Fail(edges.error);
-  int frames = edges.frame_count;
+  // frames.tsv (atlas-replay writes it; an atlas exported from atlasd has none) says how many
+  // frames the run made: an edge or a row naming another frame is an error.
+  const std::string frames_path = dir + "/frames.tsv";
+  int64_t frame_count = -1;
+  if (std::error_code ec; std::filesystem::exists(frames_path, ec)) {
+    TextFile ff = ReadTextFile(frames_path);
+    if (!ff.error.empty()) return Fail(ff.error);
+    std::string e;
+    frame_count = ParseFrameCount(ff.text, frames_path, &e);
+    if (!e.empty()) return Fail(e);
+  }
+  if (std::string e = CheckFramesExist(trajectory, trajectory_path, edges, graph_path, frame_count,
+                                       frames_path);
+      !e.empty())
+    return Fail(e);
+  int frames = static_cast<int>(std::max<int64_t>(frame_count, edges.frame_count));
   for (const FramePose& r : trajectory.rows) frames = std::max(frames, r.frame + 1);
   AtlasGraph graph;
   if (std::string e = BuildGraphFromEdges(frames, edges.rows, &graph); !e.empty())
@@ -191,7 +214,7 @@ int Main(int argc, char** argv) {
   std::string relations_path, reference_path, log_path, trajectory_path, atlas_dir, errors_path;
   double tolerance_s = 0.001;
   ReferenceScoreOptions ref_options;
-  bool json = false;
+  bool json = false, step_given = false, segment_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&](const char* name) -> const char* {
@@ -224,12 +247,17 @@ int Main(int argc, char** argv) {
       } else if (a == "--tolerance") {
         tolerance_s = d;
       } else if (a == "--segment") {
+        if (!(d > 0.0))
+          return Usage("--segment needs a distance > 0 m, got '" + std::string(v) + "'");
         ref_options.segment_length_m = d;
         ref_options.step_count = 0;
+        segment_given = true;
       } else {
-        if (d != std::floor(d) || d < 1 || d > 1e9) return Usage("--step needs a count >= 1");
+        if (d != std::floor(d) || d < 1 || d > 1e9)
+          return Usage("--step needs a whole count >= 1, got '" + std::string(v) + "'");
         ref_options.step_count = static_cast<int>(d);
         ref_options.segment_length_m = 0.0;
+        step_given = true;
       }
     } else if (!a.empty() && a[0] == '-') {
       return Usage("unknown option " + a);
@@ -247,7 +275,13 @@ int Main(int argc, char** argv) {
   }
   if (!atlas_dir.empty() && relations_path.empty()) return Usage("--atlas needs --relations");
   if (!errors_path.empty() && relations_path.empty()) return Usage("--errors needs --relations");
-  if (!(tolerance_s >= 0.0)) return Usage("--tolerance must be >= 0");
+  if (step_given && segment_given)
+    return Usage(
+        "give --step N or --segment M, not both (RPE pairs are either N poses or M m apart)");
+  if ((step_given || segment_given) && reference_path.empty())
+    return Usage("--step and --segment need --reference");
+  if (!(tolerance_s >= 0.0) || tolerance_s > 1e6)
+    return Usage("--tolerance must be a number of seconds in [0, 1e6]");
   ref_options.match_tolerance = Duration(static_cast<int64_t>(tolerance_s * 1e9));
   if (std::string bad = ref_options.Validate(); !bad.empty()) return Usage(bad);
 
@@ -317,6 +351,27 @@ int Main(int argc, char** argv) {
   } else {
     std::snprintf(pairing, sizeof pairing, "%.3g m", ref_options.segment_length_m);
   }
+  if (s.matched == 0) {
+    return Fail(
+        "no pose of the trajectory matched a reference stamp: were both written from the same "
+        "log with the same clock options?");
+  }
+  if (s.pairs == 0) {
+    char what[256];
+    if (ref_options.step_count > 0) {
+      std::snprintf(what, sizeof what,
+                    "no two of the %lld matched poses are %d poses apart: give a --step below "
+                    "%lld",
+                    static_cast<long long>(s.matched), ref_options.step_count,
+                    static_cast<long long>(s.matched));
+    } else {
+      std::snprintf(what, sizeof what,
+                    "no two matched poses are %.6g m of reference travel apart (the matched "
+                    "reference path is %.6g m long): give a shorter --segment",
+                    ref_options.segment_length_m, s.reference_path_m);
+    }
+    return Fail(std::string("no relative pose error pair: ") + what);
+  }
   if (json) {
     std::printf(
         "{\"estimate\": %s, \"reference\": %s, \"poses\": %zu, \"matched\": %lld, "
@@ -344,10 +399,7 @@ int Main(int argc, char** argv) {
     std::fputs(FormatStats("  translational", "m", s.ate_translation_m).c_str(), stdout);
     std::fputs(FormatStats("  rotational", "deg", s.ate_rotation_deg).c_str(), stdout);
   }
-  return s.matched > 0 ? 0
-                       : Fail(
-                             "no pose of the trajectory matched a reference stamp: were both "
-                             "written from the same log with the same clock options?");
+  return 0;
 }
 
 }  // namespace

@@ -29,6 +29,14 @@ struct TextFile {
 // Reads a whole file, plain or gzip-compressed.
 TextFile ReadTextFile(const std::string& path);
 
+// Limits on values read from the files: a stamp beyond 4e9 s overflows the nanosecond clock,
+// and positions beyond 10,000 km or angles beyond 1000 rad are damage, not data.
+inline constexpr double kMaxAbsStampS = 4e9;
+inline constexpr double kMaxAbsPositionM = 1e7;
+inline constexpr double kMaxAbsAngleRad = 1e3;
+
+// Trajectory files: values out of the limits above, and two rows with the same stamp, are errors
+// naming the line; rows need not be in time order (they are sorted).
 struct TrajectoryParse {
   TimedTrajectory trajectory;
   std::string error;  // "<source>:<line>: <what>"; empty when valid
@@ -45,15 +53,29 @@ RelationsParse ParseRelations(std::string_view text, const std::string& source);
 // graph.tsv "from to x y theta c00 c01 c02 c11 c12 c22 kind".
 struct FramePosesParse {
   std::vector<FramePose> rows;
+  std::vector<size_t> lines;  // the line of each row
   std::string error;
 };
 FramePosesParse ParseFrameTrajectory(std::string_view text, const std::string& source);
+// An edge whose covariance is not positive definite (core/geometry/covariance.h), that joins a
+// frame to itself or repeats a pair is an error naming the line.
 struct EdgeRowsParse {
   std::vector<EdgeRow> rows;
-  int frame_count = 0;  // 1 + the largest frame id named
+  std::vector<size_t> lines;  // the line of each row
+  int frame_count = 0;        // 1 + the largest frame id named
   std::string error;
 };
 EdgeRowsParse ParseGraphEdges(std::string_view text, const std::string& source);
+// atlas-replay's frames.tsv ("frame step timestamp parent"): the number of frames the run made
+// (1 + the largest frame id), or -1 with `error` set.
+int64_t ParseFrameCount(std::string_view text, const std::string& source, std::string* error);
+// The two files agree: with `frame_count` >= 0 (from frames.tsv, named `count_source`), no edge
+// or trajectory row names a frame beyond it; an empty graph is an error for more than one frame.
+// "" or "<file>:<line>: <what>".
+std::string CheckFramesExist(const FramePosesParse& trajectory,
+                             const std::string& trajectory_source, const EdgeRowsParse& edges,
+                             const std::string& graph_source, int64_t frame_count,
+                             const std::string& count_source);
 
 // "timestamp x y theta" lines with a header comment; timestamps to the microsecond.
 std::string FormatTrajectory(const TimedTrajectory& trajectory, const std::string& comment);

@@ -35,6 +35,63 @@ TEST(TrajectoryFilesTest, RejectsBadRowsWithLineNumbers) {
             std::string::npos);
 }
 
+TEST(TrajectoryFilesTest, RejectsOutOfRangeValuesAndRepeatedStamps) {
+  EXPECT_EQ(
+      ParseTrajectory("1 2 3 4\n2 1e308 0 0\n", "t.tsv").error.rfind("t.tsv:2: field 2 is ", 0),
+      0u);
+  EXPECT_EQ(
+      ParseTrajectory("1e300 0 0 0\n", "t.tsv").error.rfind("t.tsv:1: field 1 (a timestamp)", 0),
+      0u);
+  EXPECT_EQ(ParseTrajectory("1 0 0 1e9\n", "t.tsv").error.rfind("t.tsv:1: field 4 is ", 0), 0u);
+  // Unsorted rows are fine (sorted); a repeated stamp names both lines.
+  EXPECT_EQ(ParseTrajectory("2 0 0 0\n1 0 0 0\n", "t.tsv").error, "");
+  EXPECT_EQ(ParseTrajectory("# h\n1 0 0 0\n2 0 0 0\n1.0000000001 5 0 0\n", "t.tsv").error,
+            "t.tsv:4: timestamp 1.000000 repeats line 2 (one pose per stamp: remove one of the two "
+            "rows)");
+  EXPECT_EQ(ParseRelations("1 2 1e308 0 0 0 0 0\n", "r").error.rfind("r:1: field 3 is ", 0), 0u);
+  EXPECT_EQ(ParseRelations("1 2 0 0 0 0 0 1e6\n", "r").error.rfind("r:1: field 8 is ", 0), 0u);
+  EXPECT_EQ(ParseFrameTrajectory("1 0 0 0 0\n1 1 0 0 0\n", "tr").error.rfind("tr:2: timestamp", 0),
+            0u);
+}
+
+TEST(TrajectoryFilesTest, GraphEdgesAreCheckedWithLineNumbers) {
+  const std::string ok = "0 1 1 0 0 0.01 0 0 0.01 0 0.001 genesis\n";
+  EdgeRowsParse e = ParseGraphEdges("# h\n" + ok, "g.tsv");
+  ASSERT_EQ(e.error, "");
+  ASSERT_EQ(e.lines.size(), 1u);
+  EXPECT_EQ(e.lines[0], 2u);
+  for (const char* cov : {"0 0 0 0 0 0", "-1 0 0 -1 0 -1", "1 1 1 1 1 1"}) {
+    e = ParseGraphEdges(ok + "1 2 1 0 0 " + cov + " genesis\n", "g.tsv");
+    EXPECT_EQ(e.error.rfind("g.tsv:2: covariance of edge 1-2 is not positive definite", 0), 0u)
+        << cov << ": " << e.error;
+  }
+  EXPECT_EQ(ParseGraphEdges(ok + "1 0 1 0 0 0.01 0 0 0.01 0 0.001 map-match\n", "g.tsv").error,
+            "g.tsv:2: edge 1-0 joins two frames that line 1 already joins");
+  EXPECT_EQ(ParseGraphEdges("2 2 1 0 0 0.01 0 0 0.01 0 0.001 genesis\n", "g.tsv").error,
+            "g.tsv:1: edge 2-2 joins a frame to itself");
+
+  // Against frames.tsv: an edge or a row naming a frame the run did not make.
+  std::string error;
+  EXPECT_EQ(ParseFrameCount("# h\n0 1 1.0 -1\n1 5 2.0 0\n", "f.tsv", &error), 2);
+  EXPECT_EQ(error, "");
+  const FramePosesParse traj = ParseFrameTrajectory("1 0 0 0 0\n2 1 0 0 0\n", "t.tsv");
+  ASSERT_EQ(traj.error, "");
+  e = ParseGraphEdges(ok + "1 7 1 0 0 0.01 0 0 0.01 0 0.001 map-match\n", "g.tsv");
+  ASSERT_EQ(e.error, "");
+  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", e, "g.tsv", 2, "f.tsv"),
+            "g.tsv:2: edge 1-7 names frame 7, but f.tsv lists 2 frames; the files are not from "
+            "one run, or the row is damaged");
+  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", ParseGraphEdges(ok, "g.tsv"), "g.tsv", 2, "f.tsv"), "");
+  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", ParseGraphEdges("# h\n", "g.tsv"), "g.tsv", 1, "f.tsv")
+                .rfind("t.tsv:2: the row names frame 1", 0),
+            0u);
+  // No frames.tsv: no count to check against; an empty graph still may not hold two frames.
+  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", e, "g.tsv", -1, ""), "");
+  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", ParseGraphEdges("# h\n", "g.tsv"), "g.tsv", -1, "")
+                .rfind("g.tsv: no edges, but the atlas has 2 frames", 0),
+            0u);
+}
+
 TEST(TrajectoryFilesTest, ParsesRelations) {
   const RelationsParse p = ParseRelations(
       "1134864645.90321 1134864646.32420 0.31293 0.02935 0.00000  0.00000 0.00000 0.24198\n", "r");
