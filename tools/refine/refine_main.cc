@@ -27,7 +27,12 @@ Options:
   --max-iterations N   solver iterations (default 100)
   -h, --help           this text
 
-Exit status: 0 written, 1 bad input or the solver failed (message on stderr), 2 bad command line.
+Frames that the edges do not connect to frame 0 cannot be placed: their trajectory rows are
+left out, and a warning on stderr says how many and which frames. An edge whose covariance is
+not usable is an error when graph.tsv is read (file:line).
+
+Exit status: 0 written (warnings on stderr), 1 bad input or the solver failed (message on
+stderr), 2 bad command line.
 )";
 
 int Usage(const std::string& what) {
@@ -74,7 +79,8 @@ int Main(int argc, char** argv) {
   }
   replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
   if (!g.error.empty()) {
-    std::fprintf(stderr, "atlas-refine: %s/graph.tsv: %s\n", dir.c_str(), g.error.c_str());
+    std::fprintf(stderr, "atlas-refine: %s/graph.tsv%s: %s\n", dir.c_str(), g.where.c_str(),
+                 g.error.c_str());
     return 1;
   }
   const RefineResult r = RefineGlobal(g.graph, options);
@@ -101,6 +107,30 @@ int Main(int argc, char** argv) {
     return 1;
   }
   std::printf("wrote %s (%d rows)\n", out.c_str(), rows);
+  if (r.skipped_edges > 0)
+    std::fprintf(stderr,
+                 "atlas-refine: warning: %d edges of %s/graph.tsv left out: covariance not usable "
+                 "(not finite, a negative variance or not positive definite)\n",
+                 r.skipped_edges, dir.c_str());
+  if (r.unreached > 0) {
+    std::string list;
+    int listed = 0;
+    for (size_t f = 0; f < r.refined.size(); ++f) {
+      if (r.refined[f]) continue;
+      if (++listed > 10) {
+        list += " ...";
+        break;
+      }
+      list += (list.empty() ? "" : " ") + std::to_string(f);
+    }
+    std::fprintf(stderr,
+                 "atlas-refine: warning: %d of %d frames (%s) are not connected to frame 0 by the "
+                 "usable edges of %s/graph.tsv; their %zu of %zu trajectory rows are left out of "
+                 "%s\n",
+                 r.unreached, r.frames + r.unreached, list.c_str(), dir.c_str(),
+                 run.trajectory.size() - static_cast<size_t>(rows), run.trajectory.size(),
+                 out.c_str());
+  }
   return 0;
 }
 

@@ -11,14 +11,16 @@
 #include <functional>
 
 #include "core/atlas/dijkstra_projection.h"
+#include "core/geometry/covariance.h"
 
 namespace atlas::replay {
 namespace {
 
 // Calls `row(fields, where)` for every data line; stops at the first error it returns.
-std::string ForEachRow(
-    std::string_view text, const std::string& source, size_t field_count,
-    const std::function<std::string(const std::vector<std::string_view>&)>& row) {
+// `current_line` (optional) holds the number of the line being parsed while `row` runs.
+std::string ForEachRow(std::string_view text, const std::string& source, size_t field_count,
+                       const std::function<std::string(const std::vector<std::string_view>&)>& row,
+                       int64_t* current_line = nullptr) {
   std::vector<std::string_view> fields;
   size_t pos = 0;
   int64_t line_no = 0;
@@ -41,6 +43,7 @@ std::string ForEachRow(
     }
     if (fields.empty() || fields[0][0] == '#') continue;
     const std::string where = source + ":" + std::to_string(line_no) + ": ";
+    if (current_line != nullptr) *current_line = line_no;
     if (fields.size() != field_count)
       return where + "expected " + std::to_string(field_count) + " fields, found " +
              std::to_string(fields.size());
@@ -67,6 +70,26 @@ std::string Numbers(const std::vector<std::string_view>& f, size_t first, size_t
     if (!Number(f[first + k], &v[k]))
       return "field " + std::to_string(first + k + 1) + " '" + std::string(f[first + k]) +
              "' is not a finite number";
+  return "";
+}
+
+// Positions beyond 1e7 m (10,000 km) and angles beyond 1e3 rad are not from a run: reject them
+// before they overflow a composition or an image transform.
+std::string PoseRange(const double* v, size_t first_field) {
+  for (int k = 0; k < 3; ++k) {
+    const double limit = k < 2 ? 1e7 : 1e3;
+    if (std::abs(v[k]) > limit)
+      return "field " + std::to_string(first_field + k + 1) + " (" +
+             (k < 2 ? "position" : "angle") + ") is out of range (|value| > " +
+             (k < 2 ? "1e7 m" : "1e3 rad") + ")";
+  }
+  return "";
+}
+
+// Stamps are converted to integer nanoseconds: beyond 4e9 s they overflow.
+std::string StampRange(double t, size_t field) {
+  if (std::abs(t) > 4e9)
+    return "field " + std::to_string(field + 1) + " (timestamp) is out of range (|t| > 4e9 s)";
   return "";
 }
 
@@ -114,37 +137,55 @@ bool EdgeKindFromName(std::string_view name, EdgeKind* kind) {
 
 std::string ParseTrajectoryRows(std::string_view text, const std::string& source,
                                 std::vector<StampedFramePose>* out) {
-  return ForEachRow(text, source, 5, [&](const std::vector<std::string_view>& f) {
-    StampedFramePose r;
-    double v[3];
-    if (!Number(f[0], &r.stamp_s)) return std::string("field 1 is not a timestamp");
-    if (std::string e = FrameField(f[1], 1, false, &r.frame); !e.empty()) return e;
-    if (std::string e = Numbers(f, 2, 3, v); !e.empty()) return e;
-    r.pose = Pose2{v[0], v[1], v[2]};
-    out->push_back(r);
-    return std::string();
-  });
+  int64_t line = 0;
+  return ForEachRow(
+      text, source, 5,
+      [&](const std::vector<std::string_view>& f) {
+        StampedFramePose r;
+        double v[3];
+        if (!Number(f[0], &r.stamp_s)) return std::string("field 1 is not a timestamp");
+        if (std::string e = StampRange(r.stamp_s, 0); !e.empty()) return e;
+        if (std::string e = FrameField(f[1], 1, false, &r.frame); !e.empty()) return e;
+        if (std::string e = Numbers(f, 2, 3, v); !e.empty()) return e;
+        if (std::string e = PoseRange(v, 2); !e.empty()) return e;
+        r.pose = Pose2{v[0], v[1], v[2]};
+        r.line = line;
+        out->push_back(r);
+        return std::string();
+      },
+      &line);
 }
 
 std::string ParseEdgeRows(std::string_view text, const std::string& source,
                           std::vector<EdgeRecord>* out) {
-  return ForEachRow(text, source, 12, [&](const std::vector<std::string_view>& f) {
-    EdgeRecord r;
-    if (std::string e = FrameField(f[0], 0, false, &r.a); !e.empty()) return e;
-    if (std::string e = FrameField(f[1], 1, false, &r.b); !e.empty()) return e;
-    double v[9];
-    if (std::string e = Numbers(f, 2, 9, v); !e.empty()) return e;
-    r.b_in_a.mean = Pose2{v[0], v[1], v[2]};
-    Mat3& c = r.b_in_a.cov;
-    c << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
-    EdgeKind kind;
-    if (!EdgeKindFromName(f[11], &kind))
-      return "field 12 '" + std::string(f[11]) +
-             "' is not an edge kind (genesis, map-match, refined)";
-    r.kind = std::string(f[11]);
-    out->push_back(std::move(r));
-    return std::string();
-  });
+  int64_t line = 0;
+  return ForEachRow(
+      text, source, 12,
+      [&](const std::vector<std::string_view>& f) {
+        EdgeRecord r;
+        if (std::string e = FrameField(f[0], 0, false, &r.a); !e.empty()) return e;
+        if (std::string e = FrameField(f[1], 1, false, &r.b); !e.empty()) return e;
+        double v[9];
+        if (std::string e = Numbers(f, 2, 9, v); !e.empty()) return e;
+        if (std::string e = PoseRange(v, 2); !e.empty()) return e;
+        r.b_in_a.mean = Pose2{v[0], v[1], v[2]};
+        Mat3& c = r.b_in_a.cov;
+        c << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
+        if (!IsPositiveDefiniteCovariance(c))
+          return "covariance of edge " + std::to_string(r.a) + "-" + std::to_string(r.b) +
+                 " is not positive definite (fields 6-11, c00 c01 c02 c11 c12 c22, the upper "
+                 "triangle of a 3x3 covariance; atlas-replay writes positive definite ones: "
+                 "re-run it or fix the row)";
+        EdgeKind kind;
+        if (!EdgeKindFromName(f[11], &kind))
+          return "field 12 '" + std::string(f[11]) +
+                 "' is not an edge kind (genesis, map-match, refined)";
+        r.kind = std::string(f[11]);
+        r.line = line;
+        out->push_back(std::move(r));
+        return std::string();
+      },
+      &line);
 }
 
 std::string ParseTimingRows(std::string_view text, const std::string& source,
@@ -214,6 +255,8 @@ std::string ParseStampedPoses(std::string_view text, const std::string& source,
   return ForEachRow(text, source, 4, [&](const std::vector<std::string_view>& f) {
     double v[4];
     if (std::string e = Numbers(f, 0, 4, v); !e.empty()) return e;
+    if (std::string e = StampRange(v[0], 0); !e.empty()) return e;
+    if (std::string e = PoseRange(v + 1, 1); !e.empty()) return e;
     out->push_back({v[0], Pose2{v[1], v[2], v[3]}});
     return std::string();
   });
@@ -253,6 +296,7 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
       {"global_refined.tsv", false,
        [&](auto t, auto& s) { return ParseStampedPoses(t, s, &out->refined); }},
   };
+  std::vector<std::string> present;
   for (const Item& item : items) {
     const std::string path = dir + "/" + item.name;
     FileText f = ReadFile(path);
@@ -261,6 +305,58 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
       return f.error + (f.missing ? " (is " + dir + " an atlas-replay output directory?)" : "");
     }
     if (std::string e = item.parse(f.text, path); !e.empty()) return e;
+    present.push_back(item.name);
+  }
+  const auto has = [&](const char* name) {
+    return std::find(present.begin(), present.end(), name) != present.end();
+  };
+  // A file that is there but holds no rows where a run always writes some.
+  const auto empty = [&](const char* name, const std::string& why) {
+    return dir + "/" + name + ": no rows (" + why + ")";
+  };
+  if (wanted.trajectory && out->trajectory.empty())
+    return empty("trajectory.tsv", "atlas-replay writes one per stepped scan");
+  if (wanted.timing && out->timing.empty())
+    return empty("timing.tsv", "atlas-replay writes one per step");
+  if (wanted.maps && out->lines.empty())
+    return empty("maps.tsv", "no frame holds a line: nothing to draw");
+  if (wanted.step_cpu && out->step_cpu_ns.empty())
+    return empty("step_cpu.tsv", "atlas-replay writes one per step");
+  if (!out->trajectory.empty()) {
+    if (has("global.tsv") && out->global.empty())
+      return empty("global.tsv",
+                   "trajectory.tsv has " + std::to_string(out->trajectory.size()) +
+                       "; remove global.tsv to have it computed from trajectory.tsv and graph.tsv");
+    if (has("global_refined.tsv") && out->refined.empty())
+      return empty("global_refined.tsv", "trajectory.tsv has " +
+                                             std::to_string(out->trajectory.size()) +
+                                             "; re-run atlas-refine " + dir + " or remove it");
+  }
+  // How many frames the run made: frames.tsv has a row per frame, timing.tsv the count after
+  // each step. An atlas exported from atlasd has neither: its frames are those named.
+  int known = -1;
+  std::string known_from;
+  if (!out->frames.empty()) {
+    for (const auto& r : out->frames) known = std::max(known, r.frame + 1);
+    known_from = "frames.tsv";
+  } else if (!out->timing.empty()) {
+    for (const auto& r : out->timing) known = std::max(known, r.frames);
+    known_from = "timing.tsv";
+  }
+  if (known >= 0) {
+    const auto beyond = [&](const char* file, int64_t line, const std::string& what, FrameId f) {
+      return dir + "/" + file + ":" + std::to_string(line) + ": " + what + " names frame " +
+             std::to_string(f) + ", but the run has " + std::to_string(known) + " frames (0.." +
+             std::to_string(known - 1) + ", " + known_from +
+             "); the files are not from one run, or the row is damaged";
+    };
+    for (const EdgeRecord& e : out->edges)
+      if (std::max(e.a, e.b) >= known)
+        return beyond("graph.tsv", e.line,
+                      "edge " + std::to_string(e.a) + "-" + std::to_string(e.b),
+                      std::max(e.a, e.b));
+    for (const StampedFramePose& r : out->trajectory)
+      if (r.frame >= known) return beyond("trajectory.tsv", r.line, "the row", r.frame);
   }
   int n = 0;
   for (const auto& r : out->trajectory) n = std::max(n, r.frame + 1);
@@ -270,6 +366,10 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
   for (const auto& r : out->lines) n = std::max(n, r.frame + 1);
   for (const auto& r : out->points) n = std::max(n, r.frame + 1);
   out->frame_count = n;
+  if (has("graph.tsv") && out->edges.empty() && n > 1)
+    return empty("graph.tsv", "the run has " + std::to_string(n) +
+                                  " frames, and every frame after frame 0 is joined by the "
+                                  "Genesis edge that made it");
   return "";
 }
 
@@ -311,18 +411,23 @@ std::string FormatGlobalTrajectory(const std::vector<StampedFramePose>& trajecto
 }
 
 GraphFromEdges BuildGraph(const std::vector<EdgeRecord>& edges, int frame_count) {
+  const auto where = [](const EdgeRecord& e) {
+    return e.line > 0 ? ":" + std::to_string(e.line) : std::string();
+  };
   std::vector<int> degree(static_cast<size_t>(std::max(frame_count, 0)), 0);
   for (const EdgeRecord& e : edges) {
     if (e.a < 0 || e.b < 0 || e.a >= frame_count || e.b >= frame_count) {
-      return {AtlasGraph(), "edge " + std::to_string(e.a) + "-" + std::to_string(e.b) +
-                                " names a frame outside 0.." + std::to_string(frame_count - 1)};
+      return {AtlasGraph(),
+              "edge " + std::to_string(e.a) + "-" + std::to_string(e.b) +
+                  " names a frame outside 0.." + std::to_string(frame_count - 1),
+              where(e)};
     }
     ++degree[static_cast<size_t>(e.a)];
     ++degree[static_cast<size_t>(e.b)];
   }
   const int max_degree =
       std::max(1, degree.empty() ? 1 : *std::max_element(degree.begin(), degree.end()));
-  GraphFromEdges out{AtlasGraph(max_degree), ""};
+  GraphFromEdges out{AtlasGraph(max_degree), "", ""};
   for (int f = 0; f < frame_count; ++f) out.graph.AddFrame(nullptr);
   for (const EdgeRecord& e : edges) {
     EdgeKind kind = EdgeKind::kGenesis;
@@ -332,6 +437,7 @@ GraphFromEdges BuildGraph(const std::vector<EdgeRecord>& edges, int frame_count)
       out.error = "edge " + std::to_string(e.a) + "-" + std::to_string(e.b) +
                   (r == AddEdgeResult::kSameFrame ? " joins a frame to itself"
                                                   : " repeats an adjacent pair");
+      out.where = where(e);
       return out;
     }
   }

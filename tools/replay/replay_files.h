@@ -21,11 +21,13 @@ struct StampedFramePose {  // trajectory.tsv
   double stamp_s = 0.0;
   FrameId frame = kNoFrame;
   Pose2 pose;
+  int64_t line = 0;  // in trajectory.tsv (0: not read from a file)
 };
 struct EdgeRecord {  // graph.tsv
   FrameId a = kNoFrame, b = kNoFrame;
   UncertainPose b_in_a;
   std::string kind;  // genesis | map-match | refined
+  int64_t line = 0;  // in graph.tsv (0: not read from a file)
 };
 struct TimingRecord {  // timing.tsv
   int64_t step = 0;
@@ -93,6 +95,12 @@ std::string ParsePointRows(std::string_view text, const std::string& source,
                            std::vector<FramePointRow>* out);
 
 // Reads `dir`'s files; returns "" or what is wrong ("<dir>/graph.tsv: cannot open: ...").
+// Beyond each row's syntax it checks that the files agree: a wanted trajectory.tsv, timing.tsv,
+// maps.tsv or step_cpu.tsv without rows, a global.tsv or global_refined.tsv without rows next
+// to a trajectory with rows, an empty graph.tsv for more than one frame, and (when frames.tsv or
+// timing.tsv says how many frames the run made) an edge or trajectory row naming a frame beyond
+// them are errors ("<dir>/graph.tsv:12: edge 0-99 names frame 99, but the run has 4 frames").
+// graph.tsv covariances must be positive definite.
 std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wanted,
                              ReplayOutput* out);
 
@@ -102,6 +110,7 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
 struct GraphFromEdges {
   AtlasGraph graph;
   std::string error;
+  std::string where;  // ":LINE" of the offending graph.tsv row when known, else empty
 };
 GraphFromEdges BuildGraph(const std::vector<EdgeRecord>& edges, int frame_count);
 

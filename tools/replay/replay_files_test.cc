@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 namespace atlas::replay {
 namespace {
 
@@ -53,6 +56,73 @@ TEST(ReplayFiles, BadLinesNameFileAndLine) {
   EXPECT_NE(ParseTrajectoryRows("1.0 -3 0 0 0\n", "t.tsv", &traj), "");
 }
 
+TEST(ReplayFiles, EdgeCovarianceMustBePositiveDefinite) {
+  std::vector<EdgeRecord> edges;
+  for (const char* cov : {"0 0 0 0 0 0", "-1 0 0 -1 0 -1", "1 1 1 1 1 1", "1 2 0 1 0 1"}) {
+    const std::string row = std::string("# h\n0 1 1 2 0 ") + cov + " genesis\n";
+    const std::string e = ParseEdgeRows(row, "g.tsv", &edges);
+    EXPECT_EQ(e.rfind("g.tsv:2: covariance of edge 0-1 is not positive definite", 0), 0u)
+        << cov << ": " << e;
+  }
+  EXPECT_TRUE(edges.empty());
+  EXPECT_NE(ParseEdgeRows("0 1 1e308 2 0 1 0 0 1 0 1 genesis\n", "g.tsv", &edges)
+                .find("g.tsv:1: field 3 (position) is out of range"),
+            std::string::npos);
+  std::vector<StampedFramePose> traj;
+  EXPECT_NE(ParseTrajectoryRows("1e300 0 0 0 0\n", "t.tsv", &traj).find("t.tsv:1: field 1"),
+            std::string::npos);
+}
+
+// The files of one directory must agree, and a file a picture needs must hold rows.
+TEST(ReplayFiles, ReadReplayOutputChecksTheFilesAgree) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "replay_files_agree_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto write = [&](const char* name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+  };
+  const std::string edge = "0 1 1 0 0 0.01 0 0 0.01 0 0.001 genesis\n";
+  write("trajectory.tsv", "# h\n1.0 0 0 0 0\n2.0 1 0 0 0\n");
+  write("graph.tsv", "# h\n" + edge);
+  write("frames.tsv", "# h\n0 1 1.0 -1\n1 2 2.0 0\n");
+  ReplayOutput run;
+  ASSERT_EQ(ReadReplayOutput(dir.string(), ReplayFilesWanted{}, &run), "");
+  EXPECT_EQ(run.frame_count, 2);
+  EXPECT_EQ(run.edges[0].line, 2);
+
+  // An edge to a frame the run does not have.
+  write("graph.tsv", "# h\n" + edge + "1 9 1 0 0 0.01 0 0 0.01 0 0.001 map-match\n");
+  EXPECT_EQ(ReadReplayOutput(dir.string(), ReplayFilesWanted{}, &run),
+            (dir / "graph.tsv").string() +
+                ":3: edge 1-9 names frame 9, but the run has 2 frames (0..1, frames.tsv); the "
+                "files are not from one run, or the row is damaged");
+  // An empty graph for two frames; then for one frame (legitimate).
+  write("graph.tsv", "# h\n");
+  EXPECT_NE(ReadReplayOutput(dir.string(), ReplayFilesWanted{}, &run)
+                .find("graph.tsv: no rows (the run has 2 frames"),
+            std::string::npos);
+  write("trajectory.tsv", "# h\n1.0 0 0 0 0\n");
+  write("frames.tsv", "# h\n0 1 1.0 -1\n");
+  EXPECT_EQ(ReadReplayOutput(dir.string(), ReplayFilesWanted{}, &run), "");
+  // An empty trajectory; an empty global.tsv beside a trajectory with rows; maps wanted.
+  write("trajectory.tsv", "# h\n");
+  EXPECT_NE(
+      ReadReplayOutput(dir.string(), ReplayFilesWanted{}, &run).find("trajectory.tsv: no rows"),
+      std::string::npos);
+  write("trajectory.tsv", "# h\n1.0 0 0 0 0\n");
+  write("global.tsv", "# h\n");
+  EXPECT_NE(ReadReplayOutput(dir.string(), ReplayFilesWanted{}, &run).find("global.tsv: no rows"),
+            std::string::npos);
+  std::filesystem::remove(dir / "global.tsv");
+  write("maps.tsv", "# h\n");
+  ReplayFilesWanted maps;
+  maps.maps = true;
+  EXPECT_NE(ReadReplayOutput(dir.string(), maps, &run).find("maps.tsv: no rows"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(ReplayFiles, GraphAndGlobalTrajectory) {
   std::vector<EdgeRecord> edges(1);
   edges[0].a = 0;
@@ -64,7 +134,9 @@ TEST(ReplayFiles, GraphAndGlobalTrajectory) {
   EXPECT_EQ(g.graph.FrameCount(), 3);
   EXPECT_EQ(g.graph.EdgeCount(), 1);
   edges.push_back(edges[0]);
+  edges[1].line = 7;
   EXPECT_NE(BuildGraph(edges, 3).error, "");  // a repeated pair
+  EXPECT_EQ(BuildGraph(edges, 3).where, ":7");
   EXPECT_NE(BuildGraph(edges, 1).error, "");  // frame out of range
 
   const std::vector<StampedFramePose> traj = {
