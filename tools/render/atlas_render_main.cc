@@ -52,9 +52,24 @@ options:
   --route-graph      draw the world's route graph (dashed green)
   --title TEXT       title line (default: a summary of the run)
   --help             this text
+
+Input files are checked as they are read: a malformed line (also in run.clf: a line that is
+not a CARMEN message, or a damaged ODOM/FLASER line), a missing or empty file the picture
+needs, or files that disagree (an edge naming a frame the run does not have) is an error
+naming the file and line.
+
+Exit status: 0 written, 1 bad input file or the picture could not be written (message on
+stderr), 2 bad command line.
 )";
 
+// Bad input files, or a picture that cannot be written: exit status 1.
 int Fail(const std::string& message) {
+  std::fprintf(stderr, "atlas-render: %s\n", message.c_str());
+  return 1;
+}
+
+// A bad command line: exit status 2.
+int Usage(const std::string& message) {
   std::fprintf(stderr, "atlas-render: %s\n(atlas-render --help for usage)\n", message.c_str());
   return 2;
 }
@@ -136,7 +151,7 @@ int RenderAtlas(AtlasRequest req) {
                          [&](Canvas& c) { DrawTimeline(c, run.timing, t); });
   }
   replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
-  if (!g.error.empty()) return Fail(req.dir + "/graph.tsv: " + g.error);
+  if (!g.error.empty()) return Fail(req.dir + "/graph.tsv" + g.where + ": " + g.error);
   // Without global.tsv (an atlas exported from atlasd's store, with the poses it published:
   // scripts/demo.sh) the trajectory is placed as atlas-replay places it there.
   if (req.draw.trajectory && run.global.empty())
@@ -148,6 +163,11 @@ int RenderAtlas(AtlasRequest req) {
       return Fail("global refinement: " + std::string(refine::ToString(r.status)) + " " +
                   r.message);
     refined = r.refined;
+    if (r.skipped_edges > 0 || r.unreached > 0)
+      std::fprintf(stderr,
+                   "atlas-render: warning: refinement left out %d edges (covariance not usable) "
+                   "and %d frames not connected to frame 0\n",
+                   r.skipped_edges, r.unreached);
     if (req.draw.trajectory && run.refined.empty())
       run.refined = replay::PlaceTrajectory(run.trajectory, refined);
   }
@@ -158,7 +178,7 @@ int RenderAtlas(AtlasRequest req) {
   if (const std::string e = LayoutAtlas(
           run, g.graph, req.draw, req.draw.refined ? &refined : nullptr, &layout, &height, &view);
       !e.empty())
-    return Fail(e);
+    return Usage("--projection: " + e);
   return WriteCanvases(req, req.draw.width_px, height, view,
                        [&](Canvas& c) { DrawAtlasProjection(c, run, g.graph, layout, req.draw); });
 }
@@ -207,7 +227,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (a == "--atlas" || a == "--projection" || a == "--budget") {
-      if (i + 1 >= argc) return Fail("option " + a + " needs a value");
+      if (i + 1 >= argc) return Usage("option " + a + " needs a value");
       const std::string v = argv[++i];
       if (a == "--atlas") {
         atlas_req.dir = v;
@@ -216,11 +236,11 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       const double d = std::strtod(v.c_str(), &end);
       if (end == v.c_str() || *end != '\0' || !(d >= 0.0 && d < 1e9))
-        return Fail(a + ": '" + v + "' is not a non-negative number");
+        return Usage(a + ": '" + v + "' is not a non-negative number");
       if (a == "--budget") {
         atlas_req.budget_ms = d;
       } else {
-        if (d != std::floor(d)) return Fail("--projection needs a frame id (an integer)");
+        if (d != std::floor(d)) return Usage("--projection needs a frame id (an integer)");
         atlas_req.picture = AtlasPicture::kProjection;
         atlas_req.draw.source = static_cast<atlas::FrameId>(d);
       }
@@ -240,8 +260,8 @@ int main(int argc, char** argv) {
     }
     if (a != "--run" && a != "--png" && a != "--svg" && a != "--width" && a != "--scans" &&
         a != "--odometry-km" && a != "--title")
-      return Fail("unknown option '" + a + "'");
-    if (i + 1 >= argc) return Fail("option " + a + " needs a value");
+      return Usage("unknown option '" + a + "'");
+    if (i + 1 >= argc) return Usage("option " + a + " needs a value");
     const std::string v = argv[++i];
     auto integer = [&](long lo, long hi) {
       char* end = nullptr;
@@ -267,14 +287,14 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       const double km = std::strtod(v.c_str(), &end);
       if (end == v.c_str() || *end != '\0' || !(km >= 0.0 && km <= 1e6))
-        return Fail("--odometry-km: '" + v + "' is not a distance in km (0 = all)");
+        return Usage("--odometry-km: '" + v + "' is not a distance in km (0 = all)");
       draw.odometry_length_m = 1000.0 * km;
     } else if (a == "--title") {
       draw.title = v;
     }
   }
   if (!atlas_req.dir.empty()) {
-    if (!dir.empty()) return Fail("give --run DIR or --atlas DIR, not both");
+    if (!dir.empty()) return Usage("give --run DIR or --atlas DIR, not both");
     atlas_req.png = png;
     atlas_req.svg = svg;
     atlas_req.title = draw.title;
@@ -282,7 +302,7 @@ int main(int argc, char** argv) {
     return RenderAtlas(atlas_req);
   }
   if (dir.empty())
-    return Fail(
+    return Usage(
         "--run DIR (an atlas-sim output directory) or --atlas DIR (an atlas-replay "
         "output directory) is required");
   if (png.empty() && svg.empty()) png = dir + "/run.png";

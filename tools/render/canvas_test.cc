@@ -3,6 +3,7 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -161,6 +162,17 @@ TEST(RunData, ReadsAndDrawsASimulatedRun) {
     EXPECT_EQ(c->Finish(), "");
     EXPECT_GT(std::filesystem::file_size(dir / name), 1000u);
   }
+
+  // A damaged line of run.clf is reported with its line number, not skipped.
+  const auto lines = std::count(sink.log.begin(), sink.log.end(), '\n');
+  std::ofstream(dir / "run.clf") << sink.log << "this is not a carmen line\n";
+  std::string e = ReadRun(dir.string(), ro, &run);
+  EXPECT_NE(e.find("run.clf:" + std::to_string(lines + 1) + ": first word"), std::string::npos)
+      << e;
+  // An empty truth.tsv is an error naming it.
+  std::ofstream(dir / "truth.tsv") << "# timestamp x y theta\n";
+  e = ReadRun(dir.string(), ro, &run);
+  EXPECT_NE(e.find("truth.tsv: no rows"), std::string::npos) << e;
   std::filesystem::remove_all(dir);
 }
 

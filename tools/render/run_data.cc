@@ -78,6 +78,7 @@ std::string ReadRun(const std::string& dir, const RunReadOptions& options, RunDa
   {
     const std::string path = dir + "/truth.tsv";
     std::ifstream in(path);
+    if (!in) return "cannot open " + path + " (is " + dir + " an atlas-sim output directory?)";
     long n = 0;
     while (in && std::getline(in, line)) {
       ++n;
@@ -87,6 +88,8 @@ std::string ReadRun(const std::string& dir, const RunReadOptions& options, RunDa
         return path + ":" + std::to_string(n) + ": expected 'timestamp x y theta' (4 numbers)";
       if (row) run->truth.push_back(*row);
     }
+    if (in.bad()) return "read error in " + path;
+    if (run->truth.empty()) return path + ": no rows (atlas-sim writes one per odometry step)";
   }
   const std::string log_path = dir + "/run.clf";
   std::ifstream in(log_path);
@@ -96,20 +99,19 @@ std::string ReadRun(const std::string& dir, const RunReadOptions& options, RunDa
   long n = 0;
   while (std::getline(in, line)) {
     ++n;
-    const bool flaser = line.rfind("FLASER ", 0) == 0;
-    if (line.rfind("SONAR ", 0) == 0) ++run->sonar_lines;
-    if (flaser) {
-      const long index = run->total_scans++;
-      if (index % run->scan_stride != 0) continue;
-    } else if (line.rfind("ODOM ", 0) != 0) {
-      continue;
-    }
+    // Every line is parsed, kept or not, so that a damaged line is reported, not skipped.
     const carmen::ParsedLine p = carmen::ParseLine(line);
     if (!p.ok()) return log_path + ":" + std::to_string(n) + ": " + p.reason;
+    if (p.message == "SONAR") ++run->sonar_lines;
+    if (p.kind == carmen::LineKind::kLaser && p.message == "FLASER") {
+      const long index = run->total_scans++;
+      if (index % run->scan_stride != 0) continue;
+    }
     if (p.kind == carmen::LineKind::kOdometry) {
       run->odometry.push_back(
           OdometrySample{FromSeconds(p.odometry.ipc_timestamp), p.odometry.pose});
-    } else if (p.kind == carmen::LineKind::kLaser && p.laser.laser_pose && p.laser.odometry_pose) {
+    } else if (p.kind == carmen::LineKind::kLaser && p.message == "FLASER" && p.laser.laser_pose &&
+               p.laser.odometry_pose) {
       RunScan s;
       s.stamp = FromSeconds(p.laser.ipc_timestamp);
       s.laser_in_odometry = *p.laser.laser_pose;
@@ -136,6 +138,8 @@ std::string ReadRun(const std::string& dir, const RunReadOptions& options, RunDa
     }
   }
   if (in.bad()) return "read error in " + log_path;
+  if (run->odometry.empty() && run->total_scans == 0)
+    return log_path + ": no ODOM or FLASER lines (atlas-sim writes both)";
   return "";
 }
 
