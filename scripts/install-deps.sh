@@ -1,7 +1,17 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages atlasd needs to build, test and run. Does nothing when they
 # are all installed already. Safe to run from any directory.
+#
+# Usage: scripts/install-deps.sh   (no arguments; -h, --help: this text)
 set -euo pipefail
+if [[ ${1:-} == -h || ${1:-} == --help ]]; then
+  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
+  exit 0
+fi
+if [[ $# -gt 0 ]]; then
+  echo "install-deps.sh: takes no arguments, got '$1' (see scripts/install-deps.sh --help)" >&2
+  exit 2
+fi
 
 packages=(
   build-essential cmake pkg-config git

@@ -6,7 +6,17 @@
 #   4. hardware-in-loop tests (label "hil"), real processes over real UDP multicast inside a
 #      private network namespace, so that no packet leaves the machine.
 # Prints one closing line "total: N passed, M failed" and exits non-zero on any failure.
+#
+# Usage: scripts/test.sh   (no arguments; -h, --help: this text)
 set -euo pipefail
+if [[ ${1:-} == -h || ${1:-} == --help ]]; then
+  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
+  exit 0
+fi
+if [[ $# -gt 0 ]]; then
+  echo "test.sh: takes no arguments, got '$1' (see scripts/test.sh --help)" >&2
+  exit 2
+fi
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$ROOT/scripts/install-deps.sh"
 
