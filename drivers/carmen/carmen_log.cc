@@ -204,6 +204,31 @@ CarmenLog CarmenLogBuilder::Finish() {
   return std::move(log_);
 }
 
+namespace {
+
+// What went wrong in a gzip stream (zlib's gzerror), for a person who has to fix the file.
+std::string GzipReadError(const std::string& path, int64_t complete_lines, int zerr,
+                          std::string zmessage) {
+  if (zmessage.rfind(path + ": ", 0) == 0) zmessage.erase(0, path.size() + 2);  // zlib's prefix
+  const std::string after = " after line " + std::to_string(complete_lines);
+  if (zerr == Z_BUF_ERROR) {
+    return path + " is truncated (the gzip stream ends early)" + after +
+           ": copy or download it again";
+  }
+  if (zerr == Z_DATA_ERROR && zmessage.find("check") != std::string::npos) {
+    // "incorrect data check" (CRC-32) or "incorrect length check" in the gzip trailer. zlib
+    // drops the data it decompressed with the check, so no line number: it says little.
+    return path + ": gzip CRC error (" + zmessage +
+           "): the file is corrupt; copy or download it again";
+  }
+  if (zerr == Z_DATA_ERROR) {
+    return path + ": corrupt gzip data (" + zmessage + ")" + after + ": copy or download it again";
+  }
+  return path + ": read error" + after + " (" + zmessage + ")";
+}
+
+}  // namespace
+
 CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& options) {
   CarmenReadResult result;
   if (std::string bad = options.Validate(); !bad.empty()) {
@@ -252,11 +277,13 @@ CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& 
     }
     if (ends_line) finish_line();
   }
-  if (!stopped && (!line.empty() || too_long)) finish_line();  // last line without '\n'
   int zerr = Z_OK;
   const char* zmsg = gzerror(f, &zerr);
   const bool read_failed = !stopped && zerr != Z_OK && zerr != Z_STREAM_END;
   const std::string zmessage = zmsg != nullptr ? zmsg : "";
+  // A last line without '\n' is a line, unless the gzip stream broke there: then it is the
+  // piece of a line that the damage left, not a malformed line.
+  if (!stopped && !read_failed && (!line.empty() || too_long)) finish_line();
   gzclose(f);
   if (stopped) {
     result.status = ReadStatus::kBadLine;
@@ -265,8 +292,7 @@ CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& 
   }
   if (read_failed) {
     result.status = ReadStatus::kReadError;
-    result.error = path + ": read error after line " + std::to_string(line_number) + " (" +
-                   zmessage + "); the file may be truncated or not gzip";
+    result.error = GzipReadError(path, line_number, zerr, zmessage);
     return result;
   }
   result.log = builder.Finish();

@@ -186,6 +186,60 @@ TEST(CarmenLogTest, TruncatedGzipIsAReadError) {
   EXPECT_NE(r.error.find("cut.gz"), std::string::npos) << r.error;
 }
 
+// Known content: 300 ODOM lines, each with 9 fields after the message name.
+std::string KnownOdomLines() {
+  std::string text;
+  for (int i = 0; i < 300; ++i) {
+    const std::string t = std::to_string(1.0 + 0.05 * i);
+    text += "ODOM " + std::to_string(0.01 * i) + " 0.5 0.1 0.2 0 0 " + t + " host " + t + "\n";
+  }
+  return text;
+}
+
+std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(CarmenLogTest, TruncatedGzipIsReportedAsTruncatedNotAsABadLine) {
+  TempDir dir;
+  const std::string text = KnownOdomLines();
+  WriteGzip(dir.File("full.gz"), text);
+  ASSERT_TRUE(ReadCarmenLog(dir.File("full.gz"), {}).ok());
+  const std::string bytes = FileBytes(dir.File("full.gz"));
+  // Cut in the middle of the deflate data (the last line read is then a piece of a line), and
+  // cut only the 8-byte trailer (every line is whole, the stream has no end).
+  for (const size_t keep : {bytes.size() / 2, bytes.size() - 8}) {
+    WritePlain(dir.File("cut.gz"), bytes.substr(0, keep));
+    for (const bool skip : {false, true}) {
+      CarmenLogOptions o;
+      o.skip_bad_lines = skip;
+      const CarmenReadResult r = ReadCarmenLog(dir.File("cut.gz"), o);
+      EXPECT_EQ(r.status, ReadStatus::kReadError) << keep << " " << r.error;
+      EXPECT_NE(r.error.find(dir.File("cut.gz") + " is truncated (the gzip stream ends early) "
+                                                  "after line "),
+                std::string::npos)
+          << r.error;
+      EXPECT_EQ(r.error.find("fields"), std::string::npos) << r.error;
+    }
+  }
+  WritePlain(dir.File("cut.gz"), bytes.substr(0, bytes.size() - 8));
+  EXPECT_NE(ReadCarmenLog(dir.File("cut.gz"), {}).error.find("after line 300"), std::string::npos);
+}
+
+TEST(CarmenLogTest, GzipCrcErrorIsReportedAsSuch) {
+  TempDir dir;
+  WriteGzip(dir.File("full.gz"), KnownOdomLines());
+  std::string bytes = FileBytes(dir.File("full.gz"));
+  bytes[bytes.size() - 8] = static_cast<char>(bytes[bytes.size() - 8] ^ 0x55);  // the CRC-32
+  WritePlain(dir.File("crc.gz"), bytes);
+  const CarmenReadResult r = ReadCarmenLog(dir.File("crc.gz"), {});
+  EXPECT_EQ(r.status, ReadStatus::kReadError);
+  EXPECT_EQ(r.error, dir.File("crc.gz") +
+                         ": gzip CRC error (incorrect data check): the file is corrupt; copy or "
+                         "download it again");
+}
+
 TEST(CarmenLogTest, GzipAndPlainReadTheSame) {
   const std::vector<std::string> lines = HeadLines(kIntel, 400);
   if (lines.empty()) GTEST_SKIP() << "dataset absent: " << kIntel;
