@@ -23,6 +23,7 @@ Modes (default --count):
   --dump-odometry      write the dead-reckoned trajectory (odometry pose at each scan) of one
                        LOG as a trajectory file (docs/formats.md) to stdout, or to -o FILE
   --dump-reference     write the reference trajectory (pose at each scan) of one corrected LOG
+                       (one mode only: two different modes are a usage error)
 
 Reading:
   --corrected          a "corrected" log: the line order is the clock and the poses are the
@@ -33,7 +34,7 @@ Reading:
   --skip-bad-lines     count malformed lines instead of stopping at the first
 
 Synthesised odometry (with --corrected and --dump-odometry):
-  --seed N             random seed (default 1)
+  --seed N             random seed, an integer in [0, 18446744073709551615] (default 1)
   --track-width M      nominal track width (default 0.4)
   --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
   --left-scale E       left wheel scale error (default 0.001)
@@ -45,7 +46,8 @@ Other:
   --json               --count as JSON lines, one object per LOG
   -h, --help           this text
 
-Exit status: 0 done, 1 a log could not be read (message on stderr), 2 bad command line.
+Exit status: 0 done, 1 a log could not be read, is truncated or corrupt, or has no CARMEN
+line (message on stderr), 2 bad command line.
 )";
 
 int Usage(const std::string& what) {
@@ -105,6 +107,7 @@ bool WriteOutput(const std::string& path, const std::string& text) {
 
 int Main(int argc, char** argv) {
   enum class Mode { kCount, kDumpOdometry, kDumpReference } mode = Mode::kCount;
+  std::string mode_option;  // the mode given, to refuse a second, different one
   carmen::CarmenLogOptions options;
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
@@ -116,13 +119,14 @@ int Main(int argc, char** argv) {
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;
-    } else if (a == "--count") {
-      mode = Mode::kCount;
-    } else if (a == "--dump-odometry") {
-      mode = Mode::kDumpOdometry;
-    } else if (a == "--dump-reference") {
-      mode = Mode::kDumpReference;
-      corrected = true;
+    } else if (a == "--count" || a == "--dump-odometry" || a == "--dump-reference") {
+      if (!mode_option.empty() && mode_option != a)
+        return Usage(mode_option + " and " + a + " are different modes: give one");
+      mode_option = a;
+      mode = a == "--count"           ? Mode::kCount
+             : a == "--dump-odometry" ? Mode::kDumpOdometry
+                                      : Mode::kDumpReference;
+      if (mode == Mode::kDumpReference) corrected = true;
     } else if (a == "--corrected") {
       corrected = true;
     } else if (a == "--skip-bad-lines") {
@@ -132,19 +136,19 @@ int Main(int argc, char** argv) {
     } else if (a == "-o") {
       if (i + 1 >= argc) return Usage("-o needs a file name");
       output = argv[++i];
-    } else if (a == "--line-period" || a == "--max-range" || a == "--seed" ||
-               a == "--track-width" || a == "--wheel-noise" || a == "--left-scale" ||
-               a == "--right-scale" || a == "--track-width-error") {
+    } else if (a == "--seed") {
+      std::string error;
+      if (i + 1 >= argc) return Usage("--seed needs an integer");
+      if (!SeedArgument(a, argv[++i], seed, error)) return Usage(error);
+    } else if (a == "--line-period" || a == "--max-range" || a == "--track-width" ||
+               a == "--wheel-noise" || a == "--left-scale" || a == "--right-scale" ||
+               a == "--track-width-error") {
       double d = 0.0;
       if (i + 1 >= argc || !ParseArgumentNumber(argv[i + 1], d))
         return Usage(a + " needs a number");
       ++i;
       if (a == "--line-period") options.line_period_s = d;
       if (a == "--max-range") options.max_range_m = d;
-      if (a == "--seed") {
-        if (d < 0 || d != std::floor(d)) return Usage("--seed needs a non-negative integer");
-        seed = static_cast<uint64_t>(d);
-      }
       if (a == "--track-width") noise.track_width_m = d;
       if (a == "--wheel-noise") noise.wheel_noise_per_m = d;
       if (a == "--left-scale") noise.left_scale_error = d;
@@ -176,6 +180,12 @@ int Main(int argc, char** argv) {
       if (r.status == carmen::ReadStatus::kBadLine) {
         std::fprintf(stderr, "atlas-carmen: use --skip-bad-lines to count such lines and go on\n");
       }
+      status = 1;
+      continue;
+    }
+    if (r.log.lines == r.log.comment_or_blank_lines) {
+      std::fprintf(stderr, "atlas-carmen: %s: no lines%s: is this a CARMEN log?\n", path.c_str(),
+                   r.log.lines == 0 ? "" : " but comments and blank lines");
       status = 1;
       continue;
     }

@@ -365,44 +365,6 @@ TimedTrajectory ReferenceAtScans(const carmen::CarmenLog& log) {
   return TimedTrajectory(std::move(poses));
 }
 
-bool ParseArgumentNumber(const char* s, double& out) {
-  char* end = nullptr;
-  out = std::strtod(s, &end);
-  return end != s && *end == '\0' && std::isfinite(out);
-}
-
-ToolOptions ParseToolOptions(int argc, char** argv, int first,
-                             const std::vector<std::string>& known) {
-  ToolOptions a;
-  for (int i = first; i < argc; ++i) {
-    const std::string k = argv[i];
-    if (std::find(known.begin(), known.end(), k) == known.end()) {
-      a.error = "unknown option '" + k + "'";
-      return a;
-    }
-    if (i + 1 >= argc) {
-      a.error = "option '" + k + "' needs a value";
-      return a;
-    }
-    a.values[k] = argv[++i];
-  }
-  return a;
-}
-
-bool GetNumberOption(const ToolOptions& options, const std::string& key, double lo, double hi,
-                     double& out, std::string& error) {
-  auto it = options.values.find(key);
-  if (it == options.values.end()) return true;
-  double v = 0.0;
-  if (!ParseArgumentNumber(it->second.c_str(), v) || v < lo || v > hi) {
-    error = key + " must be a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-            "], got '" + it->second + "'";
-    return false;
-  }
-  out = v;
-  return true;
-}
-
 std::string FormatStats(const char* name, const char* unit, const ErrorStats& s) {
   char buf[256];
   std::snprintf(buf, sizeof buf,

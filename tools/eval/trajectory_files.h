@@ -19,6 +19,7 @@
 #include "core/eval/relations_metric.h"
 #include "core/eval/timed_trajectory.h"
 #include "drivers/carmen/carmen_log.h"
+#include "tools/eval/tool_options.h"
 
 namespace atlas::eval {
 
@@ -94,22 +95,6 @@ TimedTrajectory OdometryAtScans(const std::vector<carmen::CarmenEvent>& events);
 
 // The reference poses of a log's laser lines (read with reference_trajectory set).
 TimedTrajectory ReferenceAtScans(const carmen::CarmenLog& log);
-
-// A whole command-line argument as a finite number.
-bool ParseArgumentNumber(const char* s, double& out);
-
-// Options of the form "--key value" from argv[first..] (the evaluation tools' modes). A key not
-// in `known`, or one without a value, sets `error` (naming it) and stops parsing.
-struct ToolOptions {
-  std::map<std::string, std::string> values;
-  std::string error;
-};
-ToolOptions ParseToolOptions(int argc, char** argv, int first,
-                             const std::vector<std::string>& known);
-// Reads option `key` as a number in [lo, hi] into `out`; true when absent (out unchanged) or
-// valid, else false with `error` naming the key, the range and the value given.
-bool GetNumberOption(const ToolOptions& options, const std::string& key, double lo, double hi,
-                     double& out, std::string& error);
 
 // Human-readable and JSON summaries.
 std::string FormatStats(const char* name, const char* unit, const ErrorStats& s);

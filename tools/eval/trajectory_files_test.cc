@@ -190,25 +190,5 @@ TEST(TrajectoryFilesTest, ReadTextFileReportsMissingFile) {
   EXPECT_NE(f.error.find("/nonexistent/x.tsv: cannot open"), std::string::npos) << f.error;
 }
 
-TEST(ToolOptions, KnownKeysWithValuesAndNumbersInRange) {
-  const char* argv_c[] = {"tool", "mc", "--runs", "50", "--seed", "x"};
-  char** argv = const_cast<char**>(argv_c);
-  const ToolOptions o = ParseToolOptions(6, argv, 2, {"--runs", "--seed"});
-  ASSERT_TRUE(o.error.empty()) << o.error;
-  double runs = 1, seed = 0, absent = 7;
-  std::string error;
-  EXPECT_TRUE(GetNumberOption(o, "--runs", 1, 100, runs, error));
-  EXPECT_EQ(runs, 50);
-  EXPECT_TRUE(GetNumberOption(o, "--minutes", 0, 10, absent, error));
-  EXPECT_EQ(absent, 7);
-  EXPECT_FALSE(GetNumberOption(o, "--seed", 0, 10, seed, error));
-  EXPECT_NE(error.find("--seed"), std::string::npos);
-  EXPECT_FALSE(GetNumberOption(o, "--runs", 1, 10, runs, error));  // out of range
-  EXPECT_NE(ParseToolOptions(6, argv, 2, {"--runs"}).error.find("unknown option '--seed'"),
-            std::string::npos);
-  EXPECT_NE(ParseToolOptions(5, argv, 2, {"--runs", "--seed"}).error.find("needs a value"),
-            std::string::npos);
-}
-
 }  // namespace
 }  // namespace atlas::eval
