@@ -81,7 +81,11 @@ constexpr char kUsage[] =
     "      Defaults: " ATLAS_SHARED_DIR "/datasets/mit-csail/mit-csail.clf.gz and .relations\n";
 
 using Args = eval::ToolOptions;
+using eval::GetIntegerOption;
 using eval::GetNumberOption;
+
+// Seeds S..S+runs-1 are printed as int.
+constexpr int kMaxSeed = 1000000000;
 
 // ---------------------------------------------------------------------------------------------
 // Monte Carlo consistency.
@@ -371,13 +375,14 @@ std::vector<sim::Wall> SimCorridor() {
 }
 
 int RunMonteCarlo(const Args& args) {
-  double runs = 50, minutes = 4, seed = 1, capacity = 20, per_run = 0;
+  double minutes = 4;
+  int runs = 50, seed = 1, capacity = 20, per_run = 0;
   std::string error;
-  if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) ||
+  if (!GetIntegerOption(args, "--runs", 1, 10000, runs, error) ||
       !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
-      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumberOption(args, "--capacity", 1, 1000, capacity, error) ||
-      !GetNumberOption(args, "--per-run", 0, 1, per_run, error)) {
+      !GetIntegerOption(args, "--seed", 0, kMaxSeed, seed, error) ||
+      !GetIntegerOption(args, "--capacity", 1, 1000, capacity, error) ||
+      !GetIntegerOption(args, "--per-run", 0, 1, per_run, error)) {
     std::fprintf(stderr, "atlas-localmap-eval mc: %s\n", error.c_str());
     return 2;
   }
@@ -418,7 +423,7 @@ int RunMonteCarlo(const Args& args) {
       return 2;
     }
   }
-  if (per_run != 0.0) {
+  if (per_run != 0) {
     std::printf(
         "per run: seed, robot NEES at the first scan, mean, max (scan), feature "
         "NEES/dof mean, at the last scan\n");
@@ -447,7 +452,7 @@ int RunMonteCarlo(const Args& args) {
         std::fprintf(dump, " %.4g:%d", n.features, n.feature_dof);
       std::fprintf(dump, "\n");
     }
-    if (per_run != 0.0 && !all.back().empty()) {
+    if (per_run != 0 && !all.back().empty()) {
       const StepNees& last = all.back().back();
       std::printf("run %d: %.3f %.3f %.3f (%zu) %.3f %.3f\n", static_cast<int>(seed) + r,
                   all.back()[0].robot, run_mean.back().first, run_max, max_at,
@@ -657,14 +662,14 @@ int RunReal(const Args& args) {
   std::string rel_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.relations";
   if (args.values.count("--log")) log_path = args.values.at("--log");
   if (args.values.count("--relations")) rel_path = args.values.at("--relations");
-  double stretch_m = 30, capacity = 100, draw_stretch = 3, laser_x = 0.0, time_offset_s = 0.0;
-  double scan_match = 1.0;
+  double stretch_m = 30, draw_stretch = 3, laser_x = 0.0, time_offset_s = 0.0;
+  int capacity = 100, scan_match = 1;
   std::string error;
   if (!GetNumberOption(args, "--stretch", 1, 1e6, stretch_m, error) ||
       !GetNumberOption(args, "--laser-x", -2, 2, laser_x, error) ||
       !GetNumberOption(args, "--laser-time-offset", -1, 1, time_offset_s, error) ||
-      !GetNumberOption(args, "--scan-match", 0, 1, scan_match, error) ||
-      !GetNumberOption(args, "--capacity", 1, 10000, capacity, error) ||
+      !GetIntegerOption(args, "--scan-match", 0, 1, scan_match, error) ||
+      !GetIntegerOption(args, "--capacity", 1, 10000, capacity, error) ||
       !GetNumberOption(args, "--draw-stretch", 0, 1e6, draw_stretch, error)) {
     std::fprintf(stderr, "atlas-localmap-eval real: %s\n", error.c_str());
     return 2;
@@ -713,7 +718,7 @@ int RunReal(const Args& args) {
   bool have_odo = false;
   int updates = 0, matched = 0, observed = 0, ambiguous = 0, recovered = 0;
   ScanMatchOptions match_options;
-  match_options.enabled = scan_match > 0.5;
+  match_options.enabled = scan_match != 0;
   ScanMatcher matcher(match_options);
   int64_t increments_matched = 0, match_fallbacks = 0;
   for (const carmen::CarmenEvent& ev : read.log.events) {

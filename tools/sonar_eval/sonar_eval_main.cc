@@ -131,7 +131,11 @@ constexpr char kUsage[] =
     "      wall (mc's count); --minutes M: how long to drive for them.\n";
 
 using Args = eval::ToolOptions;
+using eval::GetIntegerOption;
 using eval::GetNumberOption;
+
+// The largest --seed (seeds S..S+N-1 are printed as int).
+constexpr int kMaxSeed = 1000000000;
 
 // One simulated corridor run, stepped by the caller.
 struct CorridorRun {
@@ -245,16 +249,16 @@ InitNees NeesAtInitialisation(const SonarLocalMap& map, int k, const Pose2& trut
 // The sonar map switches the tools take for comparison (--delayed-states, --point-rival,
 // --init-edge-echoes, --extent-gap, --model-sigma).
 struct MapSwitches {
-  double delayed_states = SonarInitOptions().delayed_states ? 1 : 0,
-         point_rival = SonarInitOptions().point_rival ? 1 : 0,
-         edge_echoes = SonarInitOptions().edge_echoes ? 1 : 0,
-         extent_gap = SonarUpdateOptions().max_extent_gap,
+  int delayed_states = SonarInitOptions().delayed_states ? 1 : 0,
+      point_rival = SonarInitOptions().point_rival ? 1 : 0,
+      edge_echoes = SonarInitOptions().edge_echoes ? 1 : 0;
+  double extent_gap = SonarUpdateOptions().max_extent_gap,
          model_sigma = SonarModelOptions().model_sigma;
 
   bool Parse(const Args& args, std::string& error) {
-    return GetNumberOption(args, "--delayed-states", 0, 1, delayed_states, error) &&
-           GetNumberOption(args, "--point-rival", 0, 1, point_rival, error) &&
-           GetNumberOption(args, "--init-edge-echoes", 0, 1, edge_echoes, error) &&
+    return GetIntegerOption(args, "--delayed-states", 0, 1, delayed_states, error) &&
+           GetIntegerOption(args, "--point-rival", 0, 1, point_rival, error) &&
+           GetIntegerOption(args, "--init-edge-echoes", 0, 1, edge_echoes, error) &&
            GetNumberOption(args, "--extent-gap", 0, 100, extent_gap, error) &&
            GetNumberOption(args, "--model-sigma", 0, 1, model_sigma, error);
   }
@@ -324,14 +328,15 @@ void AddRelativeErrors(const std::vector<Step>& steps, int gap, Pose2 Step::*whi
 }
 
 int RunMonteCarlo(const Args& args) {
-  double runs = 20, minutes = 3, ring = 24, seed = 1, capacity = 20;
+  double minutes = 3;
+  int runs = 20, ring = 24, seed = 1, capacity = 20;
   MapSwitches switches;
   std::string error;
-  if (!GetNumberOption(args, "--runs", 1, 10000, runs, error) || !switches.Parse(args, error) ||
+  if (!GetIntegerOption(args, "--runs", 1, 10000, runs, error) || !switches.Parse(args, error) ||
       !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
-      !GetNumberOption(args, "--ring", 16, 24, ring, error) ||
-      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumberOption(args, "--capacity", 1, 1000, capacity, error)) {
+      !GetIntegerOption(args, "--ring", 16, 24, ring, error) ||
+      !GetIntegerOption(args, "--seed", 0, kMaxSeed, seed, error) ||
+      !GetIntegerOption(args, "--capacity", 1, 1000, capacity, error)) {
     std::fprintf(stderr, "atlas-sonar-eval mc: %s\n", error.c_str());
     return 2;
   }
@@ -439,12 +444,13 @@ void Arc(draw::Canvas& c, const Pose2& sensor, double range, double half, const 
 }
 
 int RunFig9(const Args& args) {
-  double ring = 24, seed = 1, lines = 4, phantoms = 0, minutes = 3;
+  int ring = 24, seed = 1, lines = 4, phantoms = 0;
+  double minutes = 3;
   std::string error;
-  if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
-      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
-      !GetNumberOption(args, "--lines", 1, 20, lines, error) ||
-      !GetNumberOption(args, "--phantoms", 0, 1, phantoms, error) ||
+  if (!GetIntegerOption(args, "--ring", 16, 24, ring, error) ||
+      !GetIntegerOption(args, "--seed", 0, kMaxSeed, seed, error) ||
+      !GetIntegerOption(args, "--lines", 1, 20, lines, error) ||
+      !GetIntegerOption(args, "--phantoms", 0, 1, phantoms, error) ||
       !GetNumberOption(args, "--minutes", 0.1, 600, minutes, error)) {
     std::fprintf(stderr, "atlas-sonar-eval fig9: %s\n", error.c_str());
     return 2;
@@ -554,7 +560,7 @@ int RunFig9(const Args& args) {
 }
 
 // --world: atlas-sim's building (R rooms, layout from the seed) or the alcove loop.
-std::string SelectWorld(const std::string& name, double seed, double rooms,
+std::string SelectWorld(const std::string& name, int seed, int rooms,
                         const sonar_eval::AlcoveLoopOptions& loop, sim::World* world) {
   if (name == "building") {
     sim::BuildingOptions bo;
@@ -733,37 +739,38 @@ struct TraceWriter {
 
 int RunAtlasMode(const Args& args) {
   const AtlasOptions sonar_defaults = sonar_eval::SonarAtlasOptions();
-  double ring = 24, seed = 1, km = 0.4, rooms = 6, capacity = 10, runs = 1, laser = 1,
-         self_match = 1, edge_extent = 1, keep_frame_map = 0, seed_scale = 1, sonar_w = 1,
-         w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
-         w_dead_reckoned = SonarBootstrapOptions().dead_reckoned_start ? 1 : 0,
-         bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
+  int ring = 24, seed = 1, rooms = 6, capacity = 10, runs = 1, laser = 1, self_match = 1,
+      edge_extent = 1, keep_frame_map = 0, sonar_w = 1,
+      w_edge_echoes = SonarBootstrapOptions().edge_echoes ? 1 : 0,
+      w_dead_reckoned = SonarBootstrapOptions().dead_reckoned_start ? 1 : 0,
+      bootstrap_steps = sonar_defaults.lifecycle.bootstrap_scans, probation = -1,
+      line_correlation = sonar_eval::SonarAtlasOptions().match.unknown_line_correlation ? 1 : 0;
+  double km = 0.4, seed_scale = 1,
          redundancy = sonar_eval::SonarAtlasOptions().match.redundancy_sigma,
-         line_correlation = sonar_eval::SonarAtlasOptions().match.unknown_line_correlation ? 1 : 0,
          redundancy_prior = sonar_eval::SonarAtlasOptions().match.redundancy_prior_halfwidth,
          alternative = sonar_eval::SonarAtlasOptions().match.alternative_sigmas;
   sonar_eval::AlcoveLoopOptions loop;
   MapSwitches switches;
   std::string error;
-  if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
-      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
+  if (!GetIntegerOption(args, "--ring", 16, 24, ring, error) ||
+      !GetIntegerOption(args, "--seed", 0, kMaxSeed, seed, error) ||
       !GetNumberOption(args, "--km", 0.01, 100, km, error) ||
-      !GetNumberOption(args, "--rooms", 1, 10000, rooms, error) ||
-      !GetNumberOption(args, "--capacity", 2, 100, capacity, error) ||
-      !GetNumberOption(args, "--runs", 1, 1000, runs, error) ||
-      !GetNumberOption(args, "--laser", 0, 1, laser, error) ||
-      !GetNumberOption(args, "--self-match", 0, 1, self_match, error) ||
+      !GetIntegerOption(args, "--rooms", 1, 10000, rooms, error) ||
+      !GetIntegerOption(args, "--capacity", 2, 100, capacity, error) ||
+      !GetIntegerOption(args, "--runs", 1, 1000, runs, error) ||
+      !GetIntegerOption(args, "--laser", 0, 1, laser, error) ||
+      !GetIntegerOption(args, "--self-match", 0, 1, self_match, error) ||
       !switches.Parse(args, error) ||
-      !GetNumberOption(args, "--edge-extent", 0, 1, edge_extent, error) ||
+      !GetIntegerOption(args, "--edge-extent", 0, 1, edge_extent, error) ||
       !GetNumberOption(args, "--redundancy-sigma", 0, 100, redundancy, error) ||
-      !GetNumberOption(args, "--line-correlation", 0, 1, line_correlation, error) ||
-      !GetNumberOption(args, "--keep-frame-map", 0, 1, keep_frame_map, error) ||
+      !GetIntegerOption(args, "--line-correlation", 0, 1, line_correlation, error) ||
+      !GetIntegerOption(args, "--keep-frame-map", 0, 1, keep_frame_map, error) ||
       !GetNumberOption(args, "--seed-cov-scale", 1, 100, seed_scale, error) ||
-      !GetNumberOption(args, "--sonar-w", 0, 1, sonar_w, error) ||
-      !GetNumberOption(args, "--w-edge-echoes", 0, 1, w_edge_echoes, error) ||
-      !GetNumberOption(args, "--w-dead-reckoned", 0, 1, w_dead_reckoned, error) ||
-      !GetNumberOption(args, "--bootstrap-steps", 1, 1000, bootstrap_steps, error) ||
-      !GetNumberOption(args, "--probation", 2, 1000, probation, error) ||
+      !GetIntegerOption(args, "--sonar-w", 0, 1, sonar_w, error) ||
+      !GetIntegerOption(args, "--w-edge-echoes", 0, 1, w_edge_echoes, error) ||
+      !GetIntegerOption(args, "--w-dead-reckoned", 0, 1, w_dead_reckoned, error) ||
+      !GetIntegerOption(args, "--bootstrap-steps", 1, 1000, bootstrap_steps, error) ||
+      !GetIntegerOption(args, "--probation", 2, 1000, probation, error) ||
       !GetNumberOption(args, "--redundancy-prior", 0, 100, redundancy_prior, error) ||
       !GetNumberOption(args, "--alternative-sigmas", 0, 100, alternative, error) ||
       !GetNumberOption(args, "--period", 0.5, 100, loop.period, error) ||
@@ -931,14 +938,15 @@ int EchoingWall(const sim::RayCaster& caster, const sim::SonarOptions& so, const
 }
 
 int RunAssocMode(const Args& args) {
-  double ring = 24, seed = 1, km = 0.15, capacity = 40, show = 10;
+  int ring = 24, seed = 1, capacity = 40, show = 10;
+  double km = 0.15;
   sonar_eval::AlcoveLoopOptions loop;
   std::string error;
-  if (!GetNumberOption(args, "--ring", 16, 24, ring, error) ||
-      !GetNumberOption(args, "--seed", 0, 1e15, seed, error) ||
+  if (!GetIntegerOption(args, "--ring", 16, 24, ring, error) ||
+      !GetIntegerOption(args, "--seed", 0, kMaxSeed, seed, error) ||
       !GetNumberOption(args, "--km", 0.01, 100, km, error) ||
-      !GetNumberOption(args, "--capacity", 2, 200, capacity, error) ||
-      !GetNumberOption(args, "--show", 0, 1000, show, error)) {
+      !GetIntegerOption(args, "--capacity", 2, 200, capacity, error) ||
+      !GetIntegerOption(args, "--show", 0, 1000, show, error)) {
     std::fprintf(stderr, "atlas-sonar-eval assoc: %s\n", error.c_str());
     return 2;
   }
