@@ -304,5 +304,20 @@ TEST(FakeP2osTest, PulsesComeMoreThanOnceASecond) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(FaultOptionsTest, ADurationWithoutItsStartIsRefused) {
+  FaultOptions f;
+  EXPECT_EQ(f.Validate(), "");
+  f.stall_for_s = 2;
+  EXPECT_NE(f.Validate().find("stall_for_s without stall_after_s"), std::string::npos);
+  f.stall_after_s = 1;
+  EXPECT_EQ(f.Validate(), "");
+  f.drop_for_s = 1;
+  EXPECT_NE(f.Validate().find("drop_for_s without drop_after_s"), std::string::npos);
+  f.drop_after_s = 0;
+  EXPECT_EQ(f.Validate(), "");
+  f.drop_after_s = std::nan("");
+  EXPECT_NE(f.Validate().find("finite"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace atlas::fake

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -16,6 +17,7 @@
 #include "drivers/fake/fake_lms.h"
 #include "drivers/fake/fake_p2os.h"
 #include "drivers/fake/playback.h"
+#include "tools/eval/tool_options.h"
 
 namespace {
 
@@ -33,28 +35,31 @@ Run all devices in one process (default) or one per process (--only laser|odomet
 
 options:
   --log FILE             the CARMEN log to play (required)
-  --speed F              playback speed, 1 = real time (default 1)
-  --max-scans N          play only the first N scans (default: all)
+  --speed F              playback speed, 1 = real time, 0.001..1000 (default 1)
+  --max-scans N          play only the first N scans (default 0: all)
   --dir DIR              where links and sockets go (default /tmp/atlas-fakedev)
   --laser-link PATH      symlink to the laser's pty (default DIR/laser)
   --sonar-link PATH      symlink to the sonar's pty (default DIR/sonar)
   --can-socket PATH      the fake CAN bus socket (default DIR/can)
   --only DEVICE          run one device: laser, odometry or sonar
   --no-laser, --no-odometry, --no-sonar
-  --lms-power-up-baud B  the scanner's rate at power-up (default 9600)
+  --lms-power-up-baud B  the scanner's rate at power-up: 9600, 19200, 38400 or 500000
+                         (default 9600)
   --wait-for-drivers     start playing only when every device has its driver connected
                          (laser streaming, CAN client connected, P2OS opened)
-  --progress-every S     print progress every S seconds (default 5; 0 = never)
+  --progress-every S     print progress every S seconds, 0..1e6 (default 5; 0 = never)
 fault injection (applied to --fault-device, default all):
   --fault-device D       laser, odometry, sonar or all
+  (the *-every counts are integers 0..2147483647, 0 = never)
   --garbage-every N      garbage bytes before every Nth message
-  --garbage-bytes N      how many (default 40)
+  --garbage-bytes N      how many, 1..4096 (default 40)
   --corrupt-every N      corrupt the CRC / checksum of every Nth message
   --truncate-every N     send only half of every Nth message
   --jump-every N         odometry counters jump every Nth 0x311 ...
-  --jump-mm N            ... by N mm (default 500000)
+  --jump-mm N            ... by N mm, a 32-bit integer (default 500000)
   --drop-after S --drop-for T   close the device after S s for T s, then recreate it
   --stall-after S --stall-for T send nothing from S s for T s
+                         (S >= 0, T >= 0.001, at most 1e6 s; each pair goes together)
   -h, --help             this text
 
 Exits when the whole log has been played (or on SIGINT / SIGTERM).
@@ -65,19 +70,6 @@ example:
 
 std::atomic<bool> g_stop{false};
 void OnSignal(int) { g_stop.store(true); }
-
-bool ParseDouble(const char* s, double* out) {
-  char* end = nullptr;
-  errno = 0;
-  *out = std::strtod(s, &end);
-  return errno == 0 && end != s && *end == '\0';
-}
-bool ParseInt(const char* s, long* out) {
-  char* end = nullptr;
-  errno = 0;
-  *out = std::strtol(s, &end, 10);
-  return errno == 0 && end != s && *end == '\0';
-}
 
 int Fail(const std::string& msg) {
   std::fprintf(stderr, "atlas-fakedev: %s\n(see atlas-fakedev --help)\n", msg.c_str());
@@ -91,7 +83,9 @@ int main(int argc, char** argv) {
   std::string log, dir = "/tmp/atlas-fakedev", laser_link, sonar_link, can_socket, only,
                    fault_device = "all";
   double speed = 1.0, progress_every = 5.0;
-  long max_scans = 0, power_up_baud = 9600;
+  int64_t max_scans = 0;
+  int power_up_baud = 9600;
+  bool drop_for_given = false, stall_for_given = false;
   bool laser = true, odometry = true, sonar = true, wait = false;
   fake::FaultOptions faults;
   for (int i = 1; i < argc; ++i) {
@@ -104,23 +98,24 @@ int main(int argc, char** argv) {
       }
       return v;
     };
-    double d = 0;
-    long n = 0;
-    auto num = [&](double* out) {
-      if (!ParseDouble(need(value()), out)) std::exit(Fail("bad number after " + a));
+    std::string error;
+    auto num = [&](double lo, double hi, double* out) {
+      if (!eval::NumberArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
     };
-    auto integer = [&](long* out) {
-      if (!ParseInt(need(value()), out)) std::exit(Fail("bad integer after " + a));
+    auto integer = [&](int64_t lo, int64_t hi, auto* out) {
+      if (!eval::IntegerArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
     };
+    constexpr int64_t kIntMax = std::numeric_limits<int>::max();
+    constexpr double kLongest = 1e6;  // seconds, for the fault times and the progress period
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;
     } else if (a == "--log") {
       log = need(value());
     } else if (a == "--speed") {
-      num(&speed);
+      num(1e-3, 1000, &speed);
     } else if (a == "--max-scans") {
-      integer(&max_scans);
+      integer(0, std::numeric_limits<int64_t>::max(), &max_scans);
     } else if (a == "--dir") {
       dir = need(value());
     } else if (a == "--laser-link") {
@@ -138,47 +133,45 @@ int main(int argc, char** argv) {
     } else if (a == "--no-sonar") {
       sonar = false;
     } else if (a == "--lms-power-up-baud") {
-      integer(&power_up_baud);
+      integer(1, kIntMax, &power_up_baud);
     } else if (a == "--wait-for-drivers") {
       wait = true;
     } else if (a == "--progress-every") {
-      num(&progress_every);
+      num(0, kLongest, &progress_every);
     } else if (a == "--fault-device") {
       fault_device = need(value());
     } else if (a == "--garbage-every") {
-      integer(&n);
-      faults.garbage_every = static_cast<int>(n);
+      integer(0, kIntMax, &faults.garbage_every);
     } else if (a == "--garbage-bytes") {
-      integer(&n);
-      faults.garbage_bytes = static_cast<int>(n);
+      integer(1, 4096, &faults.garbage_bytes);
     } else if (a == "--corrupt-every") {
-      integer(&n);
-      faults.corrupt_crc_every = static_cast<int>(n);
+      integer(0, kIntMax, &faults.corrupt_crc_every);
     } else if (a == "--truncate-every") {
-      integer(&n);
-      faults.truncate_every = static_cast<int>(n);
+      integer(0, kIntMax, &faults.truncate_every);
     } else if (a == "--jump-every") {
-      integer(&n);
-      faults.jump_every = static_cast<int>(n);
+      integer(0, kIntMax, &faults.jump_every);
     } else if (a == "--jump-mm") {
-      integer(&n);
-      faults.jump_mm = static_cast<int32_t>(n);
+      integer(std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max(),
+              &faults.jump_mm);
     } else if (a == "--drop-after") {
-      num(&faults.drop_after_s);
+      num(0, kLongest, &faults.drop_after_s);
     } else if (a == "--drop-for") {
-      num(&faults.drop_for_s);
+      num(1e-3, kLongest, &faults.drop_for_s);
+      drop_for_given = true;
     } else if (a == "--stall-after") {
-      num(&faults.stall_after_s);
+      num(0, kLongest, &faults.stall_after_s);
     } else if (a == "--stall-for") {
-      num(&faults.stall_for_s);
+      num(1e-3, kLongest, &faults.stall_for_s);
+      stall_for_given = true;
     } else {
       return Fail("unknown option " + a);
     }
-    (void)d;
   }
   if (log.empty()) return Fail("--log FILE is required");
-  if (!(speed > 0) || speed > 1000) return Fail("--speed must be in (0, 1000]");
-  if (max_scans < 0) return Fail("--max-scans must be >= 0");
+  if (drop_for_given != (faults.drop_after_s >= 0))
+    return Fail("--drop-after S and --drop-for T go together");
+  if (stall_for_given != (faults.stall_after_s >= 0))
+    return Fail("--stall-after S and --stall-for T go together");
   if (!only.empty()) {
     if (only != "laser" && only != "odometry" && only != "sonar")
       return Fail("--only must be laser, odometry or sonar, not " + only);
@@ -217,12 +210,12 @@ int main(int argc, char** argv) {
   if (laser) {
     fake::FakeLmsOptions o;
     o.link = laser_link;
-    o.power_up_baud = static_cast<int>(power_up_baud);
+    o.power_up_baud = power_up_baud;
     o.faults = faults_for("laser");
     if (std::string e = o.Validate(); !e.empty()) return Fail(e);
     lms = std::make_unique<fake::FakeLms>(o, rec, clock);
     if (!lms->Open(&error)) return Fail(error);
-    std::printf("laser:    %s (LMS 2xx, powers up at %ld baud)\n", lms->path().c_str(),
+    std::printf("laser:    %s (LMS 2xx, powers up at %d baud)\n", lms->path().c_str(),
                 power_up_baud);
   }
   if (odometry) {
