@@ -16,6 +16,7 @@
 #include "drivers/sim/building_generator.h"
 #include "drivers/sim/carmen_writer.h"
 #include "drivers/sim/simulation.h"
+#include "tools/eval/tool_options.h"
 
 namespace {
 
@@ -34,10 +35,12 @@ Runs are reproducible from --seed.
 
 options:
   --out DIR               output directory (created; files in it are overwritten)
-  --rooms N               generate a building with at least N rooms (default 24)
-  --world FILE            drive through this world file instead of generating one
+  --rooms N               generate a building with at least N rooms, 1..100000 (default 24)
+  --world FILE            drive through this world file instead of generating one (not with
+                          --rooms)
   --length-km X           route length in km (default 0.5)
-  --seed N                random seed for building, route and sensor noise (default 1)
+  --seed N                random seed for building, route and sensor noise, an integer in
+                          [0, 18446744073709551615] (default 1)
   --speed M_PER_S         top speed (default 0.8)
   --odometry-hz HZ        odometry and ground-truth rate (default 50)
   --laser-beams 181|361   laser beams over 180 degrees (default 181)
@@ -137,7 +140,7 @@ int main(int argc, char** argv) {
   sim.sonar = true;
   BuildingOptions building;
   std::string out_dir, world_file, sonar_kind = "p3dx";
-  bool quiet = false;
+  bool quiet = false, rooms_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
@@ -183,22 +186,32 @@ int main(int argc, char** argv) {
       }
       return x;
     };
+    std::string error;
+    auto integer = [&](int64_t lo, int64_t hi, auto* out) {
+      if (!eval::IntegerArgument(a, v, lo, hi, *out, error)) std::exit(Fail(error));
+    };
     if (a == "--out") {
       out_dir = v;
     } else if (a == "--world") {
       world_file = v;
     } else if (a == "--rooms") {
-      building.min_rooms = static_cast<int>(number(1, 100000));
+      integer(1, 100000, &building.min_rooms);
+      rooms_given = true;
     } else if (a == "--length-km") {
       sim.length_m = 1000.0 * number(1e-4, 10000);
     } else if (a == "--seed") {
-      sim.seed = static_cast<uint64_t>(number(0, 1e15));
+      if (!eval::SeedArgument(a, v, sim.seed, error)) return Fail(error);
     } else if (a == "--speed") {
       sim.motion_options.max_speed = number(0.05, 5);
     } else if (a == "--odometry-hz") {
       sim.odometry_hz = number(1, 1000);
     } else if (a == "--laser-beams") {
-      sim.laser_options.beams = static_cast<int>(number(2, 10000));
+      integer(1, 100000, &sim.laser_options.beams);
+      if (sim.laser_options.beams != 181 && sim.laser_options.beams != 361)
+        return Fail(
+            "--laser-beams must be 181 or 361 (1 or 0.5 degree over 180 degrees, as a "
+            "SICK LMS 2xx), not " +
+            std::string(v));
     } else if (a == "--laser-hz") {
       sim.laser_options.rate_hz = number(0.1, 1000);
     } else if (a == "--laser-max-range") {
@@ -222,6 +235,8 @@ int main(int argc, char** argv) {
     }
   }
   if (out_dir.empty()) return Fail("--out DIR is required (where to write the run)");
+  if (rooms_given && !world_file.empty())
+    return Fail("--rooms generates a building; --world reads one: give one of them");
   if (sonar_kind == "none") {
     sim.sonar = false;
   } else if (sonar_kind == "p3dx") {
