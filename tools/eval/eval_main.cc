@@ -242,6 +242,12 @@ int Main(int argc, char** argv) {
         atlas_dir = v;
       } else if (a == "--errors") {
         errors_path = v;
+      } else if (a == "--step") {
+        std::string error;
+        if (!IntegerArgument(a, v, 1, 1000000000, ref_options.step_count, error))
+          return Usage(error);
+        ref_options.segment_length_m = 0.0;
+        step_given = true;
       } else if (!ParseArgumentNumber(v, d)) {
         return Usage(a + " needs a number, got '" + v + "'");
       } else if (a == "--tolerance") {
@@ -252,12 +258,6 @@ int Main(int argc, char** argv) {
         ref_options.segment_length_m = d;
         ref_options.step_count = 0;
         segment_given = true;
-      } else {
-        if (d != std::floor(d) || d < 1 || d > 1e9)
-          return Usage("--step needs a whole count >= 1, got '" + std::string(v) + "'");
-        ref_options.step_count = static_cast<int>(d);
-        ref_options.segment_length_m = 0.0;
-        step_given = true;
       }
     } else if (!a.empty() && a[0] == '-') {
       return Usage("unknown option " + a);
