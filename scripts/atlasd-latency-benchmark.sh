@@ -13,10 +13,8 @@
 # and the real-time settings are refused (atlasd says so on stderr). -h, --help: this text (the
 # benchmark's own flags: ATLAS_BUILD_DIR/bin/atlas_daemon_benchmark --help).
 set -euo pipefail
-if [[ ${1:-} == -h || ${1:-} == --help ]]; then
-  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
-  exit 0
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
+script_usage "${BASH_SOURCE[0]}" any "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${ATLAS_BUILD_DIR:-$ROOT/build/release}
 BIN=$BUILD/bin/atlas_daemon_benchmark

@@ -19,14 +19,8 @@
 # spikes at different steps each time: the maximum over steps of the minimum over the replays
 # is the step cost that belongs to the atlas, and is what is held against the budget.
 set -euo pipefail
-if [[ ${1:-} == -h || ${1:-} == --help ]]; then
-  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
-  exit 0
-fi
-if [[ ${1:-} == -* || $# -gt 1 ]]; then
-  echo "constant-time.sh: unknown option or extra argument: $* (usage: scripts/constant-time.sh [OUT]; see --help)" >&2
-  exit 2
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
+script_usage "${BASH_SOURCE[0]}" out "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-/tmp/atlas-constant-time}
 ROOMS=${ROOMS:-2400}

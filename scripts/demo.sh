@@ -15,14 +15,8 @@
 # Usage: scripts/demo.sh   (no arguments; -h, --help: this text)
 # Environment: ATLAS_DEMO_DIR, ATLAS_DEMO_SPEED, ATLAS_BUILD_DIR (default <repo>/build/release).
 set -euo pipefail
-if [[ ${1:-} == -h || ${1:-} == --help ]]; then
-  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
-  exit 0
-fi
-if [[ $# -gt 0 ]]; then
-  echo "demo.sh: takes no arguments, got '$1' (see scripts/demo.sh --help)" >&2
-  exit 2
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
+script_usage "${BASH_SOURCE[0]}" none "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${ATLAS_DEMO_DIR:-$ROOT/out/demo}
 SPEED=${ATLAS_DEMO_SPEED:-4}

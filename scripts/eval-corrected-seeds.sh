@@ -14,14 +14,8 @@
 # eval-corrected.sh reads (ATLAS_BIN, ATLAS_DATA). Each seed's full output: OUT/seed-S.txt,
 # its outputs OUT/seed-S/.
 set -euo pipefail
-if [[ ${1:-} == -h || ${1:-} == --help ]]; then
-  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
-  exit 0
-fi
-if [[ ${1:-} == -* || $# -gt 1 ]]; then
-  echo "eval-corrected-seeds.sh: unknown option or extra argument: $* (usage: scripts/eval-corrected-seeds.sh [OUT]; see --help)" >&2
-  exit 2
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
+script_usage "${BASH_SOURCE[0]}" out "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-/tmp/atlas-eval-corrected-seeds}
 SEEDS=${SEEDS:-1 2 3 4 5 6 7 8 9 10}

@@ -16,14 +16,8 @@
 # default <repo>/build/release/bin, built if missing), SEED (default 1), FIG7_LOG (default
 # intel), FIG7_PNG (default OUT/fig7-<log>.png), REFINE=1 to also score global_refined.tsv.
 set -euo pipefail
-if [[ ${1:-} == -h || ${1:-} == --help ]]; then
-  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
-  exit 0
-fi
-if [[ ${1:-} == -* || $# -gt 1 ]]; then
-  echo "eval-corrected.sh: unknown option or extra argument: $* (usage: scripts/eval-corrected.sh [OUT]; see --help)" >&2
-  exit 2
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
+script_usage "${BASH_SOURCE[0]}" out "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-/tmp/atlas-eval-corrected}
 SEED=${SEED:-1}

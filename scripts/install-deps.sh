@@ -4,14 +4,8 @@
 #
 # Usage: scripts/install-deps.sh   (no arguments; -h, --help: this text)
 set -euo pipefail
-if [[ ${1:-} == -h || ${1:-} == --help ]]; then
-  sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
-  exit 0
-fi
-if [[ $# -gt 0 ]]; then
-  echo "install-deps.sh: takes no arguments, got '$1' (see scripts/install-deps.sh --help)" >&2
-  exit 2
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
+script_usage "${BASH_SOURCE[0]}" none "$@"
 
 packages=(
   build-essential cmake pkg-config git
