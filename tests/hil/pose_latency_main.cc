@@ -7,13 +7,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <vector>
 
 #include "atlas/pose_t.hpp"
+#include "core/common/parse_number.h"
 #include "core/common/time.h"
 
 namespace {
@@ -21,14 +21,24 @@ namespace {
 constexpr const char* kHelp =
     R"(usage: atlas-pose-latency [--seconds S] [--channel NAME] [--warmup N]
 
-Subscribes to ATLAS_POSE (LCM_DEFAULT_URL) for S seconds (default 60) or until SIGINT/SIGTERM,
+  --seconds S     how long to listen, 0.001 to 86400 (default 60)
+  --channel NAME  the pose channel (default ATLAS_POSE)
+  --warmup N      poses skipped at the start, an integer 0 to 1000000 (default 20)
+
+Subscribes to ATLAS_POSE (LCM_DEFAULT_URL) for S seconds or until SIGINT/SIGTERM,
 and prints the latency of each pose: from the laser driver's arrival stamp of the scan
 (pose_t.utime, CLOCK_MONOTONIC) to the pose's receipt here (same clock), as
   poses=N median_us=.. p90_us=.. p99_us=.. max_us=..
 Dead-reckoning poses (published without a scan, utime = odometry time) are counted apart and
-left out. The first N poses (default 20) are skipped (start-up). atlasd must run on this
-machine (one monotonic clock).
+left out. The first N poses are skipped (start-up). atlasd must run on this machine (one
+monotonic clock). Exit 0; 1 when no pose was measured or LCM cannot be opened; 2 on a usage
+error (an unknown option, a missing value, a value that is not a number in its range).
 )";
+
+int Usage(const std::string& message) {
+  std::fprintf(stderr, "atlas-pose-latency: %s (see --help)\n", message.c_str());
+  return 2;
+}
 
 volatile sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
@@ -36,7 +46,8 @@ void OnSignal(int) { g_stop = 1; }
 struct Collector {
   std::vector<double> latency_us;
   int64_t last_utime = -1;
-  int skipped = 0, warmup = 20, repeated = 0;
+  long skipped = 0, warmup = 20;
+  int repeated = 0;
   void Handle(const lcm::ReceiveBuffer*, const std::string&, const atlas::pose_t* p) {
     const int64_t now_us = atlas::Now().time_since_epoch().count() / 1000;
     if (p->utime == last_utime) {  // the same stamp again: not a new scan
@@ -70,15 +81,20 @@ int main(int argc, char** argv) {
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;
-    } else if (a == "--seconds" && i + 1 < argc) {
-      seconds = std::atof(argv[++i]);
-    } else if (a == "--channel" && i + 1 < argc) {
-      channel = argv[++i];
-    } else if (a == "--warmup" && i + 1 < argc) {
-      c.warmup = std::atoi(argv[++i]);
+    } else if (a != "--seconds" && a != "--channel" && a != "--warmup") {
+      return Usage("unknown argument '" + a + "'");
+    } else if (i + 1 >= argc) {
+      return Usage(a + " needs a value");
+    } else if (const char* v = argv[++i]; a == "--seconds") {
+      if (!atlas::ParseNumberIn(v, 0.001, 86400, &seconds))
+        return Usage("--seconds: '" + std::string(v) +
+                     "' is not a number of seconds in [0.001, 86400]");
+    } else if (a == "--warmup") {
+      if (!atlas::ParseIntegerIn(v, 0, 1000000, &c.warmup))
+        return Usage("--warmup: '" + std::string(v) + "' is not an integer in [0, 1000000]");
     } else {
-      std::fprintf(stderr, "atlas-pose-latency: unknown argument '%s' (see --help)\n", a.c_str());
-      return 2;
+      if (*v == '\0') return Usage("--channel needs a non-empty NAME");
+      channel = v;
     }
   }
   lcm::LCM lcm;

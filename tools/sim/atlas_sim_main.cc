@@ -13,6 +13,7 @@
 #include <iterator>
 #include <string>
 
+#include "core/common/parse_number.h"
 #include "drivers/sim/building_generator.h"
 #include "drivers/sim/carmen_writer.h"
 #include "drivers/sim/simulation.h"
@@ -62,12 +63,6 @@ options:
 int Fail(const std::string& message) {
   std::fprintf(stderr, "atlas-sim: %s\n(atlas-sim --help for usage)\n", message.c_str());
   return 2;
-}
-
-bool ParseNumber(const char* s, double* v) {
-  char* end = nullptr;
-  *v = std::strtod(s, &end);
-  return end != s && *end == '\0' && std::isfinite(*v);
 }
 
 // Collects output in memory and writes it in large blocks.
@@ -179,7 +174,7 @@ int main(int argc, char** argv) {
     const char* v = argv[++i];
     double x = 0.0;
     auto number = [&](double lo, double hi) {
-      if (!ParseNumber(v, &x) || x < lo || x > hi) {
+      if (!atlas::ParseNumberIn(v, lo, hi, &x)) {
         std::fprintf(stderr, "atlas-sim: %s: '%s' is not a number in [%g, %g]\n", a.c_str(), v, lo,
                      hi);
         std::exit(2);
