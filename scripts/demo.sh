@@ -77,7 +77,8 @@ cat "$ROOT/config/noise-simulator.toml" >>"$OUT/atlasd.toml"
 
 echo "== atlasd on fake devices playing the run at ${SPEED}x real time"
 lcm-logger --quiet --channel 'ATLAS_POSE|ATLAS_HEALTH' "$OUT/session.lcm" >"$OUT/logger.err" 2>&1 &
-PIDS+=($!)
+LOGGER=$!
+PIDS+=("$LOGGER")
 "$BIN/atlas-fakedev" --log "$OUT/sim/run.clf" --dir "$OUT/dev" --speed "$SPEED" \
   --wait-for-drivers --progress-every 0 >"$OUT/fakedev.out" 2>"$OUT/fakedev.err" &
 FAKEDEV=$!
@@ -91,6 +92,8 @@ sleep 1
 kill -TERM "$ATLASD"
 wait "$ATLASD" || { echo "atlasd exited with an error (see $OUT/atlasd.err)" >&2; exit 1; }
 sleep 0.3
+kill -INT "$LOGGER"  # lcm-logger ends its file at an event (atlas-lcm-log-summary refuses a cut one)
+wait "$LOGGER" || true
 
 echo "== drawing the atlas atlasd built"
 "$BIN/atlasd" --config "$OUT/atlasd.toml" --export-atlas "$OUT/atlas"

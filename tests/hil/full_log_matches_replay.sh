@@ -58,7 +58,8 @@ sed -i 's/^max_range_m = 50.0/max_range_m = 8.0/; s/^republish_raw = true/republ
 
 LCM_DEFAULT_URL="${LCM_DEFAULT_URL}&recv_buf_size=16777216" lcm-logger --quiet --channel ATLAS_POSE \
   "$WORK/session.lcm" >"$WORK/logger.err" 2>&1 &
-PIDS+=($!)
+LOGGER_PID=$!
+PIDS+=("$LOGGER_PID")
 sleep 0.3
 start_fakedev --speed "$SPEED"
 start_atlasd "$WORK/atlasd.toml" --health-every 10
@@ -67,6 +68,7 @@ kill -0 "$FAKEDEV_PID" 2>/dev/null && fail "atlas-fakedev still playing after 15
 sleep 2  # the loop steps what is pending
 stop_pid "$ATLASD_PID" 1.0 || fail "atlasd exited non-zero"
 sleep 0.3
+stop_logger
 "$ATLASD" --config "$WORK/atlasd.toml" --export-atlas "$WORK/live" 2>"$WORK/export.err" ||
   fail "export: $(cat "$WORK/export.err")"
 "$LOG_SUMMARY" "$WORK/session.lcm" --poses "$WORK/live_poses.txt" >"$WORK/summary.txt"

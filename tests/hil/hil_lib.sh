@@ -79,6 +79,13 @@ start_logger() {
   sleep 0.3
 }
 
+# stop_logger: lcm-logger ends its file at an event (SIGINT), so that atlas-lcm-log-summary and
+# atlasd --replay, which refuse a truncated log, read a whole one.
+stop_logger() {
+  kill -INT "$LOGGER_PID"
+  wait "$LOGGER_PID" || true
+}
+
 # start_atlasd CONFIG [args...]
 start_atlasd() {
   local config=$1

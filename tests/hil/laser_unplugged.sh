@@ -16,6 +16,7 @@ sleep 21
 kill -0 "$ATLASD_PID" || fail "atlasd died"
 stop_pid "$ATLASD_PID" 1.0 || fail "atlasd exited non-zero"
 sleep 0.3
+stop_logger
 "$LOG_SUMMARY" "$WORK/session.lcm" >"$WORK/summary.txt"
 cat "$WORK/summary.txt"
 S="$WORK/summary.txt"

@@ -1,18 +1,20 @@
 // atlas-lcm-log-summary: what an lcm-logger file of an atlasd session holds, as key=value
 // lines for the hardware-in-loop test scripts (tests/hil/*.sh). See --help.
+#include <cerrno>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
-#include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <string>
 
 #include "atlas/health_t.hpp"
 #include "atlas/pose_t.hpp"
+#include "daemon/lcm_log/lcm_log_reader.h"
 
 namespace {
 
 constexpr const char* kHelp = R"(usage: atlas-lcm-log-summary LOGFILE [--poses FILE]
+       atlas-lcm-log-summary --help
 
 Prints key=value lines about an lcm-logger file recorded from atlasd (default channels):
   events.CHANNEL            messages per channel
@@ -21,21 +23,50 @@ Prints key=value lines about an lcm-logger file recorded from atlasd (default ch
   health.max_overruns, health.dropped_scans,
   health.<driver>.<counter> (last value: bad_crc garbage_bytes truncated discontinuities
                              disconnects reconnects), health.<driver>.states (states seen, in order)
+  undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH events that did not decode (left out)
+  log                       complete, truncated or corrupt
 --poses FILE writes the poses received: "t x y theta frame q" (t: utime in seconds).
+
+Exit 0; 1 when LOGFILE is not an LCM log (nothing printed), or is truncated or corrupt, or holds
+events that do not decode (the lines above are then printed for the events read, and stderr
+says what is wrong and where), or FILE cannot be written; 2 on a usage error.
 )";
+
+int Usage(const std::string& message) {
+  std::fprintf(stderr, "atlas-lcm-log-summary: %s (see --help)\n", message.c_str());
+  return 2;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "--help")) {
-    std::fputs(kHelp, argc < 2 ? stderr : stdout);
-    return argc < 2 ? 2 : 0;
+  std::string log_path, poses_path;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "--poses") {
+      if (i + 1 >= argc) return Usage("--poses needs a FILE");
+      poses_path = argv[++i];
+    } else if (a.size() > 1 && a[0] == '-') {
+      return Usage("unknown option '" + a + "'");
+    } else if (log_path.empty()) {
+      log_path = a;
+    } else {
+      return Usage("one LOGFILE only ('" + log_path + "', then '" + a + "')");
+    }
+  }
+  if (log_path.empty()) return Usage("no LOGFILE given");
+  atlas::LcmLogReader log;
+  if (!log.Open(log_path)) {
+    std::fprintf(stderr, "atlas-lcm-log-summary: %s\n", log.error().c_str());
+    return 1;
   }
   FILE* poses = nullptr;
-  if (argc == 4 && !std::strcmp(argv[2], "--poses")) poses = std::fopen(argv[3], "w");
-  lcm::LogFile log(argv[1], "r");
-  if (!log.good()) {
-    std::fprintf(stderr, "atlas-lcm-log-summary: cannot read %s\n", argv[1]);
+  if (!poses_path.empty() && (poses = std::fopen(poses_path.c_str(), "w")) == nullptr) {
+    std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the poses file %s (%s)\n",
+                 poses_path.c_str(), std::strerror(errno));
     return 1;
   }
   std::map<std::string, int64_t> events;
@@ -45,20 +76,21 @@ int main(int argc, char** argv) {
   atlas::health_t last{};
   int64_t max_overruns = 0;
   std::map<std::string, std::string> states;
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    ++events[e->channel];
-    if (e->channel == "ATLAS_POSE") {
+  atlas::LcmLogEvent e;
+  while (log.Next(&e)) {
+    ++events[e.channel];
+    if (e.channel == "ATLAS_POSE") {
       atlas::pose_t p{};
-      if (p.decode(e->data, 0, e->datalen) < 0) continue;
+      if (!log.Decode(e, &p)) continue;
       ++pose_count;
-      if (last_pose_ts >= 0) max_gap = std::max(max_gap, (e->timestamp - last_pose_ts) * 1e-6);
-      last_pose_ts = e->timestamp;
+      if (last_pose_ts >= 0) max_gap = std::max(max_gap, (e.timestamp - last_pose_ts) * 1e-6);
+      last_pose_ts = e.timestamp;
       if (poses)
         std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f\n", p.utime * 1e-6, p.x, p.y, p.theta,
                      p.frame_id, p.q);
-    } else if (e->channel == "ATLAS_HEALTH") {
+    } else if (e.channel == "ATLAS_HEALTH") {
       atlas::health_t h{};
-      if (h.decode(e->data, 0, e->datalen) < 0) continue;
+      if (!log.Decode(e, &h)) continue;
       ++health_count;
       if (h.status.find("LASER FAULT") != std::string::npos) fault = true;
       max_overruns = std::max<int64_t>(max_overruns, h.overruns);
@@ -73,7 +105,15 @@ int main(int argc, char** argv) {
       last = h;
     }
   }
-  if (poses) std::fclose(poses);
+  int rc = 0;
+  if (poses != nullptr) {
+    const bool ok = !std::ferror(poses);
+    if (std::fclose(poses) != 0 || !ok) {  // a full disk shows at the latest here
+      std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the poses file %s (%s)\n",
+                   poses_path.c_str(), std::strerror(errno));
+      rc = 1;
+    }
+  }
   for (const auto& [c, n] : events) std::printf("events.%s=%" PRId64 "\n", c.c_str(), n);
   std::printf("pose.count=%" PRId64 "\npose.max_gap_s=%.3f\n", pose_count, max_gap);
   std::printf("health.count=%" PRId64 "\nhealth.laser_fault_seen=%d\n", health_count, fault);
@@ -91,5 +131,15 @@ int main(int argc, char** argv) {
                 d.disconnects, n, d.reconnects, n, d.messages);
   }
   for (const auto& [n, s] : states) std::printf("health.%s.states=%s\n", n.c_str(), s.c_str());
-  return 0;
+  for (const auto& [c, n] : log.undecodable())
+    std::printf("undecodable.%s=%" PRId64 "\n", c.c_str(), n);
+  std::printf("log=%s\n", log.problem().empty() ? "complete"
+                          : log.truncated()     ? "truncated"
+                                                : "corrupt");
+  if (const std::vector<std::string> problems = log.Problems(); !problems.empty()) {
+    for (const std::string& p : problems)
+      std::fprintf(stderr, "atlas-lcm-log-summary: %s\n", p.c_str());
+    rc = 1;
+  }
+  return rc;
 }

@@ -45,8 +45,7 @@ wait "$LATENCY_PID" || true
 sleep 0.5  # the loop steps what is pending
 stop_pid "$ATLASD_PID" 1.0 || fail "atlasd exited non-zero"
 sleep 0.3
-kill -INT "$LOGGER_PID"
-wait "$LOGGER_PID" || true
+stop_logger
 "$LOG_SUMMARY" "$WORK/session.lcm" --poses "$WORK/live_poses.txt" >"$WORK/summary.txt"
 S="$WORK/summary.txt"
 steps=$(summary_value "$S" health.last_steps)
