@@ -231,6 +231,67 @@ TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
   std::filesystem::remove_all(dir);
 }
 
+std::string FileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A recording cut in its last event (lcm-logger killed) replays up to the cut, exit 1, with the
+// byte of the cut on stderr and "log truncated" in the summary; a corrupt one likewise; a file
+// that is not an LCM log is refused before anything is written.
+TEST(Replay, SaysWhereABadLogEnds) {
+  char dir_template[] = "/tmp/atlas_replay_XXXXXX";  // mkdtemp replaces the X's
+  ASSERT_NE(mkdtemp(dir_template), nullptr) << std::strerror(errno);
+  const std::string dir = dir_template;
+  DaemonOptions o;
+  o.sonar.enabled = true;
+  o.sonar.ring = SonarRing::kB21_24;
+  o.localmap.sensors = LocalMapSensors::kSonar;
+  o.loop.max_pending_scans = 8;
+  const LiveRun live = RunLive(o, dir + "/session.lcm", 7);
+  const std::string bytes = FileText(dir + "/session.lcm");
+  const size_t cut = bytes.size() - 5;
+  std::ofstream(dir + "/cut.lcm", std::ios::binary) << bytes.substr(0, cut);
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(RunReplay(o, dir + "/cut.lcm", dir + "/cut"), 1);
+  std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find(dir + "/cut.lcm: truncated at byte " + std::to_string(cut) +
+                     ": the last event, event "),
+            std::string::npos)
+      << err;
+  EXPECT_NE(FileText(dir + "/cut/summary.txt").find("\nlog truncated\n"), std::string::npos);
+  const std::vector<FileRow> replay = ReadPoses(dir + "/cut/poses.txt");
+  EXPECT_GE(replay.size() + 1, live.rows.size());  // the last event may have been a reading
+  ASSERT_LE(replay.size(), live.rows.size());
+  for (size_t i = 0; i < replay.size(); ++i)
+    ASSERT_NEAR(replay[i].t, ToSeconds(live.rows[i].stamp), 1e-6) << i;
+
+  std::string corrupt = bytes;
+  const size_t middle = corrupt.find("ATLAS_RAW_SONAR", bytes.size() / 2) - 28;
+  corrupt[middle] = 0;  // the sync word of an event in the middle
+  std::ofstream(dir + "/corrupt.lcm", std::ios::binary) << corrupt;
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(RunReplay(o, dir + "/corrupt.lcm", dir + "/corrupt"), 1);
+  err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("corrupt.lcm: corrupt at byte " + std::to_string(middle) + ": event "),
+            std::string::npos)
+      << err;
+  EXPECT_NE(FileText(dir + "/corrupt/summary.txt").find("\nlog corrupt\n"), std::string::npos);
+  EXPECT_LT(ReadPoses(dir + "/corrupt/poses.txt").size(), live.rows.size());
+
+  std::ofstream(dir + "/text.clf") << "# CARMEN Logfile\n";
+  for (const std::string& bad : {dir, dir + "/text.clf", dir + "/missing.lcm"}) {
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(RunReplay(o, bad, dir + "/refused"), 1) << bad;
+    err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err.rfind("atlasd: replay: " + bad + ": ", 0), 0u) << err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/refused")) << bad;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 INSTANTIATE_TEST_SUITE_P(Sensors, ReplayOfRawSonar,
                          ::testing::Values(LocalMapSensors::kSonar, LocalMapSensors::kBoth),
                          [](const auto& info) {
