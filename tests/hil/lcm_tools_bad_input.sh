@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# The LCM log tools on bad input (no network: logs are written byte by byte here, atlasd
+# --replay reads a file, atlas-pose-latency is refused before it opens LCM): atlas-lcm-log-summary
+# and atlasd --replay refuse a directory, an empty file, random bytes and a CARMEN log, report a
+# truncated or corrupt log and undecodable events with the byte and a non-zero exit; options are
+# validated (exit 2). Needs ATLASD, LOG_SUMMARY, POSE_LATENCY.
+set -euo pipefail
+: "${ATLASD:?}" "${LOG_SUMMARY:?}" "${POSE_LATENCY:?}"
+export LCM_DEFAULT_URL=memq://
+WORK=$(mktemp -d /tmp/atlas-lcm-tools.XXXXXX)
+trap 'rm -rf "$WORK"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+
+# expect RC PATTERN CMD...: CMD exits RC and its stderr (or stdout for RC 0) matches PATTERN.
+expect() {
+  local want=$1 pattern=$2 rc=0
+  shift 2
+  "$@" >"$WORK/out" 2>"$WORK/err" || rc=$?
+  if [ "$rc" != "$want" ]; then
+    fail "$* -> exit $rc, want $want: $(head -c 400 "$WORK/err")"
+  elif ! grep -qE -- "$pattern" "$WORK/err" "$WORK/out"; then
+    fail "$* -> no '$pattern' in: $(head -c 400 "$WORK/err") $(head -c 200 "$WORK/out")"
+  elif grep -q "invalid channel length" "$WORK/err" && ! grep -q "corrupt at byte" "$WORK/err"; then
+    fail "$* -> LCM's own reader message: $(cat "$WORK/err")"
+  fi
+}
+
+be32() { printf "\\x$(printf %02x $((($1 >> 24) & 255)))\\x$(printf %02x $((($1 >> 16) & 255)))\\x$(printf %02x $((($1 >> 8) & 255)))\\x$(printf %02x $(($1 & 255)))"; }
+# event CHANNEL DATA [CHANNEL_LENGTH]: one lcm-logger event (event number and timestamp 0).
+event() {
+  printf '\xED\xA1\xDA\x01'
+  be32 0; be32 0; be32 0; be32 0
+  be32 "${3:-${#1}}"
+  be32 "${#2}"
+  printf '%s%s' "$1" "$2"
+}
+
+S=$LOG_SUMMARY
+{ event X ab; event X cd; } >"$WORK/ok.lcm"                # 2 events of 31 bytes
+{ event X ab; event X cd -1; } >"$WORK/corrupt.lcm"
+head -c 59 "$WORK/ok.lcm" >"$WORK/cut.lcm"
+{ event X ab; event ATLAS_POSE xyz; } >"$WORK/undecodable.lcm"
+: >"$WORK/empty.lcm"
+printf '\x13\x37\x00\xff\x42random bytes' >"$WORK/random.bin"
+printf '# CARMEN Logfile\nODOM 0 0 0 0 0 0 1.0 host 1.0\n' >"$WORK/mit.clf"
+
+# atlas-lcm-log-summary
+expect 0 '^usage: atlas-lcm-log-summary' "$S" --help
+expect 2 'no LOGFILE given' "$S"
+expect 2 "unknown option '--bogus-opt'" "$S" --bogus-opt
+expect 2 "unknown option '--bogus'" "$S" "$WORK/ok.lcm" --bogus
+expect 2 '--poses needs a FILE' "$S" "$WORK/ok.lcm" --poses
+expect 2 'one LOGFILE only' "$S" "$WORK/ok.lcm" "$WORK/ok.lcm"
+expect 1 'is a directory' "$S" "$WORK"
+expect 1 'is empty, not an LCM log' "$S" "$WORK/empty.lcm"
+expect 1 'not an LCM log: it begins with 13 37 00 FF' "$S" "$WORK/random.bin"
+expect 1 'a CARMEN log\?' "$S" "$WORK/mit.clf"
+expect 1 'cannot read the LCM log \(No such file' "$S" "$WORK/missing.lcm"
+expect 1 'truncated at byte 59: the last event, event 2 \(from byte 31\), is incomplete' "$S" "$WORK/cut.lcm"
+grep -qx 'events.X=1' "$WORK/out" && grep -qx 'log=truncated' "$WORK/out" || fail "cut.lcm: $(cat "$WORK/out")"
+expect 1 'corrupt at byte 31: event 2 \(from byte 31\) has an invalid channel length -1' "$S" "$WORK/corrupt.lcm"
+grep -qx 'log=corrupt' "$WORK/out" || fail "corrupt.lcm: $(cat "$WORK/out")"
+expect 1 '1 event on ATLAS_POSE could not be decoded' "$S" "$WORK/undecodable.lcm"
+grep -qx 'undecodable.ATLAS_POSE=1' "$WORK/out" || fail "undecodable.lcm: $(cat "$WORK/out")"
+expect 1 'cannot write the poses file /nonexistent/p \(No such file' "$S" "$WORK/ok.lcm" --poses /nonexistent/p
+expect 0 '^events.X=2$' "$S" "$WORK/ok.lcm" --poses "$WORK/poses.txt"
+grep -qx 'log=complete' "$WORK/out" || fail "ok.lcm: $(cat "$WORK/out")"
+[ -f "$WORK/poses.txt" ] || fail "no poses file written"
+
+# atlasd --replay, with the defaults
+printf '# defaults\n' >"$WORK/atlasd.toml"
+R=("$ATLASD" --config "$WORK/atlasd.toml" --replay)
+for f in "$WORK" "$WORK/empty.lcm" "$WORK/random.bin" "$WORK/mit.clf"; do
+  expect 1 'atlasd: replay: .*(is a directory|is empty|not an LCM log)' "${R[@]}" "$f" --out "$WORK/r"
+done
+[ ! -e "$WORK/r" ] || fail "atlasd --replay made $WORK/r for a file it refused"
+expect 1 'truncated at byte 59' "${R[@]}" "$WORK/cut.lcm" --out "$WORK/r"
+grep -qx 'log truncated' "$WORK/r/summary.txt" || fail "summary: $(cat "$WORK/r/summary.txt")"
+expect 1 'corrupt at byte 31' "${R[@]}" "$WORK/corrupt.lcm" --out "$WORK/r"
+expect 1 'nothing to step: no scan on ATLAS_RAW_LASER.*X \(2\)' "${R[@]}" "$WORK/ok.lcm" --out "$WORK/r"
+
+# atlas-pose-latency: options (refused before LCM is opened)
+P=$POSE_LATENCY
+expect 0 '^usage: atlas-pose-latency' "$P" --help
+for v in abc 1e300 nan 0 -5 100000 ''; do
+  expect 2 "--seconds: '$v' is not a number of seconds in \[0.001, 86400\]" "$P" --seconds "$v"
+done
+for v in abc -1 1.5 1e3 2000000; do
+  expect 2 "--warmup: '$v' is not an integer in \[0, 1000000\]" "$P" --warmup "$v"
+done
+expect 2 '--seconds needs a value' "$P" --seconds
+expect 2 '--channel needs a non-empty NAME' "$P" --channel ''
+expect 2 "unknown argument '--bogus'" "$P" --bogus
+
+[ "$fails" = 0 ] || { echo "$fails failed" >&2; exit 1; }
+echo "PASS: the LCM log tools on bad input"
