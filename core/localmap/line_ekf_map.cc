@@ -570,7 +570,11 @@ bool LineEkfMap::Deserialize(const std::string& bytes) {
   uint32_t magic = 0, version = 0;
   int32_t nf = 0, next_id = 0;
   if (!r.Get(magic) || magic != kMagic || !r.Get(version) || version != kVersion) return false;
-  if (!r.Get(nf) || !r.Get(next_id) || nf < 0 || nf > 100000 || next_id < 0) return false;
+  // At most `capacity` features (the memory and time per frame are bounded by it): an image
+  // with more, or one made with a larger capacity, is refused.
+  if (!r.Get(nf) || !r.Get(next_id) || nf < 0 || nf > options_.capacity || next_id < 0 ||
+      next_id == INT32_MAX)
+    return false;
   const int n = 3 + 2 * nf;
   if (bytes.size() < static_cast<size_t>(n) * (n + 1) * sizeof(double)) return false;
   Eigen::VectorXd x(n);
@@ -610,7 +614,9 @@ bool LineEkfMap::Deserialize(const std::string& bytes) {
   RecentObservations recent(options_.quality.window);
   for (int i = 0; i < window_size; ++i) {
     int32_t o = 0, mt = 0;
-    if (!r.Get(o) || !r.Get(mt) || o < 0 || mt < 0 || mt > o) return false;
+    // Counts of one scan (features extracted): bounded, so that the window's sums cannot
+    // overflow.
+    if (!r.Get(o) || !r.Get(mt) || o < 0 || o > (1 << 20) || mt < 0 || mt > o) return false;
     recent.Add(o, mt);
   }
   if (!r.AtEnd()) return false;

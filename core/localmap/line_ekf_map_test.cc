@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <cstdint>
 #include <cstring>
 #include <random>
 
@@ -274,6 +275,43 @@ TEST(LineEkfMapTest, SerializeRoundTripsAndRejectsGarbage) {
   std::memcpy(nan_image.data() + 16, &nan, sizeof(nan));
   EXPECT_FALSE(copy.Deserialize(nan_image));
   EXPECT_EQ(copy.Serialize(), before);
+}
+
+// The map capacity bounds memory and time per frame: an image with more features than this
+// map's capacity (made with a larger one, or corrupt) is refused; counts that would overflow
+// the quality window or the next feature id are refused too.
+TEST(LineEkfMapTest, DeserializeRefusesMoreFeaturesThanCapacityAndOverflowingCounts) {
+  LineEkfMap map(SimOptions());
+  RunCorridor(map, 9, 30);
+  const int n = map.Complexity();
+  ASSERT_GE(n, 2);
+  const std::string image = map.Serialize();
+  LocalMapOptions o = SimOptions();
+  o.capacity = n;
+  LineEkfMap exact(o);
+  ASSERT_TRUE(exact.Deserialize(image));
+  EXPECT_EQ(exact.Serialize(), image);
+  o.capacity = n - 1;
+  LineEkfMap smaller(o);
+  EXPECT_FALSE(smaller.Deserialize(image));
+  EXPECT_EQ(smaller.Complexity(), 0);
+  const auto poke = [&image](size_t at, int32_t v) {
+    std::string out = image;
+    std::memcpy(out.data() + at, &v, sizeof(v));
+    return out;
+  };
+  LineEkfMap copy(SimOptions());
+  EXPECT_FALSE(copy.Deserialize(poke(8, 100000)));      // feature count
+  EXPECT_FALSE(copy.Deserialize(poke(12, INT32_MAX)));  // next feature id
+  // The recent observation window, last in the image: count, then (observations, matched).
+  const int window = map.Recent().Size();
+  ASSERT_GE(window, 1);
+  const size_t entries = image.size() - 8 * static_cast<size_t>(window);
+  for (int k = 0; k < window; ++k) {
+    EXPECT_FALSE(copy.Deserialize(poke(entries + 8 * k, INT32_MAX)));
+    EXPECT_FALSE(copy.Deserialize(poke(entries + 8 * k, -1)));
+  }
+  EXPECT_EQ(copy.Complexity(), 0);
 }
 
 TEST(LineEkfMapTest, CloneIsIndependent) {

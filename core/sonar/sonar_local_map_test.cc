@@ -147,6 +147,23 @@ TEST(SonarLocalMap, SensorModesAndSerialisation) {
   EXPECT_FALSE(back.Deserialize(bad.substr(0, 5)));
 }
 
+// The sonar map's image is its EKF's: one with more features than this map's capacity is
+// refused.
+TEST(SonarLocalMap, DeserializeRefusesMoreFeaturesThanCapacity) {
+  const SonarLocalMap map = DriveCorridor(80);
+  const int n = map.Complexity();
+  ASSERT_GE(n, 2);
+  SonarLocalMapOptions o = Options();
+  o.line_map.capacity = n;
+  SonarLocalMap exact(o);
+  ASSERT_TRUE(exact.Deserialize(map.Serialize()));
+  EXPECT_EQ(exact.Serialize(), map.Serialize());
+  o.line_map.capacity = n - 1;
+  SonarLocalMap smaller(o);
+  EXPECT_FALSE(smaller.Deserialize(map.Serialize()));
+  EXPECT_EQ(smaller.Complexity(), 0);
+}
+
 TEST(SonarLocalMapOptions, Validate) {
   SonarLocalMapOptions o;
   EXPECT_EQ(o.Validate(), "");
