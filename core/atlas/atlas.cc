@@ -663,6 +663,33 @@ namespace {
 
 constexpr uint32_t kMagic = 0x534c5441;  // "ATLS"
 constexpr uint64_t kMaxBlob = uint64_t{1} << 30;
+// Step counters and hypothesis ids of a loaded image lie in [0, kMaxStep]: far beyond any run,
+// and far enough from INT64_MAX that step arithmetic (++step_, step_ - x, step_ + cooldown)
+// cannot overflow.
+constexpr int64_t kMaxStep = int64_t{1} << 62;
+// The initial last_genesis_step_ (atlas.h) of an atlas that has not stepped yet.
+constexpr int64_t kNoGenesisStep = -1000000;
+// Observations, matches or additions of one scan: a window of 1000 of them sums without
+// overflow.
+constexpr int32_t kMaxScanCount = 1 << 20;
+
+bool Finite(const Pose2& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
+// Finite, symmetric and positive semi-definite (eigenvalues >= -tiny relative to its scale).
+bool ValidCovariance(const Mat3& c) {
+  if (!c.allFinite()) return false;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < r; ++k)
+      if (std::abs(c(r, k) - c(k, r)) > 1e-9 * (1.0 + std::abs(c(r, k)))) return false;
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(c, Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return false;
+  const double scale = c.cwiseAbs().maxCoeff();
+  return eig.eigenvalues().minCoeff() >= -1e-9 * (1.0 + scale);
+}
+
+bool ValidCount(int32_t n) { return n >= 0 && n <= kMaxScanCount; }
 
 void PutScan(ByteWriter* w, const LaserScan& s) {
   w->Put<int64_t>(s.stamp.time_since_epoch().count());
@@ -721,6 +748,7 @@ bool GetUpdate(ByteReader* r, ScanUpdate* u) {
   int32_t o, m, a;
   uint8_t amb;
   if (!r->Get(&o) || !r->Get(&m) || !r->Get(&a) || !r->Get(&amb)) return false;
+  if (!ValidCount(o) || !ValidCount(m) || !ValidCount(a)) return false;
   *u = ScanUpdate{o, m, a, amb != 0};
   return true;
 }
@@ -808,6 +836,9 @@ bool Atlas::Deserialize(const std::string& bytes) {
       version > kImageVersion || !r.Get(&step) || !r.Get(&next_id) || !r.Get(&last_genesis) ||
       !r.Get(&cursor) || !r.Get(&frames) || frames > (1u << 24))
     return false;
+  if (step < 0 || step > kMaxStep || next_id < 0 || next_id > kMaxStep ||
+      last_genesis < kNoGenesisStep || last_genesis > step)
+    return false;
   AtlasGraph graph(options_.max_degree);
   for (uint32_t i = 0; i < frames; ++i) {
     int64_t created = 0, cooldown = 0;
@@ -815,6 +846,10 @@ bool Atlas::Deserialize(const std::string& bytes) {
     std::string blob;
     if (!r.Get(&created) || !r.Get(&cooldown) || !r.Get(&retirements) ||
         !r.GetString(&blob, kMaxBlob))
+      return false;
+    // The cooldown was set with the seed_cooldown_steps of its time: bounded, not tied to ours.
+    if (created < 0 || created > step || cooldown < -1 || cooldown > kMaxStep || retirements < 0 ||
+        retirements == INT32_MAX)
       return false;
     std::unique_ptr<LocalMap> map = factory_();
     if (!map->Deserialize(blob)) return false;
@@ -833,14 +868,22 @@ bool Atlas::Deserialize(const std::string& bytes) {
         !r.Get(&e.origin) || !r.Get(&e.made_step) || !r.Get(&e.refined_step) ||
         !r.Get(&refinements))
       return false;
-    if (static_cast<uint8_t>(e.kind) > 2 || static_cast<uint8_t>(e.origin) > 2) return false;
+    // An edge is made by Genesis or map-matching; only covariance intersection (RefineEdges,
+    // at most once per step and edge, after the step that made it) changes its kind.
+    if (static_cast<uint8_t>(e.kind) > 2 || e.origin == EdgeKind::kRefined ||
+        static_cast<uint8_t>(e.origin) > 2 || (e.kind != e.origin && e.kind != EdgeKind::kRefined))
+      return false;
+    if (!Finite(e.b_in_a.mean) || !ValidCovariance(e.b_in_a.cov) || e.made_step < 0 ||
+        e.made_step > step)
+      return false;
+    const bool refined = e.kind == EdgeKind::kRefined;
+    if (refined ? refinements < 1 || refinements > e.refined_step - e.made_step ||
+                      e.refined_step <= e.made_step || e.refined_step > step
+                : refinements != 0 || e.refined_step != -1)
+      return false;
     if (graph.AddEdge(e.a, e.b, e.b_in_a, e.origin, e.made_step) != AddEdgeResult::kAdded)
       return false;
-    const int index = graph.EdgeCount() - 1;
-    if (e.kind == EdgeKind::kRefined) {
-      for (int k = 0; k < refinements; ++k)
-        graph.SetTransform(index, e.a, e.b_in_a, EdgeKind::kRefined, e.refined_step);
-    }
+    if (refined) graph.RestoreRefinements(graph.EdgeCount() - 1, refinements, e.refined_step);
   }
   if (!r.Get(&hyps) || hyps > static_cast<uint32_t>(options_.max_hypotheses)) return false;
   std::vector<Hypothesis> hypotheses;
@@ -855,9 +898,17 @@ bool Atlas::Deserialize(const std::string& bytes) {
         !r.Get(&cap) || !r.Get(&head) || !r.Get(&size) || cap < 1 || cap > 1000 || head < 0 ||
         head >= cap || size < 0 || size > cap)
       return false;
+    // Ids are handed out from next_id; a hypothesis is born at a step and counts the steps
+    // since (the first frame's also the step it was made in); q is eq. 5, in [0, 1].
+    if (h.id < 0 || h.id >= next_id || h.born_step < 0 || h.born_step > step || steps < 0 ||
+        steps > step - h.born_step + 1 || steps == INT32_MAX || !std::isfinite(h.q) || h.q < 0.0 ||
+        h.q > 1.0 || failing < 0 || failing > steps || lagging < 0 || lagging == INT32_MAX)
+      return false;
     std::vector<QualityWindow::Entry> ring(cap);
     for (QualityWindow::Entry& e : ring)
-      if (!r.Get(&e.observations) || !r.Get(&e.matched)) return false;
+      if (!r.Get(&e.observations) || !r.Get(&e.matched) || !ValidCount(e.observations) ||
+          e.matched < 0 || e.matched > e.observations)
+        return false;
     h.window.Restore(cap, std::move(ring), head, size);
     if (!GetUpdate(&r, &h.last_update) || !r.Get(&bootstrapped) || !r.Get(&has_trial)) return false;
     h.dominant = dominant != 0;
@@ -866,6 +917,8 @@ bool Atlas::Deserialize(const std::string& bytes) {
     h.lagging_steps = lagging;
     h.bootstrapped = bootstrapped != 0;
     if ((h.state == HypothesisState::kJuvenile) != (has_trial != 0)) return false;
+    for (const Hypothesis& o : hypotheses)
+      if (o.id == h.id) return false;
     if (has_trial) {
       std::string blob;
       if (!r.GetString(&blob, kMaxBlob)) return false;
@@ -878,11 +931,15 @@ bool Atlas::Deserialize(const std::string& bytes) {
             if (!r.Get(&h.seed.cov(row, col))) return false;
             h.seed.cov(col, row) = h.seed.cov(row, col);
           }
+        if (!Finite(h.seed.mean) || !ValidCovariance(h.seed.cov)) return false;
       }
     }
-    // Z holds at most probation_scans steps (an undetermined w accumulates until then).
-    if (!r.Get(&nz) ||
-        nz > static_cast<uint32_t>(std::max(1000, options_.lifecycle.probation_scans)))
+    // Z grows by at most one scan a step, only while the juvenile is not bootstrapped, and is
+    // kept past bootstrap_scans only while an undetermined w accumulates, i.e. while steps <
+    // probation_scans: it holds fewer than probation_scans scans, and no more than steps.
+    if (!r.Get(&nz) || nz >= static_cast<uint32_t>(options_.lifecycle.probation_scans) ||
+        nz > static_cast<uint32_t>(steps) ||
+        (nz > 0 && (h.state != HypothesisState::kJuvenile || h.bootstrapped)))
       return false;
     h.z.resize(nz);
     for (JuvenileScan& z : h.z)
@@ -899,6 +956,12 @@ bool Atlas::Deserialize(const std::string& bytes) {
     hypotheses.push_back(std::move(h));
   }
   if (!r.AtEnd()) return false;
+  // After any step the atlas has a mature hypothesis (a mature one is retired only when
+  // another stays or Genesis makes one); without one, it would output nothing from now on.
+  if (graph.FrameCount() > 0 &&
+      std::none_of(hypotheses.begin(), hypotheses.end(),
+                   [](const Hypothesis& h) { return h.state == HypothesisState::kMature; }))
+    return false;
   graph_ = std::move(graph);
   components_.Rebuild(graph_);
   hypotheses_ = std::move(hypotheses);

@@ -79,4 +79,11 @@ void AtlasGraph::SetTransform(int index, FrameId from, const UncertainPose& to_i
   }
 }
 
+void AtlasGraph::RestoreRefinements(int index, int refinements, int64_t refined_step) {
+  AtlasEdge& e = edges_[index];
+  e.kind = EdgeKind::kRefined;
+  e.refinements = refinements;
+  e.refined_step = refined_step;
+}
+
 }  // namespace atlas

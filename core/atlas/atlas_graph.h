@@ -84,6 +84,9 @@ class AtlasGraph {
   // Replaces the transform of edge `index`, given as the pose of `to` in `from`.
   void SetTransform(int index, FrameId from, const UncertainPose& to_in_from, EdgeKind kind,
                     int64_t step);
+  // For Atlas::Deserialize: marks edge `index` as refined `refinements` times, last at
+  // `refined_step`, keeping its stored transform (O(1), whatever the count).
+  void RestoreRefinements(int index, int refinements, int64_t refined_step);
 
  private:
   int max_degree_;

@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <set>
 #include <vector>
@@ -506,6 +508,303 @@ TEST(Atlas, UnusableInputIsRefusedAndPoisonsNothing) {
   }
   Atlas b(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
   EXPECT_TRUE(b.Deserialize(a.Serialize()));
+}
+
+// Where the fields of a version 5 atlas image lie (atlas.cc, Serialize), for tests that
+// corrupt one field of a real image.
+struct ImageLayout {
+  static constexpr size_t kStep = 8, kNextId = 16, kLastGenesis = 24;
+  // A frame record: created step +0, seed cooldown +8, retirements +16.
+  std::vector<size_t> frames;
+  // An edge record: a +0, b +4, mean +8, cov +32, kind +104, origin +105, made step +106,
+  // refined step +114, refinements +122.
+  std::vector<size_t> edges;
+  // A hypothesis record: id +0, frame +8, state +12, dominant +13, born step +14, steps +22,
+  // q +26, failing +34, lagging +38, window capacity +42, head +46, size +50, ring +54.
+  struct Hyp {
+    size_t at = 0;
+    size_t seed = std::string::npos;  // pose, then the upper covariance (juveniles)
+    size_t nz = 0;                    // Z's scan count, then its scans
+    std::vector<size_t> z;            // where each of Z's scans starts
+    size_t end = 0;
+  };
+  std::vector<Hyp> hyps;
+  size_t hyp_count = 0;  // the hypothesis count
+};
+
+template <typename T>
+T Peek(const std::string& image, size_t at) {
+  T v{};
+  std::memcpy(&v, image.data() + at, sizeof(T));
+  return v;
+}
+
+template <typename T>
+std::string Poke(std::string image, size_t at, T v) {
+  std::memcpy(image.data() + at, &v, sizeof(T));
+  return image;
+}
+
+Mat3 PeekMat3(const std::string& image, size_t at) {
+  Mat3 m;
+  for (int i = 0; i < 9; ++i) m.data()[i] = Peek<double>(image, at + 8 * i);
+  return m;
+}
+
+std::string PokeMat3(std::string image, size_t at, const Mat3& m) {
+  for (int i = 0; i < 9; ++i) image = Poke(std::move(image), at + 8 * i, m.data()[i]);
+  return image;
+}
+
+ImageLayout LayoutOf(const std::string& image) {
+  ImageLayout l;
+  size_t at = 40;
+  const uint32_t frames = Peek<uint32_t>(image, at);
+  at += 4;
+  for (uint32_t f = 0; f < frames; ++f) {
+    l.frames.push_back(at);
+    at += 20;
+    for (int blob = 0; blob < 2; ++blob) at += 8 + Peek<uint64_t>(image, at);
+  }
+  const uint32_t edges = Peek<uint32_t>(image, at);
+  at += 4;
+  for (uint32_t e = 0; e < edges; ++e, at += 126) l.edges.push_back(at);
+  l.hyp_count = at;
+  const uint32_t hyps = Peek<uint32_t>(image, at);
+  at += 4;
+  for (uint32_t i = 0; i < hyps; ++i) {
+    ImageLayout::Hyp h;
+    h.at = at;
+    at += 54 + 8 * Peek<int32_t>(image, at + 42) + 13 + 1;
+    const bool trial = image[at] != 0;
+    ++at;
+    if (trial) {
+      at += 8 + Peek<uint64_t>(image, at);
+      h.seed = at;
+      at += 9 * 8;
+    }
+    h.nz = at;
+    const uint32_t nz = Peek<uint32_t>(image, at);
+    at += 4;
+    for (uint32_t k = 0; k < nz; ++k) {
+      h.z.push_back(at);
+      at += 24 + 8 + 12 + 24;
+      at += 8 + 4 * Peek<uint64_t>(image, at) + 13 + 8;
+      at += 8 + 8 * Peek<uint64_t>(image, at);
+    }
+    h.end = at;
+    l.hyps.push_back(h);
+  }
+  EXPECT_EQ(at, image.size()) << "the image layout changed: update ImageLayout";
+  return l;
+}
+
+// Out and back along the corridor (as TraversalFallsBackToKnownFrames): refined edges, and
+// with `undetermined_w` a juvenile accumulating Z (w stays undetermined) when the run stops.
+std::string SavedRun(TestWorld* w, bool undetermined_w) {
+  auto boot = undetermined_w
+                  ? std::make_shared<FakeBootstrapper>(1 << 30, BootstrapOutcome::kUndetermined)
+                  : std::make_shared<FakeBootstrapper>();
+  Atlas a(TestWorld::Options(), w->Factory(), boot);
+  const int bootstrap_scans = TestWorld::Options().lifecycle.bootstrap_scans;
+  for (int i = 0; i < 120; ++i) {
+    a.Step(Pose2{i < 60 ? 0.25 : -0.25, 0.0, 0.0}, TestScan());
+    if (undetermined_w && i >= 60)
+      for (const Hypothesis& h : a.Hypotheses())
+        if (static_cast<int>(h.z.size()) > bootstrap_scans) return a.Serialize();
+  }
+  EXPECT_FALSE(undetermined_w) << "no juvenile accumulated Z: the test world changed";
+  return a.Serialize();
+}
+
+// Whether an atlas like SavedRun's loads `image` (and round-trips it when it does).
+bool Loads(TestWorld* w, const std::string& image) {
+  Atlas b(TestWorld::Options(), w->Factory(), std::make_shared<FakeBootstrapper>());
+  if (!b.Deserialize(image)) return false;
+  EXPECT_TRUE(b.Serialize() == image);
+  return true;
+}
+
+// A refined edge's refinement count is set as it was saved, in one step whatever its value: a
+// count out of range (negative, more than one per step since the edge was made) is refused.
+TEST(AtlasImage, RefinementCountIsCheckedAndRestoredWithoutALoop) {
+  TestWorld w;
+  const std::string image = SavedRun(&w, false);
+  const ImageLayout l = LayoutOf(image);
+  Atlas b(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  ASSERT_TRUE(b.Deserialize(image));
+  EXPECT_TRUE(b.Serialize() == image);
+  int refined = -1;
+  for (int e = 0; e < b.Graph().EdgeCount(); ++e)
+    if (b.Graph().Edge(e).kind == EdgeKind::kRefined) refined = e;
+  ASSERT_GE(refined, 0) << "no refined edge: the test world changed";
+  const AtlasEdge& e = b.Graph().Edge(refined);
+  EXPECT_GE(e.refinements, 1);
+  EXPECT_GT(e.refined_step, e.made_step);
+  const size_t at = l.edges[refined];
+  EXPECT_EQ(Peek<int32_t>(image, at + 122), e.refinements);
+  for (const int32_t n : {INT32_MAX, 1 << 30, 0, -1, INT32_MIN})
+    EXPECT_FALSE(Loads(&w, Poke<int32_t>(image, at + 122, n))) << n;
+  // A count of one refinement per step since the edge was made is the most there can be.
+  const auto most = static_cast<int32_t>(e.refined_step - e.made_step);
+  EXPECT_TRUE(Loads(&w, Poke<int32_t>(image, at + 122, most)));
+  EXPECT_FALSE(Loads(&w, Poke<int32_t>(image, at + 122, most + 1)));
+  // An edge that was never refined has no refinement to count.
+  int plain = -1;
+  for (int k = 0; k < b.Graph().EdgeCount(); ++k)
+    if (b.Graph().Edge(k).kind != EdgeKind::kRefined) plain = k;
+  if (plain >= 0) {
+    EXPECT_FALSE(Loads(&w, Poke<int32_t>(image, l.edges[plain] + 122, 3)));
+    EXPECT_FALSE(Loads(&w, Poke<int64_t>(image, l.edges[plain] + 114, 5)));
+  }
+  // A refined edge's kind without the refinements, or a made-by kind that is not a maker.
+  EXPECT_FALSE(Loads(&w, Poke<uint8_t>(image, l.edges[0] + 105, 2)));
+}
+
+// Transforms, covariances and q are finite, covariances symmetric positive semi-definite.
+TEST(AtlasImage, NonFiniteOrIndefiniteValuesAreRefused) {
+  TestWorld w;
+  const std::string image = SavedRun(&w, true);
+  ASSERT_TRUE(Loads(&w, image));
+  const ImageLayout l = LayoutOf(image);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const size_t edge = l.edges[0];
+  for (const double bad : {nan, inf, -inf}) {
+    for (int k = 0; k < 3; ++k) EXPECT_FALSE(Loads(&w, Poke(image, edge + 8 + 8 * k, bad)));
+    for (int k = 0; k < 9; ++k) EXPECT_FALSE(Loads(&w, Poke(image, edge + 32 + 8 * k, bad)));
+  }
+  const Mat3 cov = PeekMat3(image, edge + 32);
+  Mat3 negative = cov;
+  negative(1, 1) = -1.0;
+  EXPECT_FALSE(Loads(&w, PokeMat3(image, edge + 32, negative)));
+  Mat3 asymmetric = cov;
+  asymmetric(0, 1) += 1e-3;
+  EXPECT_FALSE(Loads(&w, PokeMat3(image, edge + 32, asymmetric)));
+  Mat3 indefinite = cov;  // positive diagonal, a negative eigenvalue
+  indefinite(0, 1) = indefinite(1, 0) = 2.0 * std::sqrt(cov(0, 0) * cov(1, 1)) + 1.0;
+  EXPECT_FALSE(Loads(&w, PokeMat3(image, edge + 32, indefinite)));
+  for (const ImageLayout::Hyp& h : l.hyps)
+    for (const double bad : {nan, inf, -0.5, 1.5})
+      EXPECT_FALSE(Loads(&w, Poke(image, h.at + 26, bad)));
+  const ImageLayout::Hyp* juvenile = nullptr;
+  for (const ImageLayout::Hyp& h : l.hyps)
+    if (h.seed != std::string::npos) juvenile = &h;
+  ASSERT_NE(juvenile, nullptr);
+  EXPECT_FALSE(Loads(&w, Poke(image, juvenile->seed, nan)));
+  EXPECT_FALSE(Loads(&w, Poke(image, juvenile->seed + 24, nan)));  // seed cov(0, 0)
+  EXPECT_FALSE(Loads(&w, Poke(image, juvenile->seed + 24, -1.0)));
+}
+
+// A juvenile's Z holds fewer than probation_scans scans (atlas.cc, UpdateHypotheses): an image
+// with more is refused before its scans are read (a 1000-scan Z made w take 609 MB).
+TEST(AtlasImage, JuvenileZAboveProbationIsRefused) {
+  TestWorld w;
+  const std::string image = SavedRun(&w, true);
+  ASSERT_TRUE(Loads(&w, image));
+  const ImageLayout l = LayoutOf(image);
+  const ImageLayout::Hyp* juvenile = nullptr;
+  for (const ImageLayout::Hyp& h : l.hyps)
+    if (!h.z.empty()) juvenile = &h;
+  ASSERT_NE(juvenile, nullptr);
+  const int probation = TestWorld::Options().lifecycle.probation_scans;
+  // Z padded with copies of its last scan to `n` scans, the juvenile `n` steps old.
+  const auto with_z = [&](uint32_t n) {
+    std::string out = image.substr(0, juvenile->end);
+    const std::string last = image.substr(juvenile->z.back(), juvenile->end - juvenile->z.back());
+    for (size_t k = juvenile->z.size(); k < n; ++k) out += last;
+    out = Poke<uint32_t>(out, juvenile->nz, n);
+    out = Poke<int32_t>(out, juvenile->at + 22, static_cast<int32_t>(n));
+    out = Poke<int64_t>(out, juvenile->at + 14, Peek<int64_t>(image, ImageLayout::kStep) - n);
+    return out + image.substr(juvenile->end);
+  };
+  EXPECT_TRUE(Loads(&w, with_z(probation - 1)));
+  EXPECT_FALSE(Loads(&w, with_z(probation)));
+  EXPECT_FALSE(Loads(&w, with_z(1000)));
+  // The count alone, past the end of the image.
+  EXPECT_FALSE(Loads(&w, Poke<uint32_t>(image, juvenile->nz, UINT32_MAX)));
+  // No more scans than steps since it was seeded.
+  EXPECT_FALSE(Loads(
+      &w, Poke<int32_t>(image, juvenile->at + 22, static_cast<int32_t>(juvenile->z.size()) - 1)));
+}
+
+// Step counters, ids and window counts are range-checked: none can overflow in later steps.
+TEST(AtlasImage, CountersOutOfRangeAreRefused) {
+  TestWorld w;
+  const std::string image = SavedRun(&w, true);
+  ASSERT_TRUE(Loads(&w, image));
+  const ImageLayout l = LayoutOf(image);
+  const int64_t step = Peek<int64_t>(image, ImageLayout::kStep);
+  for (const int64_t bad : {INT64_MIN, int64_t{-1}, INT64_MAX})
+    EXPECT_FALSE(Loads(&w, Poke(image, ImageLayout::kStep, bad))) << bad;
+  for (const int64_t bad : {INT64_MIN, int64_t{-1}, INT64_MAX})
+    EXPECT_FALSE(Loads(&w, Poke(image, ImageLayout::kNextId, bad))) << bad;
+  for (const int64_t bad : {INT64_MIN, step + 1, INT64_MAX})
+    EXPECT_FALSE(Loads(&w, Poke(image, ImageLayout::kLastGenesis, bad))) << bad;
+  const size_t f = l.frames.back();
+  for (const int64_t bad : {INT64_MIN, int64_t{-1}, step + 1})
+    EXPECT_FALSE(Loads(&w, Poke(image, f, bad))) << bad;  // created
+  for (const int64_t bad : {INT64_MIN, int64_t{-2}, INT64_MAX})
+    EXPECT_FALSE(Loads(&w, Poke(image, f + 8, bad))) << bad;  // seed cooldown
+  for (const int32_t bad : {INT32_MIN, -1, INT32_MAX})
+    EXPECT_FALSE(Loads(&w, Poke(image, f + 16, bad))) << bad;  // retirements
+  const size_t e = l.edges.back();
+  for (const int64_t bad : {INT64_MIN, int64_t{-1}, step + 1})
+    EXPECT_FALSE(Loads(&w, Poke(image, e + 106, bad))) << bad;  // made
+  for (const int64_t bad : {INT64_MIN, int64_t{-2}, step + 1, INT64_MAX})
+    EXPECT_FALSE(Loads(&w, Poke(image, e + 114, bad))) << bad;  // refined
+  for (const ImageLayout::Hyp& h : l.hyps) {
+    for (const int64_t bad : {INT64_MIN, int64_t{-1}, Peek<int64_t>(image, ImageLayout::kNextId)})
+      EXPECT_FALSE(Loads(&w, Poke(image, h.at, bad))) << bad;  // id
+    for (const int64_t bad : {INT64_MIN, int64_t{-1}, step + 1})
+      EXPECT_FALSE(Loads(&w, Poke(image, h.at + 14, bad))) << bad;  // born
+    for (const int32_t bad : {INT32_MIN, -1, INT32_MAX})
+      EXPECT_FALSE(Loads(&w, Poke(image, h.at + 22, bad))) << bad;  // steps
+    EXPECT_FALSE(Loads(&w, Poke(image, h.at + 34, Peek<int32_t>(image, h.at + 22) + 1)));
+    for (const int32_t bad : {INT32_MIN, -1, INT32_MAX}) {
+      EXPECT_FALSE(Loads(&w, Poke(image, h.at + 34, bad))) << bad;  // failing
+      EXPECT_FALSE(Loads(&w, Poke(image, h.at + 38, bad))) << bad;  // lagging
+    }
+    // The quality window's counts: observations, matched of every entry.
+    const int32_t cap = Peek<int32_t>(image, h.at + 42);
+    for (int k = 0; k < cap; ++k) {
+      const size_t entry = h.at + 54 + 8 * k;
+      for (const int32_t bad : {INT32_MIN, -1, INT32_MAX})
+        EXPECT_FALSE(Loads(&w, Poke(image, entry, bad))) << bad;
+      EXPECT_FALSE(Loads(&w, Poke(image, entry + 4, Peek<int32_t>(image, entry) + 1)));
+      EXPECT_FALSE(Loads(&w, Poke(image, entry + 4, -1)));
+    }
+    const size_t update = h.at + 54 + 8 * cap;  // the last update's counts
+    for (int k = 0; k < 3; ++k)
+      for (const int32_t bad : {INT32_MIN, -1, INT32_MAX})
+        EXPECT_FALSE(Loads(&w, Poke(image, update + 4 * k, bad))) << bad;
+  }
+  // A step count within range and a counter left at its bound still load.
+  EXPECT_TRUE(Loads(&w, Poke(image, ImageLayout::kLastGenesis, step)));
+}
+
+// After any step an atlas has a mature hypothesis (HandleFailures retires one only when another
+// stays or Genesis makes one): an image without one is refused (it would output nothing). An
+// atlas that never stepped (no frame) still round-trips.
+TEST(AtlasImage, NoMatureHypothesisIsRefused) {
+  TestWorld w;
+  const std::string image = SavedRun(&w, true);
+  ASSERT_TRUE(Loads(&w, image));
+  const ImageLayout l = LayoutOf(image);
+  // Only the juveniles kept.
+  std::string juveniles = image.substr(0, l.hyp_count + 4);
+  uint32_t kept = 0;
+  for (const ImageLayout::Hyp& h : l.hyps) {
+    if (static_cast<HypothesisState>(image[h.at + 12]) != HypothesisState::kJuvenile) continue;
+    juveniles += image.substr(h.at, h.end - h.at);
+    ++kept;
+  }
+  ASSERT_GE(kept, 1u);
+  EXPECT_FALSE(Loads(&w, Poke(juveniles, l.hyp_count, kept)));
+  // None at all.
+  EXPECT_FALSE(Loads(&w, Poke(image.substr(0, l.hyp_count + 4), l.hyp_count, uint32_t{0})));
+  Atlas fresh(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  EXPECT_TRUE(Loads(&w, fresh.Serialize()));
 }
 
 // A scan of 181 returns 2 m from the sensor, over a half turn; the sensor 3 cm ahead of and
