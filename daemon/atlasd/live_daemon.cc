@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
@@ -31,6 +32,34 @@ namespace {
 
 // sysexits.h EX_SOFTWARE: the step loop stopped on an internal error (systemd restarts atlasd).
 constexpr int kExitSoftware = 70;
+
+// Why the running atlas's image does not load into `rebuilt`, made with the new parameters
+// (Atlas::Deserialize refuses what they do not bound: more hypotheses than max_hypotheses, a map
+// above map_capacity, a juvenile's w scans not below its probation).
+std::string Misfit(const Atlas& running, const Atlas& rebuilt, int map_capacity) {
+  std::string why;
+  const auto add = [&why](const std::string& s) { why += (why.empty() ? "" : "; ") + s; };
+  const AtlasOptions& o = rebuilt.Options();
+  const int alive = static_cast<int>(running.Hypotheses().size());
+  if (alive > o.max_hypotheses)
+    add(std::to_string(alive) + " hypotheses alive, above atlas.max_hypotheses " +
+        std::to_string(o.max_hypotheses));
+  int features = 0;
+  for (FrameId f = 0; f < running.Graph().FrameCount(); ++f)
+    features = std::max(features, running.Graph().Frame(f).map->Complexity());
+  size_t z = 0;
+  for (const Hypothesis& h : running.Hypotheses()) {
+    if (h.trial_map) features = std::max(features, h.trial_map->Complexity());
+    z = std::max(z, h.z.size());
+  }
+  if (features > map_capacity)
+    add("a map holds " + std::to_string(features) + " features, above atlas.map_capacity " +
+        std::to_string(map_capacity) + " (a capacity can grow on reload, not shrink)");
+  if (z >= static_cast<size_t>(o.lifecycle.probation_scans))
+    add("a juvenile holds " + std::to_string(z) + " scans for w, not below its probation of " +
+        std::to_string(o.lifecycle.probation_scans) + " steps");
+  return why.empty() ? "hypotheses alive: " + std::to_string(alive) : why;
+}
 
 Duration SecondsToDuration(double s) {
   return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s));
@@ -247,15 +276,16 @@ void LiveDaemon::PublishHealth(Time now) {
 
 // Atlas and noise parameters: the running atlas is rebuilt from its own image by an atlas made
 // with the new settings (graph, maps and hypotheses kept; new options from the next step on).
-// Refused, with the old atlas kept, when the image does not fit the new settings (e.g. more
-// hypotheses alive than the new atlas.max_hypotheses).
+// Refused, with the old atlas kept and the reason logged, when the image does not fit the new
+// settings (more hypotheses alive than the new atlas.max_hypotheses, a map above a smaller
+// atlas.map_capacity, a juvenile's w scans past a shorter probation).
 std::string LiveDaemon::ReloadAtlas(const DaemonOptions& candidate) {
   const MapperSettings settings = ToMapperSettings(candidate);
   if (std::string e = ValidateMapperSettings(settings); !e.empty()) return e;
   std::unique_ptr<Atlas> rebuilt = MakeAtlas(settings);
   if (!rebuilt->Deserialize(atlas_->Serialize()))
-    return "the running atlas does not fit the new parameters (hypotheses alive: " +
-           std::to_string(atlas_->Hypotheses().size()) + ")";
+    return "the running atlas does not fit the new parameters (" +
+           Misfit(*atlas_, *rebuilt, settings.map_capacity) + ")";
   loop_->ReplaceAtlas(rebuilt.get(), settings);
   atlas_ = std::move(rebuilt);
   return "";
