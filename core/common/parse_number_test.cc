@@ -39,10 +39,26 @@ TEST(ParseIntegerIn, TakesOnlyAWholeIntegerInTheRange) {
   EXPECT_TRUE(ParseIntegerIn("20", 0, 1000000, &v));
   EXPECT_EQ(v, 20);
   for (const char* bad :
-       {"", "-1", "1.5", "1e3", "abc", "20x", "1000001", "99999999999999999999999"}) {
+       {"", "-1", "1.5", "1e3", "abc", "20x", "1000001", "99999999999999999999999", "+5", " 5"}) {
     SCOPED_TRACE(bad);
     EXPECT_FALSE(ParseIntegerIn(bad, 0, 1000000, &v));
     EXPECT_EQ(v, 20);
+  }
+}
+
+TEST(ParseInteger, TakesTheWholeRangeOfItsTypeAndNothingElse) {
+  int64_t i = 0;
+  EXPECT_TRUE(ParseInteger("-9223372036854775808", &i));
+  EXPECT_EQ(i, INT64_MIN);
+  EXPECT_FALSE(ParseInteger("9223372036854775808", &i));
+  uint64_t u = 0;
+  EXPECT_TRUE(ParseInteger("18446744073709551615", &u));
+  EXPECT_EQ(u, UINT64_MAX);
+  for (const char* bad : {"18446744073709551616", "-1", "+1", " 1", "1 ", "0x10", "1e3", ""}) {
+    SCOPED_TRACE(bad);
+    u = 7;
+    EXPECT_FALSE(ParseInteger(bad, &u));
+    EXPECT_EQ(u, 7u);
   }
 }
 

@@ -1,24 +1,15 @@
 #include "tools/eval/tool_options.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
+#include "core/common/parse_number.h"
+
 namespace atlas::eval {
 namespace {
-
-template <typename T>
-bool ParseWholeInteger(const char* s, T& out) {
-  const char* end = s + std::strlen(s);
-  T v{};
-  const auto [p, ec] = std::from_chars(s, end, v, 10);
-  if (s == end || ec != std::errc() || p != end) return false;
-  out = v;
-  return true;
-}
 
 std::string Shortest(double v) {
   char buf[32];
@@ -28,16 +19,9 @@ std::string Shortest(double v) {
 
 }  // namespace
 
-bool ParseArgumentNumber(const char* s, double& out) {
-  char* end = nullptr;
-  const double v = std::strtod(s, &end);
-  if (end == s || *end != '\0' || !std::isfinite(v)) return false;
-  out = v;
-  return true;
-}
-
-bool ParseArgumentInteger(const char* s, int64_t& out) { return ParseWholeInteger(s, out); }
-bool ParseArgumentInteger(const char* s, uint64_t& out) { return ParseWholeInteger(s, out); }
+bool ParseArgumentNumber(const char* s, double& out) { return ParseNumber(s, &out); }
+bool ParseArgumentInteger(const char* s, int64_t& out) { return ParseInteger(s, &out); }
+bool ParseArgumentInteger(const char* s, uint64_t& out) { return ParseInteger(s, &out); }
 
 bool NumberArgument(std::string_view option, const char* value, double lo, double hi, double& out,
                     std::string& error) {
