@@ -180,20 +180,32 @@ std::vector<FileRow> ReadPoses(const std::string& path) {
   return rows;
 }
 
+// A new directory under /tmp; empty (errno set) when it cannot be made.
+std::string MakeTempDir() {
+  char dir_template[] = "/tmp/atlas_replay_XXXXXX";  // mkdtemp replaces the X's
+  return mkdtemp(dir_template) != nullptr ? std::string(dir_template) : std::string();
+}
+
+// A sonar session's options: the B21 ring, the local maps on `sensors`, and a loop queue deep
+// enough that a loop that falls behind at times drops nothing.
+DaemonOptions SonarSessionOptions(LocalMapSensors sensors) {
+  DaemonOptions o;
+  o.sonar.enabled = true;
+  o.sonar.ring = SonarRing::kB21_24;
+  o.localmap.sensors = sensors;
+  o.loop.max_pending_scans = 8;
+  return o;
+}
+
 class ReplayOfRawSonar : public ::testing::TestWithParam<LocalMapSensors> {};
 
 // A session recorded with lcm.republish_raw (odometry, laser and sonar raw channels, in the
 // order the live loop republished them), replayed by `atlasd --replay` (RunReplay) with the
 // same configuration: the same steps, on the same stamps, with the same poses and frames.
 TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
-  char dir_template[] = "/tmp/atlas_replay_XXXXXX";  // mkdtemp replaces the X's
-  ASSERT_NE(mkdtemp(dir_template), nullptr) << std::strerror(errno);
-  const std::string dir = dir_template;
-  DaemonOptions o;
-  o.sonar.enabled = true;
-  o.sonar.ring = SonarRing::kB21_24;
-  o.localmap.sensors = GetParam();
-  o.loop.max_pending_scans = 8;  // the loop falls behind at times, and drops nothing
+  const std::string dir = MakeTempDir();
+  ASSERT_FALSE(dir.empty()) << std::strerror(errno);
+  const DaemonOptions o = SonarSessionOptions(GetParam());
   ASSERT_EQ(ValidateDerivedOptions(o), "");
   const LiveRun live = RunLive(o, dir + "/session.lcm", 7);
   const bool both = GetParam() == LocalMapSensors::kBoth;
@@ -242,14 +254,9 @@ std::string FileText(const std::string& path) {
 // byte of the cut on stderr and "log truncated" in the summary; a corrupt one likewise; a file
 // that is not an LCM log is refused before anything is written.
 TEST(Replay, SaysWhereABadLogEnds) {
-  char dir_template[] = "/tmp/atlas_replay_XXXXXX";  // mkdtemp replaces the X's
-  ASSERT_NE(mkdtemp(dir_template), nullptr) << std::strerror(errno);
-  const std::string dir = dir_template;
-  DaemonOptions o;
-  o.sonar.enabled = true;
-  o.sonar.ring = SonarRing::kB21_24;
-  o.localmap.sensors = LocalMapSensors::kSonar;
-  o.loop.max_pending_scans = 8;
+  const std::string dir = MakeTempDir();
+  ASSERT_FALSE(dir.empty()) << std::strerror(errno);
+  const DaemonOptions o = SonarSessionOptions(LocalMapSensors::kSonar);
   const LiveRun live = RunLive(o, dir + "/session.lcm", 7);
   const std::string bytes = FileText(dir + "/session.lcm");
   const size_t cut = bytes.size() - 5;
