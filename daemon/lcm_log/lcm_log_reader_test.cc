@@ -169,14 +169,16 @@ TEST_F(LcmLogReaderTest, ReportsACorruptEvent) {
     std::string put, expected;
   };
   const std::vector<Case> cases = {
-      {second, "\x00\x00\x00\x00", "does not begin with the sync word ED A1 DA 01 (found 00 00"},
+      {second, std::string("\x00\x00\x00\x00", 4),
+       "does not begin with the sync word ED A1 DA 01 (found 00 00 00 00)"},
       {second + 20, "\xFF\xFF\xFF\xFF", "has an invalid channel length -1 (1 to 999)"},
       {second + 20, std::string("\x00\x00\x00\x00", 4), "has an invalid channel length 0"},
       {second + 24, "\xFF\xFF\xFF\xFE", "has a negative data length -2"}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.expected);
     std::string b = bytes;
-    b.replace(c.at, 4, std::string(c.put.data(), 4));
+    ASSERT_EQ(c.put.size(), 4u);
+    b.replace(c.at, 4, c.put);
     Write(path, b);
     LcmLogReader r;
     EXPECT_EQ(ReadAll(&r, path), 1);
