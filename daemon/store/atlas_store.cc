@@ -121,7 +121,7 @@ std::string RunningAs() {
 }
 
 // What to do about an SQLite error `code` on the store file `path`, in plain words.
-std::string WhatToDo(int code, const std::string& path) {
+std::string Remedy(int code, const std::string& path) {
   const std::string dir = fs::path(path).parent_path().string();
   switch (code & 0xff) {
     case SQLITE_CANTOPEN:
@@ -452,9 +452,8 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
     const Check check = CheckExisting(&why, &version, &code);
     if (check == Check::kUnreadable) {
       result.status = StoreOpenStatus::kFailed;
-      result.message =
-          "cannot read the atlas store " + path_ + " (" + why +
-          "); it was left as it is (nothing moved or changed): " + WhatToDo(code, path_);
+      result.message = "cannot read the atlas store " + path_ + " (" + why +
+                       "); it was left as it is (nothing moved or changed): " + Remedy(code, path_);
       return result;
     }
     if (check == Check::kEmpty) result.status = StoreOpenStatus::kCreated;
@@ -486,7 +485,7 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
     Close();
     result.status = StoreOpenStatus::kFailed;
     result.message =
-        "cannot open the atlas store " + path_ + ": " + error + "; " + WhatToDo(code, path_) +
+        "cannot open the atlas store " + path_ + ": " + error + "; " + Remedy(code, path_) +
         (result.moved_to.empty() ? "" : " (the refused file is " + result.moved_to + ")");
     return result;
   }
@@ -555,7 +554,7 @@ StoreOpenResult AtlasStore::OpenReadOnly(const std::string& directory) {
     if (IsCorruption(rc)) {
       result.message += "SQLite finds it corrupt";
     } else {
-      result.message += WhatToDo(rc, path_);
+      result.message += Remedy(rc, path_);
       const int primary = rc & 0xff;
       if (wal && (primary == SQLITE_CANTOPEN || primary == SQLITE_READONLY)) {
         result.message += "; if they are readable, its write-ahead log " + path_ +

@@ -223,22 +223,45 @@ TEST(FakeLmsTest, StartUpAnsweredOnAnOwnPty) {
   reader.Stop();
 }
 
+// A fake P2OS controller on a pseudo-terminal in a directory of its own, playing `recording`
+// at `speed` times real time (its clock not started), and the options of a sonar reader on it.
+// The controller is stopped and the directory removed at the end.
+struct P2osBench {
+  P2osBench(std::shared_ptr<const Recording> recording, double speed)
+      : dir(TempDir()),
+        clock(std::make_shared<PlaybackClock>(recording->begin, speed)),
+        p2os(Options(dir), recording, clock) {}
+  ~P2osBench() {
+    p2os.Stop();
+    std::filesystem::remove_all(dir);
+  }
+  static FakeP2osOptions Options(const std::string& dir) {
+    FakeP2osOptions o;
+    o.link = dir + "/sonar";
+    return o;
+  }
+  SonarReaderOptions ReaderOptions() const {
+    SonarReaderOptions so;
+    so.device = Options(dir).link;
+    so.sonar = Options(dir).sonar;
+    return so;
+  }
+  const std::string dir;
+  std::shared_ptr<PlaybackClock> clock;
+  FakeP2os p2os;
+};
+
 // The sonar reader calls on_reading right after queueing each reading (atlasd's loop sleeps
 // until then when its maps use the sonar): every reading sent arrives and was signalled.
 TEST(FakeP2osTest, SonarReaderSignalsEveryQueuedReading) {
-  const std::string dir = TempDir();
-  auto rec = TinyRecording();
-  auto clock = std::make_shared<PlaybackClock>(rec->begin, 10.0);
-  FakeP2osOptions fo;
-  fo.link = dir + "/sonar";
-  FakeP2os p2os(fo, rec, clock);
+  P2osBench bench(TinyRecording(), 10.0);
   std::string err;
-  ASSERT_TRUE(p2os.Open(&err)) << err;
-  p2os.Start();
+  ASSERT_TRUE(bench.p2os.Open(&err)) << err;
+  bench.p2os.Start();
+  FakeP2os& p2os = bench.p2os;
+  auto& clock = bench.clock;
   std::atomic<int> signalled{0};
-  SonarReaderOptions so;
-  so.device = fo.link;
-  so.sonar = fo.sonar;
+  SonarReaderOptions so = bench.ReaderOptions();
   so.on_reading = [&signalled] { signalled.fetch_add(1); };
   SonarReader reader(so);
   reader.Start();
@@ -259,8 +282,6 @@ TEST(FakeP2osTest, SonarReaderSignalsEveryQueuedReading) {
   EXPECT_GT(got, 10);
   EXPECT_EQ(got, static_cast<int>(p2os.SentIntact().size()));
   EXPECT_EQ(signalled.load(), got);
-  p2os.Stop();
-  std::filesystem::remove_all(dir);
 }
 
 // The controller closes the connection when no PULSE comes for a second (devices.md, section
@@ -268,18 +289,14 @@ TEST(FakeP2osTest, SonarReaderSignalsEveryQueuedReading) {
 // with room for a noisy machine: most of them (the median) are under 0.9 s. The old schedule
 // (1 s period, sent on the next read turn) made every interval 1.0-1.1 s.
 TEST(FakeP2osTest, PulsesComeMoreThanOnceASecond) {
-  const std::string dir = TempDir();
-  auto rec = TinyRecording(200);  // 20 s of SIPs at real time: the line is never silent
-  auto clock = std::make_shared<PlaybackClock>(rec->begin, 1.0);
-  FakeP2osOptions fo;
-  fo.link = dir + "/sonar";
-  FakeP2os p2os(fo, rec, clock);
+  // 20 s of SIPs at real time: the line is never silent.
+  P2osBench bench(TinyRecording(200), 1.0);
   std::string err;
-  ASSERT_TRUE(p2os.Open(&err)) << err;
-  p2os.Start();
-  SonarReaderOptions so;
-  so.device = fo.link;
-  so.sonar = fo.sonar;
+  ASSERT_TRUE(bench.p2os.Open(&err)) << err;
+  bench.p2os.Start();
+  FakeP2os& p2os = bench.p2os;
+  auto& clock = bench.clock;
+  const SonarReaderOptions so = bench.ReaderOptions();
   ASSERT_EQ(so.Validate(), "");
   SonarReader reader(so);
   reader.Start();
@@ -301,7 +318,6 @@ TEST(FakeP2osTest, PulsesComeMoreThanOnceASecond) {
   const Duration median = gaps[gaps.size() / 2];
   EXPECT_LT(median, std::chrono::milliseconds(900)) << ToSeconds(median) << " s";
   EXPECT_LE(t.size(), reader.pulses_sent());
-  std::filesystem::remove_all(dir);
 }
 
 TEST(FaultOptionsTest, ADurationWithoutItsStartIsRefused) {

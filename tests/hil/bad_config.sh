@@ -11,30 +11,17 @@ baud = 1234
 step_budget_ms = 10.0
 no_such_key = 1
 TOML
-rc=0
-"$ATLASD" --config "$WORK/bad.toml" >"$WORK/run.out" 2>"$WORK/run.err" || rc=$?
-[ "$rc" = 78 ] || fail "atlasd with a bad config exited $rc, want 78"
-grep -q 'bad.toml:3:.*laser.baud' "$WORK/run.err" || fail "no error naming laser.baud on line 3"
-grep -q 'bad.toml:6:.*loop.no_such_key' "$WORK/run.err" || fail "no error naming loop.no_such_key on line 6"
+expect_exit 78 'bad.toml:3:.*laser.baud' "$ATLASD" --config "$WORK/bad.toml"
+grep -q 'bad.toml:6:.*loop.no_such_key' "$WORK/err" || fail "no error naming loop.no_such_key on line 6"
 pass "atlasd --config bad.toml: exit 78, laser.baud (line 3) and loop.no_such_key (line 6) named"
-rc=0
-"$ATLASD" --check-config "$WORK/bad.toml" >"$WORK/check.out" 2>"$WORK/check.err" || rc=$?
-[ "$rc" = 78 ] || fail "--check-config exited $rc, want 78"
-grep -q 'laser.baud' "$WORK/check.err" || fail "--check-config did not name laser.baud"
+expect_exit 78 'laser.baud' "$ATLASD" --check-config "$WORK/bad.toml"
 write_config "$WORK/good.toml" 1
-"$ATLASD" --check-config "$WORK/good.toml" >"$WORK/good.out" 2>&1 || fail "a good config was refused"
+expect_exit 0 'configuration is valid' "$ATLASD" --check-config "$WORK/good.toml"
 pass "--check-config: 78 on the bad file, 0 on a good one"
-rc=0
-"$ATLASD" --config "$WORK/absent.toml" >/dev/null 2>"$WORK/absent.err" || rc=$?
-[ "$rc" = 78 ] || fail "a missing config file exited $rc, want 78"
-grep -q 'absent.toml: cannot open the configuration file: No such file or directory' "$WORK/absent.err" ||
-  fail "the missing file's message has no reason: $(cat "$WORK/absent.err")"
+expect_exit 78 'absent.toml: cannot open the configuration file: No such file or directory' \
+  "$ATLASD" --config "$WORK/absent.toml"
 pass "a missing configuration file: exit 78, with the reason"
-rc=0
-"$ATLASD" --config "$WORK" >/dev/null 2>"$WORK/dir.err" || rc=$?
-[ "$rc" = 78 ] || fail "a directory as the config file exited $rc, want 78"
-grep -q 'is a directory, not a configuration file' "$WORK/dir.err" ||
-  fail "a directory as the config file: $(cat "$WORK/dir.err")"
+expect_exit 78 'is a directory, not a configuration file' "$ATLASD" --config "$WORK"
 pass "a directory as the configuration file: exit 78, said so"
 # SIGHUP with a file that --check-config refuses: the reload is refused with the same messages
 # (file, line and key) and atlasd keeps running. No devices: atlasd reports them and runs on.

@@ -16,6 +16,19 @@ trap cleanup EXIT
 fail() { echo "FAIL: $*" >&2; for f in "$WORK"/*.err; do [ -f "$f" ] && { echo "--- $f" >&2; tail -n 15 "$f" >&2; }; done; exit 1; }
 pass() { echo "PASS: $*"; }
 
+# expect_exit RC PATTERN CMD...: CMD exits RC, and PATTERN (grep -E) is in what it wrote to
+# stderr or stdout, which stay in $WORK/err and $WORK/out for further checks.
+expect_exit() {
+  local want=$1 pattern=$2 rc=0
+  shift 2
+  "$@" >"$WORK/out" 2>"$WORK/err" || rc=$?
+  if [ "$rc" != "$want" ]; then
+    fail "$* -> exit $rc, want $want: $(head -c 400 "$WORK/err")"
+  elif ! grep -qE -- "$pattern" "$WORK/err" "$WORK/out"; then
+    fail "$* -> no '$pattern' in: $(head -c 400 "$WORK/err") $(head -c 200 "$WORK/out")"
+  fi
+}
+
 need_multicast() {
   if [ -z "${LCM_DEFAULT_URL:-}" ] || ! ip route show 224.0.0.0/4 2>/dev/null | grep -q dev; then
     echo "SKIP: needs a private network namespace with a multicast route (scripts/test.sh)" >&2
