@@ -64,6 +64,7 @@ struct RelationsScore {
 // The error of one relation given the estimated relative pose.
 RelationError RelationErrorOf(const Relation& relation, const Pose2& estimated_delta);
 
+// Asks `estimate` once for each relation, in the order given.
 RelationsScore ScoreRelations(std::span<const Relation> relations,
                               const RelativePoseLookup& estimate);
 

@@ -149,18 +149,16 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
   static constexpr const char* kPartName[4] = {"same_frame", "cross_frame", "span_under_1s",
                                                "span_1s_or_more"};
   DijkstraComposedPoses lookup(std::move(trajectory.rows), graph, tolerance);
-  const RelationsScore s =
-      ScoreRelations(relations.relations, [&lookup](Time t1, Time t2) { return lookup(t1, t2); });
+  // How each relation's poses are joined, by relation (ScoreRelations asks for each relation
+  // once, in order).
+  std::vector<FrameJoin> join_of(relations.relations.size(), FrameJoin::kSameFrame);
+  size_t asked = 0;
+  const RelationsScore s = ScoreRelations(
+      relations.relations,
+      [&lookup, &join_of, &asked](Time t1, Time t2) { return lookup(t1, t2, &join_of[asked++]); });
   std::vector<FrameJoin> joins;
   joins.reserve(s.errors.size());
-  {
-    DijkstraComposedPoses join_lookup(rows, graph, tolerance);
-    for (const RelationError& e : s.errors) {
-      const Relation& r = relations.relations[e.relation];
-      joins.push_back(FrameJoin::kSameFrame);
-      join_lookup(r.t1, r.t2, &joins.back());
-    }
-  }
+  for (const RelationError& e : s.errors) joins.push_back(join_of[e.relation]);
   if (std::string e = WriteRelationErrors(errors_path, relations.relations, s, joins); !e.empty())
     return Fail(e);
   const CompositionCounts& c = lookup.Counts();
