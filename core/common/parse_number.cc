@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <system_error>
@@ -35,6 +36,12 @@ bool ParseWholeInteger(const char* text, T* value) {
   return true;
 }
 
+std::string Shortest(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.15g", v);
+  return buf;
+}
+
 }  // namespace
 
 bool ParseInteger(const char* text, int64_t* value) { return ParseWholeInteger(text, value); }
@@ -44,6 +51,37 @@ bool ParseIntegerIn(const char* text, long lo, long hi, long* value) {
   int64_t v = 0;
   if (!ParseInteger(text, &v) || v < lo || v > hi) return false;
   *value = static_cast<long>(v);
+  return true;
+}
+
+bool NumberArgument(std::string_view option, const char* value, double lo, double hi, double& out,
+                    std::string& error) {
+  if (!ParseNumberIn(value, lo, hi, &out)) {
+    error = std::string(option) + " must be a number in [" + Shortest(lo) + ", " + Shortest(hi) +
+            "], got '" + value + "'";
+    return false;
+  }
+  return true;
+}
+
+bool IntegerArgument(std::string_view option, const char* value, int64_t lo, int64_t hi,
+                     int64_t& out, std::string& error) {
+  int64_t v = 0;
+  if (!ParseInteger(value, &v) || v < lo || v > hi) {
+    error = std::string(option) + " must be an integer in [" + std::to_string(lo) + ", " +
+            std::to_string(hi) + "], got '" + value + "'";
+    return false;
+  }
+  out = v;
+  return true;
+}
+
+bool SeedArgument(std::string_view option, const char* value, uint64_t& out, std::string& error) {
+  if (!ParseInteger(value, &out)) {
+    error = std::string(option) + " must be an integer in [0, " +
+            std::to_string(std::numeric_limits<uint64_t>::max()) + "], got '" + value + "'";
+    return false;
+  }
   return true;
 }
 

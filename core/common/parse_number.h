@@ -2,8 +2,16 @@
 // Strict parsing of the numbers given to the tools' options: the whole text must be the number
 // (no trailing characters, not empty), finite, and within [lo, hi]. atof / atoi read "abc" as 0
 // and "1.5" as 1; a value out of any range (1e300, nan) can overflow a later conversion.
+//
+// NumberArgument, IntegerArgument and SeedArgument are the same checks with the message every
+// tool prints for a bad option value: it names the option, the range and the text given.
 
+#include <concepts>
 #include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <type_traits>
 
 namespace atlas {
 
@@ -18,5 +26,31 @@ bool ParseInteger(const char* text, int64_t* value);
 bool ParseInteger(const char* text, uint64_t* value);
 // ParseInteger within [lo, hi].
 bool ParseIntegerIn(const char* text, long lo, long hi, long* value);
+
+// `value` of `option` as a number (ParseNumberIn) or an integer (ParseInteger) in [lo, hi] into
+// `out`; else false with `error` = "OPTION must be a number (an integer) in [LO, HI], got
+// 'VALUE'". `out` is unchanged on error.
+bool NumberArgument(std::string_view option, const char* value, double lo, double hi, double& out,
+                    std::string& error);
+bool IntegerArgument(std::string_view option, const char* value, int64_t lo, int64_t hi,
+                     int64_t& out, std::string& error);
+// A random seed: any integer in [0, 18446744073709551615].
+bool SeedArgument(std::string_view option, const char* value, uint64_t& out, std::string& error);
+
+// An integer option into a narrower type; [lo, hi] must lie within the type.
+template <std::integral Int>
+bool IntegerArgument(std::string_view option, const char* value, int64_t lo, int64_t hi, Int& out,
+                     std::string& error) requires(!std::same_as<Int, int64_t>) {
+  static_assert(sizeof(Int) < sizeof(int64_t) || std::is_signed_v<Int>);
+  int64_t v = 0;
+  if (!IntegerArgument(option, value, lo, hi, v, error)) return false;
+  if (v < static_cast<int64_t>(std::numeric_limits<Int>::min()) ||
+      v > static_cast<int64_t>(std::numeric_limits<Int>::max())) {
+    error = std::string(option) + ": " + value + " does not fit";
+    return false;
+  }
+  out = static_cast<Int>(v);
+  return true;
+}
 
 }  // namespace atlas

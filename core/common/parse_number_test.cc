@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace atlas {
 namespace {
 
@@ -60,6 +62,65 @@ TEST(ParseInteger, TakesTheWholeRangeOfItsTypeAndNothingElse) {
     EXPECT_FALSE(ParseInteger(bad, &u));
     EXPECT_EQ(u, 7u);
   }
+}
+
+TEST(OptionArguments, RangeMessagesPrintTheBoundsAsWritten) {
+  std::string error;
+  double d = 0;
+  EXPECT_FALSE(NumberArgument("--minutes", "700", 0.05, 600, d, error));
+  EXPECT_EQ(error, "--minutes must be a number in [0.05, 600], got '700'");
+  int64_t n = 0;
+  EXPECT_FALSE(IntegerArgument("--runs", "0", 1, 10000, n, error));
+  EXPECT_EQ(error, "--runs must be an integer in [1, 10000], got '0'");
+}
+
+TEST(OptionArguments, NumbersAreWholeFiniteNumbersInRange) {
+  double d = 2;
+  std::string error;
+  for (const char* bad : {"5x", "", "nan", "inf", "1e999", "-1e999", "11", "-0.5", "abc"}) {
+    SCOPED_TRACE(bad);
+    EXPECT_FALSE(NumberArgument("--budget", bad, 0, 10, d, error));
+    EXPECT_EQ(error, std::string("--budget must be a number in [0, 10], got '") + bad + "'");
+  }
+  EXPECT_EQ(d, 2);  // unchanged on error
+  EXPECT_TRUE(NumberArgument("--budget", "1e1", 0, 10, d, error));
+  EXPECT_EQ(d, 10);
+}
+
+TEST(OptionArguments, IntegersAreWholeDecimalIntegersInRange) {
+  int64_t n = 7;
+  std::string error;
+  for (const char* bad : {"1.5", "1e3", "", " 1", "1 ", "+1", "0x10", "1.0", "abc", "--1",
+                          "9223372036854775808", "99999999999999999999999"}) {
+    EXPECT_FALSE(ParseInteger(bad, &n)) << bad;
+    EXPECT_FALSE(IntegerArgument("--runs", bad, 1, 10000, n, error)) << bad;
+    EXPECT_NE(error.find("--runs must be an integer in [1, 10000], got '"), std::string::npos);
+  }
+  EXPECT_EQ(n, 7);  // unchanged on error
+  EXPECT_TRUE(IntegerArgument("--jump-mm", "-5", -100, 100, n, error));
+  EXPECT_EQ(n, -5);
+  EXPECT_TRUE(ParseInteger("-9223372036854775808", &n));
+  EXPECT_EQ(n, INT64_MIN);
+  int small = 0;
+  EXPECT_TRUE(IntegerArgument("--rooms", "16", 1, 100000, small, error));
+  EXPECT_EQ(small, 16);
+  EXPECT_FALSE(IntegerArgument("--rooms", "100001", 1, 100000, small, error));
+  EXPECT_EQ(small, 16);
+}
+
+TEST(OptionArguments, SeedsCoverTheWholeUnsigned64BitRange) {
+  uint64_t seed = 1;
+  std::string error;
+  EXPECT_TRUE(SeedArgument("--seed", "18446744073709551615", seed, error));
+  EXPECT_EQ(seed, UINT64_MAX);
+  EXPECT_TRUE(SeedArgument("--seed", "0", seed, error));
+  EXPECT_EQ(seed, 0u);
+  for (const char* bad : {"18446744073709551616", "99999999999999999999999", "-1", "1e3", "1.7"}) {
+    EXPECT_FALSE(SeedArgument("--seed", bad, seed, error)) << bad;
+    EXPECT_EQ(error, std::string("--seed must be an integer in [0, 18446744073709551615], got '") +
+                         bad + "'");
+  }
+  EXPECT_EQ(seed, 0u);
 }
 
 }  // namespace

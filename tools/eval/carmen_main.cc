@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/parse_number.h"
 #include "drivers/carmen/carmen_log.h"
 #include "drivers/carmen/reference_odometry.h"
 #include "tools/eval/trajectory_files.h"
@@ -144,8 +145,7 @@ int Main(int argc, char** argv) {
                a == "--wheel-noise" || a == "--left-scale" || a == "--right-scale" ||
                a == "--track-width-error") {
       double d = 0.0;
-      if (i + 1 >= argc || !ParseArgumentNumber(argv[i + 1], d))
-        return Usage(a + " needs a number");
+      if (i + 1 >= argc || !ParseNumber(argv[i + 1], &d)) return Usage(a + " needs a number");
       ++i;
       if (a == "--line-period") options.line_period_s = d;
       if (a == "--max-range") options.max_range_m = d;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/parse_number.h"
 #include "core/eval/reference_score.h"
 #include "core/eval/relations_metric.h"
 #include "tools/eval/trajectory_files.h"
@@ -246,7 +247,7 @@ int Main(int argc, char** argv) {
           return Usage(error);
         ref_options.segment_length_m = 0.0;
         step_given = true;
-      } else if (!ParseArgumentNumber(v, d)) {
+      } else if (!ParseNumber(v, &d)) {
         return Usage(a + " needs a number, got '" + v + "'");
       } else if (a == "--tolerance") {
         tolerance_s = d;

@@ -19,7 +19,6 @@
 #include "core/eval/relations_metric.h"
 #include "core/eval/timed_trajectory.h"
 #include "drivers/carmen/carmen_log.h"
-#include "tools/eval/tool_options.h"
 
 namespace atlas::eval {
 

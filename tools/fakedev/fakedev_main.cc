@@ -13,11 +13,11 @@
 #include <string>
 #include <thread>
 
+#include "core/common/parse_number.h"
 #include "drivers/fake/fake_agilex_base.h"
 #include "drivers/fake/fake_lms.h"
 #include "drivers/fake/fake_p2os.h"
 #include "drivers/fake/playback.h"
-#include "tools/eval/tool_options.h"
 
 namespace {
 
@@ -100,10 +100,10 @@ int main(int argc, char** argv) {
     };
     std::string error;
     auto num = [&](double lo, double hi, double* out) {
-      if (!eval::NumberArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
+      if (!NumberArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
     };
     auto integer = [&](int64_t lo, int64_t hi, auto* out) {
-      if (!eval::IntegerArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
+      if (!IntegerArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
     };
     constexpr int64_t kIntMax = std::numeric_limits<int>::max();
     constexpr double kLongest = 1e6;  // seconds, for the fault times and the progress period

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/parse_number.h"
 #include "core/eval/error_stats.h"
 #include "core/eval/relations_metric.h"
 #include "core/localmap/fake_wall_scanner.h"
@@ -39,6 +40,7 @@
 #include "drivers/sim/ray_caster.h"
 #include "drivers/sim/route.h"
 #include "drivers/sim/wheel_odometry_model.h"
+#include "tools/eval/tool_options.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/render/canvas.h"
 
@@ -631,7 +633,7 @@ std::string ApplyOverrides(const std::string& spec, LocalMapOptions& o) {
     const std::string name = eq == std::string::npos ? item : item.substr(0, eq);
     const bool is_int = int_table.count(name) > 0;
     if (eq == std::string::npos || (!table.count(name) && !is_int) ||
-        !eval::ParseArgumentNumber(item.substr(eq + 1).c_str(), v) ||
+        !ParseNumber(item.substr(eq + 1).c_str(), &v) ||
         (is_int && (v != std::floor(v) || std::abs(v) > 1e6))) {
       std::string names;
       for (const auto& [n, p] : table) names += " " + n;

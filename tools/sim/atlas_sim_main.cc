@@ -17,7 +17,6 @@
 #include "drivers/sim/building_generator.h"
 #include "drivers/sim/carmen_writer.h"
 #include "drivers/sim/simulation.h"
-#include "tools/eval/tool_options.h"
 
 namespace {
 
@@ -172,18 +171,14 @@ int main(int argc, char** argv) {
       return Fail("unknown option '" + a + "'");
     if (i + 1 >= argc) return Fail("option " + a + " needs a value");
     const char* v = argv[++i];
-    double x = 0.0;
+    std::string error;
     auto number = [&](double lo, double hi) {
-      if (!atlas::ParseNumberIn(v, lo, hi, &x)) {
-        std::fprintf(stderr, "atlas-sim: %s: '%s' is not a number in [%g, %g]\n", a.c_str(), v, lo,
-                     hi);
-        std::exit(2);
-      }
+      double x = 0.0;
+      if (!NumberArgument(a, v, lo, hi, x, error)) std::exit(Fail(error));
       return x;
     };
-    std::string error;
     auto integer = [&](int64_t lo, int64_t hi, auto* out) {
-      if (!eval::IntegerArgument(a, v, lo, hi, *out, error)) std::exit(Fail(error));
+      if (!IntegerArgument(a, v, lo, hi, *out, error)) std::exit(Fail(error));
     };
     if (a == "--out") {
       out_dir = v;
@@ -195,7 +190,7 @@ int main(int argc, char** argv) {
     } else if (a == "--length-km") {
       sim.length_m = 1000.0 * number(1e-4, 10000);
     } else if (a == "--seed") {
-      if (!eval::SeedArgument(a, v, sim.seed, error)) return Fail(error);
+      if (!SeedArgument(a, v, sim.seed, error)) return Fail(error);
     } else if (a == "--speed") {
       sim.motion_options.max_speed = number(0.05, 5);
     } else if (a == "--odometry-hz") {

@@ -39,6 +39,7 @@
 #include "drivers/sim/simulation.h"
 #include "drivers/sim/sonar_model.h"
 #include "drivers/sim/wheel_odometry_model.h"
+#include "tools/eval/tool_options.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/render/canvas.h"
 #include "tools/sonar_eval/alcove_loop_world.h"
