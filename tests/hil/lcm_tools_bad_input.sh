@@ -73,11 +73,11 @@ expect 1 'nothing to step: no scan on ATLAS_RAW_LASER.*X \(2\)' "${R[@]}" "$WORK
 # atlas-pose-latency: options (refused before LCM is opened)
 P=$POSE_LATENCY
 expect 0 '^usage: atlas-pose-latency' "$P" --help
-for v in abc 1e300 nan 0 -5 100000 ''; do
-  expect 2 "--seconds: '$v' is not a number of seconds in \[0.001, 86400\]" "$P" --seconds "$v"
+for v in abc 5x 1e300 1e999 nan 0 -5 100000 ''; do
+  expect 2 "--seconds must be a number in \[0.001, 86400\], got '$v'" "$P" --seconds "$v"
 done
-for v in abc -1 1.5 1e3 2000000; do
-  expect 2 "--warmup: '$v' is not an integer in \[0, 1000000\]" "$P" --warmup "$v"
+for v in abc 5x '' -1 1.5 1e3 nan 2000000; do
+  expect 2 "--warmup must be an integer in \[0, 1000000\], got '$v'" "$P" --warmup "$v"
 done
 expect 2 '--seconds needs a value' "$P" --seconds
 expect 2 '--channel needs a non-empty NAME' "$P" --channel ''

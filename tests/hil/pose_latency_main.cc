@@ -86,12 +86,9 @@ int main(int argc, char** argv) {
     } else if (i + 1 >= argc) {
       return Usage(a + " needs a value");
     } else if (const char* v = argv[++i]; a == "--seconds") {
-      if (!atlas::ParseNumberIn(v, 0.001, 86400, &seconds))
-        return Usage("--seconds: '" + std::string(v) +
-                     "' is not a number of seconds in [0.001, 86400]");
+      if (std::string e; !atlas::NumberArgument(a, v, 0.001, 86400, seconds, e)) return Usage(e);
     } else if (a == "--warmup") {
-      if (!atlas::ParseIntegerIn(v, 0, 1000000, &c.warmup))
-        return Usage("--warmup: '" + std::string(v) + "' is not an integer in [0, 1000000]");
+      if (std::string e; !atlas::IntegerArgument(a, v, 0, 1000000, c.warmup, e)) return Usage(e);
     } else {
       if (*v == '\0') return Usage("--channel needs a non-empty NAME");
       channel = v;
