@@ -1,11 +1,11 @@
 // atlas-render: draws a simulated run (atlas-sim output directory) or an atlas (atlas-replay
 // output directory) to PNG and/or SVG.
 
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <limits>
 #include <string>
 
+#include "core/common/parse_number.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/render/atlas_drawing.h"
 #include "tools/render/canvas.h"
@@ -233,16 +233,15 @@ int main(int argc, char** argv) {
         atlas_req.dir = v;
         continue;
       }
-      char* end = nullptr;
-      const double d = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(d >= 0.0 && d < 1e9))
-        return Usage(a + ": '" + v + "' is not a non-negative number");
+      std::string error;
       if (a == "--budget") {
-        atlas_req.budget_ms = d;
+        if (!atlas::NumberArgument(a, v.c_str(), 0, 1e9, atlas_req.budget_ms, error))
+          return Usage(error);
       } else {
-        if (d != std::floor(d)) return Usage("--projection needs a frame id (an integer)");
+        if (!atlas::IntegerArgument(a, v.c_str(), 0, std::numeric_limits<atlas::FrameId>::max(),
+                                    atlas_req.draw.source, error))
+          return Usage(error);
         atlas_req.picture = AtlasPicture::kProjection;
-        atlas_req.draw.source = static_cast<atlas::FrameId>(d);
       }
       continue;
     }
@@ -263,16 +262,7 @@ int main(int argc, char** argv) {
       return Usage("unknown option '" + a + "'");
     if (i + 1 >= argc) return Usage("option " + a + " needs a value");
     const std::string v = argv[++i];
-    auto integer = [&](long lo, long hi) {
-      char* end = nullptr;
-      const long x = std::strtol(v.c_str(), &end, 10);
-      if (end == v.c_str() || *end != '\0' || x < lo || x > hi) {
-        std::fprintf(stderr, "atlas-render: %s: '%s' is not an integer in [%ld, %ld]\n", a.c_str(),
-                     v.c_str(), lo, hi);
-        std::exit(2);
-      }
-      return x;
-    };
+    std::string error;
     if (a == "--run") {
       dir = v;
     } else if (a == "--png") {
@@ -280,14 +270,14 @@ int main(int argc, char** argv) {
     } else if (a == "--svg") {
       svg = v;
     } else if (a == "--width") {
-      draw.width_px = static_cast<int>(integer(200, 20000));
+      if (!atlas::IntegerArgument(a, v.c_str(), 200, 20000, draw.width_px, error))
+        return Usage(error);
     } else if (a == "--scans") {
-      read.max_scans = integer(0, 1000000);
+      if (!atlas::IntegerArgument(a, v.c_str(), 0, 1000000, read.max_scans, error))
+        return Usage(error);
     } else if (a == "--odometry-km") {
-      char* end = nullptr;
-      const double km = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(km >= 0.0 && km <= 1e6))
-        return Usage("--odometry-km: '" + v + "' is not a distance in km (0 = all)");
+      double km = 0.0;
+      if (!atlas::NumberArgument(a, v.c_str(), 0, 1e6, km, error)) return Usage(error);
       draw.odometry_length_m = 1000.0 * km;
     } else if (a == "--title") {
       draw.title = v;
