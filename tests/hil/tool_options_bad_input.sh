@@ -2,9 +2,9 @@
 # The tools' number options on bad values (no network, no input files: every value is refused
 # while the command line is read): a value with trailing characters, an empty one, a non-finite
 # one and one out of range are refused with exit 2 and core/common/parse_number.h's message,
-# which names the option, the range and the text given. Needs ATLAS_RENDER.
+# which names the option, the range and the text given. Needs ATLAS_REPLAY, ATLAS_RENDER.
 source "$(dirname "$0")/hil_lib.sh"
-: "${ATLAS_RENDER:?}"
+: "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}"
 
 # refused TOOL OPTION KIND RANGE OUT_OF_RANGE: TOOL OPTION VALUE exits 2 with "OPTION must be
 # a KIND in RANGE, got 'VALUE'" for each bad VALUE.
@@ -24,3 +24,23 @@ refused "$ATLAS_RENDER" --scans integer '[0, 1000000]' 1000001
 refused "$ATLAS_RENDER" --odometry-km number '[0, 1000000]' -0.5
 pass "atlas-render's number options"
 
+R=$ATLAS_REPLAY
+refused "$R" --max-scans integer '[1, 9223372036854775807]' 0
+refused "$R" --max-range number '[0.01, 1000000]' 0
+refused "$R" --map-capacity integer '[1, 10000]' 10001
+refused "$R" --max-hypotheses integer '[1, 1000]' 0
+refused "$R" --laser-time-offset number '[-1, 1]' 1.5
+refused "$R" --seed integer '[0, 18446744073709551615]' 18446744073709551616
+refused "$R" --wheel-noise number '[0, 1]' -1e-9
+refused "$R" --left-scale number '[-0.5, 0.5]' 0.6
+refused "$R" --right-scale number '[-0.5, 0.5]' -0.6
+refused "$R" --track-width-error number '[-0.5, 0.5]' 1
+refused "$R" --line-period number '[1e-06, 1]' 0
+refused "$R" --log-max-range number '[0, 1000000]' -1
+for v in 5x:0:0.1 -0.2:0:0.1x -0.2::0.1 1e999:0:0.1 nan:0:0.1 -0.2:0; do
+  expect_exit 2 "--sweep-laser-time-offset: want FROM:TO:STEP in seconds .*got '$v'" \
+    "$R" --sweep-laser-time-offset "$v"
+done
+expect_exit 2 "--sweep-laser-time-offset: offsets must lie within -1 s and \+1 s \(got '-2:0:0.1'\)" \
+  "$R" --sweep-laser-time-offset -2:0:0.1
+pass "atlas-replay's number options"

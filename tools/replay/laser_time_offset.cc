@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 
+#include "core/common/parse_number.h"
 #include "daemon/atlasd/odometry_track.h"
 
 namespace atlas::replay {
@@ -14,14 +13,6 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 constexpr int kMaxOffsets = 201;
 
 Duration Seconds(double s) { return FromSeconds(s).time_since_epoch(); }
-
-bool ParseNumber(const std::string& s, double* out) {
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v)) return false;
-  *out = v;
-  return true;
-}
 
 std::string Format(const char* fmt, auto... args) {
   char buf[256];
@@ -86,9 +77,9 @@ bool ParseOffsetRange(const std::string& text, OffsetRange* range, std::string* 
   const size_t c1 = text.find(':');
   const size_t c2 = c1 == std::string::npos ? c1 : text.find(':', c1 + 1);
   OffsetRange r;
-  if (c2 == std::string::npos || !ParseNumber(text.substr(0, c1), &r.from_s) ||
-      !ParseNumber(text.substr(c1 + 1, c2 - c1 - 1), &r.to_s) ||
-      !ParseNumber(text.substr(c2 + 1), &r.step_s)) {
+  if (c2 == std::string::npos || !ParseNumber(text.substr(0, c1).c_str(), &r.from_s) ||
+      !ParseNumber(text.substr(c1 + 1, c2 - c1 - 1).c_str(), &r.to_s) ||
+      !ParseNumber(text.substr(c2 + 1).c_str(), &r.step_s)) {
     *error = "want FROM:TO:STEP in seconds (e.g. -0.2:0:0.02), got '" + text + "'";
     return false;
   }

@@ -76,8 +76,9 @@ TEST(OffsetRange, ParsesAndRejects) {
   EXPECT_FALSE(std::signbit(offsets.back()));
   ASSERT_TRUE(ParseOffsetRange("0.1:0.1:1", &r, &error));
   EXPECT_EQ(r.Offsets().size(), 1u);
-  for (const char* bad : {"", "-0.2:0", "a:0:0.1", "-0.2:0:0", "0:-0.2:0.1", "-2:0:0.1",
-                          "-1:1:0.001", "-0.2:0:0.05:1", "nan:0:0.1"}) {
+  for (const char* bad :
+       {"", "-0.2:0", "a:0:0.1", "-0.2:0:0", "0:-0.2:0.1", "-2:0:0.1", "-1:1:0.001",
+        "-0.2:0:0.05:1", "nan:0:0.1", "-0.2x:0:0.1", "-0.2::0.1", "1e999:0:0.1", "-0.2:0:inf"}) {
     EXPECT_FALSE(ParseOffsetRange(bad, &r, &error)) << bad;
     EXPECT_FALSE(error.empty()) << bad;
   }

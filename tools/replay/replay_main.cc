@@ -3,14 +3,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include <limits>
 #include <string>
 
+#include "core/common/parse_number.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
 #include "drivers/carmen/reference_odometry.h"
@@ -94,23 +94,6 @@ int Usage(const std::string& what) {
   return 2;
 }
 
-bool ParseInt(const char* s, long long min, long long& out) {
-  char* end = nullptr;
-  errno = 0;
-  const long long v = std::strtoll(s, &end, 10);
-  if (errno != 0 || end == s || *end != '\0' || v < min) return false;
-  out = v;
-  return true;
-}
-
-bool ParseDouble(const char* s, double& out) {
-  char* end = nullptr;
-  const double v = std::strtod(s, &end);
-  if (end == s || *end != '\0' || !(v > 0.0) || v > 1e6) return false;
-  out = v;
-  return true;
-}
-
 int Sweep(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& options,
           const OffsetRange& range, const std::string& out_dir, bool quiet,
           const std::string& log_path) {
@@ -158,51 +141,42 @@ int Main(int argc, char** argv) {
   }
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto value = [&](const char* name) -> const char* {
-      if (i + 1 >= argc) return nullptr;
-      (void)name;
-      return argv[++i];
+    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    std::string error;
+    // The next argument as a number (an integer, a seed) into `out`; false with `error` set.
+    auto number = [&](double lo, double hi, double& out) {
+      const char* v = value();
+      if (v == nullptr) error = a + " needs a value";
+      return v != nullptr && NumberArgument(a, v, lo, hi, out, error);
+    };
+    auto integer = [&](int64_t lo, int64_t hi, auto& out) {
+      const char* v = value();
+      if (v == nullptr) error = a + " needs a value";
+      return v != nullptr && IntegerArgument(a, v, lo, hi, out, error);
     };
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;
     } else if (a == "--out") {
-      const char* v = value("--out");
+      const char* v = value();
       if (v == nullptr || *v == '\0') return Usage("--out needs a directory");
       out_dir = v;
     } else if (a == "--config") {
-      if (value("--config") == nullptr) return Usage("--config needs a file");
+      if (value() == nullptr) return Usage("--config needs a file");
     } else if (a == "--max-scans") {
-      const char* v = value("--max-scans");
-      long long n = 0;
-      if (v == nullptr || !ParseInt(v, 1, n)) return Usage("--max-scans needs an integer >= 1");
-      options.max_scans = n;
+      if (!integer(1, std::numeric_limits<int64_t>::max(), options.max_scans)) return Usage(error);
     } else if (a == "--max-range") {
-      const char* v = value("--max-range");
-      if (v == nullptr || !ParseDouble(v, options.loop.max_range_m))
-        return Usage("--max-range needs a positive number of metres");
+      if (!number(0.01, 1e6, options.loop.max_range_m)) return Usage(error);
     } else if (a == "--map-capacity") {
-      const char* v = value("--map-capacity");
-      long long n = 0;
-      if (v == nullptr || !ParseInt(v, 1, n) || n > 10000)
-        return Usage("--map-capacity needs an integer in 1..10000");
-      options.mapper.map_capacity = static_cast<int>(n);
+      if (!integer(1, 10000, options.mapper.map_capacity)) return Usage(error);
     } else if (a == "--max-hypotheses") {
-      const char* v = value("--max-hypotheses");
-      long long n = 0;
-      if (v == nullptr || !ParseInt(v, 1, n) || n > 1000)
-        return Usage("--max-hypotheses needs an integer in 1..1000");
-      options.mapper.max_hypotheses = static_cast<int>(n);
+      if (!integer(1, 1000, options.mapper.max_hypotheses)) return Usage(error);
     } else if (a == "--laser-time-offset") {
-      const char* v = value("--laser-time-offset");
-      char* end = nullptr;
-      const double d = v == nullptr ? 0.0 : std::strtod(v, &end);
-      if (v == nullptr || end == v || *end != '\0' || !std::isfinite(d) || d < -1.0 || d > 1.0)
-        return Usage("--laser-time-offset needs a number of seconds in -1..1");
+      double d = 0.0;
+      if (!number(-1, 1, d)) return Usage(error);
       options.loop.laser_time_offset = FromSeconds(d).time_since_epoch();
     } else if (a == "--sweep-laser-time-offset") {
-      const char* v = value("--sweep-laser-time-offset");
-      std::string error;
+      const char* v = value();
       if (v == nullptr) return Usage("--sweep-laser-time-offset needs FROM:TO:STEP");
       if (!ParseOffsetRange(v, &sweep_range, &error))
         return Usage("--sweep-laser-time-offset: " + error);
@@ -214,23 +188,21 @@ int Main(int argc, char** argv) {
     } else if (a == "--corrected") {
       corrected = true;
     } else if (a == "--seed") {
-      const char* v = value("--seed");
-      long long n = 0;
-      if (v == nullptr || !ParseInt(v, 0, n)) return Usage("--seed needs an integer >= 0");
-      seed = static_cast<uint64_t>(n);
-    } else if (a == "--wheel-noise" || a == "--left-scale" || a == "--right-scale" ||
-               a == "--track-width-error" || a == "--line-period" || a == "--log-max-range") {
-      const char* v = value(a.c_str());
-      char* end = nullptr;
-      const double d = v == nullptr ? 0.0 : std::strtod(v, &end);
-      if (v == nullptr || end == v || *end != '\0' || !std::isfinite(d))
-        return Usage(a + " needs a number");
-      if (a == "--wheel-noise") noise.wheel_noise_per_m = d;
-      if (a == "--left-scale") noise.left_scale_error = d;
-      if (a == "--right-scale") noise.right_scale_error = d;
-      if (a == "--track-width-error") noise.track_width_error = d;
-      if (a == "--line-period") log_options.line_period_s = d;
-      if (a == "--log-max-range") log_options.max_range_m = d;
+      const char* v = value();
+      if (v == nullptr) return Usage("--seed needs a value");
+      if (!SeedArgument(a, v, seed, error)) return Usage(error);
+    } else if (a == "--wheel-noise") {
+      if (!number(0, 1, noise.wheel_noise_per_m)) return Usage(error);
+    } else if (a == "--left-scale") {
+      if (!number(-0.5, 0.5, noise.left_scale_error)) return Usage(error);
+    } else if (a == "--right-scale") {
+      if (!number(-0.5, 0.5, noise.right_scale_error)) return Usage(error);
+    } else if (a == "--track-width-error") {
+      if (!number(-0.5, 0.5, noise.track_width_error)) return Usage(error);
+    } else if (a == "--line-period") {
+      if (!number(1e-6, 1, log_options.line_period_s)) return Usage(error);
+    } else if (a == "--log-max-range") {
+      if (!number(0, 1e6, log_options.max_range_m)) return Usage(error);
     } else if (a == "--skip-bad-lines") {
       log_options.skip_bad_lines = true;
     } else if (a == "--quiet") {
