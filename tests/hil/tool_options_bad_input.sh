@@ -2,9 +2,10 @@
 # The tools' number options on bad values (no network, no input files: every value is refused
 # while the command line is read): a value with trailing characters, an empty one, a non-finite
 # one and one out of range are refused with exit 2 and core/common/parse_number.h's message,
-# which names the option, the range and the text given. Needs ATLAS_REPLAY, ATLAS_RENDER.
+# which names the option, the range and the text given. Needs ATLAS_REPLAY, ATLAS_RENDER,
+# ATLAS_REFINE.
 source "$(dirname "$0")/hil_lib.sh"
-: "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}"
+: "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}" "${ATLAS_REFINE:?}"
 
 # refused TOOL OPTION KIND RANGE OUT_OF_RANGE: TOOL OPTION VALUE exits 2 with "OPTION must be
 # a KIND in RANGE, got 'VALUE'" for each bad VALUE.
@@ -44,3 +45,6 @@ done
 expect_exit 2 "--sweep-laser-time-offset: offsets must lie within -1 s and \+1 s \(got '-2:0:0.1'\)" \
   "$R" --sweep-laser-time-offset -2:0:0.1
 pass "atlas-replay's number options"
+
+refused "$ATLAS_REFINE" --max-iterations integer '[1, 100000]' 100001
+pass "atlas-refine's number options"

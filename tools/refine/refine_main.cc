@@ -2,9 +2,9 @@
 // output directory). See --help.
 
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
+#include "core/common/parse_number.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/replay/replay_files.h"
 
@@ -53,12 +53,9 @@ int Main(int argc, char** argv) {
       const std::string v = argv[++i];
       if (a == "--out") {
         out = v;
-      } else {
-        char* end = nullptr;
-        const long n = std::strtol(v.c_str(), &end, 10);
-        if (end == v.c_str() || *end != '\0' || n < 1 || n > 100000)
-          return Usage("--max-iterations needs an integer in 1..100000");
-        options.max_iterations = static_cast<int>(n);
+      } else if (std::string error;
+                 !IntegerArgument(a, v.c_str(), 1, 100000, options.max_iterations, error)) {
+        return Usage(error);
       }
     } else if (!a.empty() && a[0] == '-') {
       return Usage("unknown option " + a);
