@@ -2,11 +2,10 @@
 #include <sys/stat.h>
 
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <iostream>
 #include <string>
 
+#include "core/common/parse_number.h"
 #include "daemon/atlasd/atlas_export.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
@@ -36,8 +35,8 @@ options:
   --out DIR              replay output: DIR/poses.txt (one pose per step) and DIR/summary.txt
   --export-atlas DIR     write the atlas saved in state.directory as DIR/graph.tsv and
                          DIR/maps.tsv (atlas-replay's formats, for atlas-render --atlas) and exit
-  --health-every S       print the health line on stderr every S seconds (default: the
-                         health period, lcm.health_period_s)
+  --health-every S       print the health line on stderr every S seconds, 0.001 to 86400
+                         (default: the health period, lcm.health_period_s)
   --quiet                no health line
   --debug-stall-on-usr1  test hook: SIGUSR1 stalls the loop thread for 5 s (the watchdog
                          pings stop); never enable it in production
@@ -86,11 +85,10 @@ int main(int argc, char** argv) {
     } else if (a == "--out") {
       if (!value(&out)) return Usage("--out needs a DIR");
     } else if (a == "--health-every") {
-      std::string v;
-      char* end = nullptr;
-      if (!value(&v) || (flags.health_line_period_s = std::strtod(v.c_str(), &end)) <= 0 ||
-          *end != '\0')
-        return Usage("--health-every needs a positive number of seconds");
+      std::string v, error;
+      if (!value(&v)) return Usage("--health-every needs a number of seconds");
+      if (!atlas::NumberArgument(a, v.c_str(), 0.001, 86400, flags.health_line_period_s, error))
+        return Usage(error);
     } else if (a == "--quiet") {
       flags.quiet = true;
     } else if (a == "--debug-stall-on-usr1") {

@@ -2,10 +2,10 @@
 # The tools' number options on bad values (no network, no input files: every value is refused
 # while the command line is read): a value with trailing characters, an empty one, a non-finite
 # one and one out of range are refused with exit 2 and core/common/parse_number.h's message,
-# which names the option, the range and the text given. Needs ATLAS_REPLAY, ATLAS_RENDER,
-# ATLAS_REFINE.
+# which names the option, the range and the text given. Needs ATLASD, ATLAS_REPLAY,
+# ATLAS_RENDER, ATLAS_REFINE.
 source "$(dirname "$0")/hil_lib.sh"
-: "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}" "${ATLAS_REFINE:?}"
+: "${ATLASD:?}" "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}" "${ATLAS_REFINE:?}"
 
 # refused TOOL OPTION KIND RANGE OUT_OF_RANGE: TOOL OPTION VALUE exits 2 with "OPTION must be
 # a KIND in RANGE, got 'VALUE'" for each bad VALUE.
@@ -48,3 +48,6 @@ pass "atlas-replay's number options"
 
 refused "$ATLAS_REFINE" --max-iterations integer '[1, 100000]' 100001
 pass "atlas-refine's number options"
+
+refused "$ATLASD" --health-every number '[0.001, 86400]' 0
+pass "atlasd's number options"
