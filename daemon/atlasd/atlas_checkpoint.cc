@@ -1,6 +1,10 @@
 #include "daemon/atlasd/atlas_checkpoint.h"
 
-#include <cstdlib>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "core/common/parse_number.h"
 
 namespace atlas {
 namespace {
@@ -85,11 +89,17 @@ ResumeResult ResumeFromStore(AtlasStore* store, Atlas* atlas) {
     return r;
   }
   const auto version = saved.metadata.find(kImageVersionKey);
-  const long v =
-      version == saved.metadata.end() ? 0 : std::strtol(version->second.c_str(), nullptr, 10);
-  const bool newer = v > static_cast<long>(Atlas::kImageVersion);
+  constexpr long kMaxVersion = std::numeric_limits<uint32_t>::max();
+  long v = 0;
+  const bool version_read = version == saved.metadata.end() ||
+                            ParseIntegerIn(version->second.c_str(), 0, kMaxVersion, &v);
+  const bool newer = version_read && v > static_cast<long>(Atlas::kImageVersion);
   std::string why;
-  if (newer) {
+  if (!version_read) {
+    why = std::string("its atlas image version (") + kImageVersionKey + ", " +
+          std::to_string(version->second.size()) + " bytes) is not a decimal integer in [0, " +
+          std::to_string(kMaxVersion) + "]";
+  } else if (newer) {
     why = "its atlas image is version " + std::to_string(v) +
           ", written by a newer atlasd (this one reads version " +
           std::to_string(Atlas::kImageVersion) + ")";

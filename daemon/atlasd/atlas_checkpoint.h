@@ -18,7 +18,9 @@
 //   the new frame to the old ones when it recognises them) (kResumed). An image written by a
 //   newer atlasd (a larger atlas_image_version), or one that does not decode, is refused: the
 //   store file is moved aside, never overwritten (AtlasStore::RefuseAndStartEmpty), and the
-//   atlas starts empty (kRefusedNewer, kRefusedCorrupt). Every outcome has a one-line message.
+//   atlas starts empty (kRefusedNewer, kRefusedCorrupt). An atlas_image_version that is not a
+//   whole decimal integer in [0, 4294967295] ("abc", "1x", "", "-1", a larger number) is
+//   refused as corrupt. Every outcome has a one-line message.
 
 #include <cstdint>
 #include <string>
@@ -43,9 +45,9 @@ enum class ResumeOutcome { kEmpty, kResumed, kRefusedCorrupt, kRefusedNewer, kFa
 
 struct ResumeResult {
   ResumeOutcome outcome = ResumeOutcome::kFailed;
-  std::string message;  // one line, for the log
-  int frames = 0;       // frames of the saved atlas
-  int64_t steps = 0;    // steps the saved atlas had made
+  std::string message;           // one line, for the log
+  int frames = 0;                // frames of the saved atlas
+  int64_t steps = 0;             // steps the saved atlas had made
   FrameId new_frame = kNoFrame;  // kResumed: the robot's new, unconnected frame
 };
 

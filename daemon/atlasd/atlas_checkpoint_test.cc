@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "core/atlas/atlas_test_world.h"
 #include "core/atlas/fake_local_map.h"
@@ -172,6 +174,38 @@ TEST_F(CheckpointTest, NewerImageVersionIsRefused) {
   EXPECT_EQ(r.outcome, ResumeOutcome::kRefusedNewer);
   EXPECT_NE(r.message.find("newer atlasd"), std::string::npos) << r.message;
   EXPECT_EQ(fresh->Graph().FrameCount(), 0);
+}
+
+// The image itself decodes; only its version text is damaged. strtol read "abc" as 0 (and
+// resumed) and "99999999999999999999" as LONG_MAX (refused as newer).
+TEST_F(CheckpointTest, UnreadableImageVersionIsRefusedAsCorrupt) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir_.string()).ok());
+  auto a = NewAtlas();
+  Drive(a.get(), 10);
+  const std::vector<std::string> bad = {
+      "abc", "1x", "", " 5", "-1", "4294967296", "99999999999999999999"};
+  for (const std::string& version : bad) {
+    SCOPED_TRACE("atlas_image_version '" + version + "'");
+    AtlasSnapshot b = CheckpointBuilder().Make(*a);
+    b.metadata["atlas_image_version"] = version;
+    std::string error;
+    ASSERT_TRUE(store.Save(b, &error)) << error;
+    auto fresh = NewAtlas();
+    const ResumeResult r = ResumeFromStore(&store, fresh.get());
+    EXPECT_EQ(r.outcome, ResumeOutcome::kRefusedCorrupt) << r.message;
+    EXPECT_NE(r.message.find("its atlas image version (atlas_image_version, " +
+                             std::to_string(version.size()) +
+                             " bytes) is not a decimal integer in [0, 4294967295]"),
+              std::string::npos)
+        << r.message;
+    EXPECT_NE(r.message.find("moved it aside"), std::string::npos) << r.message;
+    EXPECT_EQ(fresh->Graph().FrameCount(), 0);
+  }
+  int moved = 0;
+  for (const auto& e : fs::directory_iterator(dir_))
+    moved += e.path().filename().string().find("atlas.sqlite.corrupt-") == 0;
+  EXPECT_EQ(moved, static_cast<int>(bad.size()));
 }
 
 }  // namespace
