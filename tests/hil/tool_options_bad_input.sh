@@ -3,9 +3,10 @@
 # while the command line is read): a value with trailing characters, an empty one, a non-finite
 # one and one out of range are refused with exit 2 and core/common/parse_number.h's message,
 # which names the option, the range and the text given. Needs ATLASD, ATLAS_REPLAY,
-# ATLAS_RENDER, ATLAS_REFINE.
+# ATLAS_RENDER, ATLAS_REFINE, ATLAS_EVAL, ATLAS_CARMEN.
 source "$(dirname "$0")/hil_lib.sh"
-: "${ATLASD:?}" "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}" "${ATLAS_REFINE:?}"
+: "${ATLASD:?}" "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}" "${ATLAS_REFINE:?}" "${ATLAS_EVAL:?}"
+: "${ATLAS_CARMEN:?}"
 
 # refused TOOL OPTION KIND RANGE OUT_OF_RANGE: TOOL OPTION VALUE exits 2 with "OPTION must be
 # a KIND in RANGE, got 'VALUE'" for each bad VALUE.
@@ -51,3 +52,19 @@ pass "atlas-refine's number options"
 
 refused "$ATLASD" --health-every number '[0.001, 86400]' 0
 pass "atlasd's number options"
+
+refused "$ATLAS_EVAL" --tolerance number '[0, 1000000]' -0.001
+refused "$ATLAS_EVAL" --segment number '[0.001, 1000000]' 0
+refused "$ATLAS_EVAL" --step integer '[1, 1000000000]' 0
+pass "atlas-eval's number options"
+
+C=$ATLAS_CARMEN
+refused "$C" --seed integer '[0, 18446744073709551615]' -1
+refused "$C" --line-period number '[1e-06, 1]' 2
+refused "$C" --max-range number '[0, 1000000]' -1
+refused "$C" --track-width number '[0.05, 10]' 0
+refused "$C" --wheel-noise number '[0, 1]' 1.5
+refused "$C" --left-scale number '[-0.5, 0.5]' 0.6
+refused "$C" --right-scale number '[-0.5, 0.5]' -0.6
+refused "$C" --track-width-error number '[-0.5, 0.5]' 1
+pass "atlas-carmen's number options"

@@ -1,8 +1,10 @@
 // atlas-carmen: inspects CARMEN logs with the atlasd reader: event counts, dead-reckoned and
 // reference trajectories, synthesised odometry for corrected logs. See --help.
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -115,6 +117,20 @@ int Main(int argc, char** argv) {
   bool corrected = false, json = false;
   std::string output;
   std::vector<std::string> logs;
+  struct NumberOption {
+    const char* name;
+    double lo, hi;
+    double* out;
+  };
+  const NumberOption numbers[] = {
+      {"--line-period", 1e-6, 1, &options.line_period_s},
+      {"--max-range", 0, 1e6, &options.max_range_m},
+      {"--track-width", 0.05, 10, &noise.track_width_m},
+      {"--wheel-noise", 0, 1, &noise.wheel_noise_per_m},
+      {"--left-scale", -0.5, 0.5, &noise.left_scale_error},
+      {"--right-scale", -0.5, 0.5, &noise.right_scale_error},
+      {"--track-width-error", -0.5, 0.5, &noise.track_width_error},
+  };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
@@ -141,19 +157,13 @@ int Main(int argc, char** argv) {
       std::string error;
       if (i + 1 >= argc) return Usage("--seed needs an integer");
       if (!SeedArgument(a, argv[++i], seed, error)) return Usage(error);
-    } else if (a == "--line-period" || a == "--max-range" || a == "--track-width" ||
-               a == "--wheel-noise" || a == "--left-scale" || a == "--right-scale" ||
-               a == "--track-width-error") {
-      double d = 0.0;
-      if (i + 1 >= argc || !ParseNumber(argv[i + 1], &d)) return Usage(a + " needs a number");
-      ++i;
-      if (a == "--line-period") options.line_period_s = d;
-      if (a == "--max-range") options.max_range_m = d;
-      if (a == "--track-width") noise.track_width_m = d;
-      if (a == "--wheel-noise") noise.wheel_noise_per_m = d;
-      if (a == "--left-scale") noise.left_scale_error = d;
-      if (a == "--right-scale") noise.right_scale_error = d;
-      if (a == "--track-width-error") noise.track_width_error = d;
+    } else if (const NumberOption* n =
+                   std::find_if(std::begin(numbers), std::end(numbers),
+                                [&](const NumberOption& o) { return a == o.name; });
+               n != std::end(numbers)) {
+      std::string error;
+      if (i + 1 >= argc) return Usage(a + " needs a value");
+      if (!NumberArgument(a, argv[++i], n->lo, n->hi, *n->out, error)) return Usage(error);
     } else if (!a.empty() && a[0] == '-') {
       return Usage("unknown option " + a);
     } else {

@@ -230,7 +230,7 @@ int Main(int argc, char** argv) {
                a == "--tolerance" || a == "--segment" || a == "--step" || a == "--errors") {
       const char* v = value(a.c_str());
       if (v == nullptr) return Usage(a + " needs a value");
-      double d = 0.0;
+      std::string error;
       if (a == "--relations") {
         relations_path = v;
       } else if (a == "--reference") {
@@ -242,19 +242,15 @@ int Main(int argc, char** argv) {
       } else if (a == "--errors") {
         errors_path = v;
       } else if (a == "--step") {
-        std::string error;
         if (!IntegerArgument(a, v, 1, 1000000000, ref_options.step_count, error))
           return Usage(error);
         ref_options.segment_length_m = 0.0;
         step_given = true;
-      } else if (!ParseNumber(v, &d)) {
-        return Usage(a + " needs a number, got '" + v + "'");
       } else if (a == "--tolerance") {
-        tolerance_s = d;
+        if (!NumberArgument(a, v, 0, 1e6, tolerance_s, error)) return Usage(error);
       } else if (a == "--segment") {
-        if (!(d > 0.0))
-          return Usage("--segment needs a distance > 0 m, got '" + std::string(v) + "'");
-        ref_options.segment_length_m = d;
+        if (!NumberArgument(a, v, 0.001, 1e6, ref_options.segment_length_m, error))
+          return Usage(error);
         ref_options.step_count = 0;
         segment_given = true;
       }
@@ -279,8 +275,6 @@ int Main(int argc, char** argv) {
         "give --step N or --segment M, not both (RPE pairs are either N poses or M m apart)");
   if ((step_given || segment_given) && reference_path.empty())
     return Usage("--step and --segment need --reference");
-  if (!(tolerance_s >= 0.0) || tolerance_s > 1e6)
-    return Usage("--tolerance must be a number of seconds in [0, 1e6]");
   ref_options.match_tolerance = Duration(static_cast<int64_t>(tolerance_s * 1e9));
   if (std::string bad = ref_options.Validate(); !bad.empty()) return Usage(bad);
 
