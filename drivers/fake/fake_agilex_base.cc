@@ -36,7 +36,8 @@ FakeAgilexBase::FakeAgilexBase(const FakeAgilexOptions& options,
     : options_(options),
       recording_(std::move(recording)),
       clock_(std::move(clock)),
-      encoder_(options.track_width_m) {}
+      encoder_(options.track_width_m),
+      sent_intact_(options.sent_record_capacity) {}
 
 FakeAgilexBase::~FakeAgilexBase() { Stop(); }
 
@@ -52,11 +53,6 @@ void FakeAgilexBase::Stop() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
   bus_.Close();
-}
-
-std::vector<SentOdometry> FakeAgilexBase::SentIntact() const {
-  std::lock_guard<std::mutex> lock(sent_mutex_);
-  return sent_intact_;
 }
 
 bool FakeAgilexBase::Stalled(Time now) const {
@@ -96,10 +92,7 @@ void FakeAgilexBase::SendTick(uint64_t tick, Time log_time, Time now) {
   const bool jumped_now = every(f.jump_every);
   if (bus_.Broadcast(odo) > 0) {
     frames_.fetch_add(1);
-    if (intact && !jumped_now) {
-      std::lock_guard<std::mutex> lock(sent_mutex_);
-      sent_intact_.push_back({tick, log_time, sent, pose});
-    }
+    if (intact && !jumped_now) sent_intact_.Add({tick, log_time, sent, pose});
   }
   agilex::MotionState m;
   m.linear_mm_s = static_cast<int16_t>(std::clamp(step.x / dt * 1000.0, -32768.0, 32767.0));

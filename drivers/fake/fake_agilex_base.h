@@ -13,15 +13,14 @@
 
 #include <atomic>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include "drivers/agilex/agilex_messages.h"
 #include "drivers/fake/fake_can_bus.h"
 #include "drivers/fake/fault_options.h"
 #include "drivers/fake/playback.h"
+#include "drivers/fake/sent_record.h"
 
 namespace atlas::fake {
 
@@ -30,6 +29,8 @@ struct FakeAgilexOptions {
   double track_width_m = 0.58;
   double odometry_period_s = 0.02;  // 0x311 and 0x221, log time
   int system_every = 5;             // 0x211 every 5th tick (100 ms)
+  // sent_intact() keeps the last N
+  size_t sent_record_capacity = kDefaultSentRecordCapacity;
   FaultOptions faults;
   std::string Validate() const;
 };
@@ -80,7 +81,9 @@ class FakeAgilexBase {
   bool finished() const { return finished_.load(); }
   uint64_t frames_sent() const { return frames_.load(); }
   const FaultCounts& fault_counts() const { return counts_; }
-  std::vector<SentOdometry> SentIntact() const;
+  // The 0x311 frames sent intact (not truncated, not the jump itself), in order: the last
+  // sent_record_capacity of them, and the count of all.
+  const SentRecord<SentOdometry>& sent_intact() const { return sent_intact_; }
 
  private:
   void Loop();
@@ -103,8 +106,7 @@ class FakeAgilexBase {
   bool dropped_ = false;
   bool stall_counted_ = false;
   Pose2 previous_pose_;
-  mutable std::mutex sent_mutex_;
-  std::vector<SentOdometry> sent_intact_;
+  SentRecord<SentOdometry> sent_intact_;
 };
 
 }  // namespace atlas::fake

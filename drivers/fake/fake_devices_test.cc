@@ -118,7 +118,8 @@ std::shared_ptr<Recording> TinyRecording(int scans = 50) {
 }
 
 // A scanner left at 500000 baud by an earlier session: the driver finds nothing at 9600,
-// finds it at 500000, and does not switch.
+// finds it at 500000, and does not switch. The fake's record of the scans sent keeps the last 4
+// of the 50 and counts all.
 TEST(FakeLmsTest, ScannerStillAtHighRateIsFound) {
   const std::string dir = TempDir();
   auto rec = TinyRecording();
@@ -126,6 +127,7 @@ TEST(FakeLmsTest, ScannerStillAtHighRateIsFound) {
   FakeLmsOptions fo;
   fo.link = dir + "/laser";
   fo.power_up_baud = 500000;
+  fo.sent_record_capacity = 4;
   FakeLms lms(fo, rec, clock);
   std::string err;
   ASSERT_TRUE(lms.Open(&err)) << err;
@@ -156,6 +158,8 @@ TEST(FakeLmsTest, ScannerStillAtHighRateIsFound) {
   EXPECT_EQ(got, 50);
   reader.Stop();
   lms.Stop();
+  EXPECT_EQ(lms.sent_intact().total(), 50u);
+  EXPECT_EQ(lms.sent_intact().Items(), (std::vector<size_t>{46, 47, 48, 49}));
   std::filesystem::remove_all(dir);
 }
 
@@ -280,7 +284,7 @@ TEST(FakeP2osTest, SonarReaderSignalsEveryQueuedReading) {
   reader.Stop();
   while (reader.Pop(&r)) ++got;
   EXPECT_GT(got, 10);
-  EXPECT_EQ(got, static_cast<int>(p2os.SentIntact().size()));
+  EXPECT_EQ(got, static_cast<int>(p2os.sent_intact().total()));
   EXPECT_EQ(signalled.load(), got);
 }
 
@@ -303,14 +307,14 @@ TEST(FakeP2osTest, PulsesComeMoreThanOnceASecond) {
   clock->Start();
   const Time deadline = Now() + std::chrono::seconds(15);
   SonarReading r;
-  while (p2os.PulseTimes().size() < 6 && Now() < deadline) {
+  while (p2os.pulse_times().total() < 6 && Now() < deadline) {
     while (reader.Pop(&r)) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   reader.Stop();
   p2os.Stop();
-  const std::vector<Time> t = p2os.PulseTimes();
+  const std::vector<Time> t = p2os.pulse_times().Items();
   ASSERT_GE(t.size(), 6u) << reader.Health().last_error;
   std::vector<Duration> gaps;
   for (size_t k = 1; k < t.size(); ++k) gaps.push_back(t[k] - t[k - 1]);

@@ -14,7 +14,8 @@ FakeLms::FakeLms(const FakeLmsOptions& options, std::shared_ptr<const Recording>
                  std::shared_ptr<const PlaybackClock> clock)
     : FakeSerialDevice("fake LMS", options.link, options.faults, std::move(clock)),
       options_(options),
-      recording_(std::move(recording)) {}
+      recording_(std::move(recording)),
+      sent_intact_(options.sent_record_capacity) {}
 
 FakeLms::~FakeLms() { Stop(); }
 
@@ -22,11 +23,6 @@ void FakeLms::OnPowerUp() {
   baud_.store(options_.power_up_baud);
   streaming_.store(false);
   host_decoder_.Reset();
-}
-
-std::vector<size_t> FakeLms::SentIntact() const {
-  std::lock_guard<std::mutex> lock(sent_mutex_);
-  return sent_intact_;
 }
 
 void FakeLms::Answer(const sick::HostCommand& c) {
@@ -94,10 +90,7 @@ Time FakeLms::Tick(Time now) {
     if (!streaming_.load() || SlaveBaud() != baud_.load()) continue;
     auto t = sick::EncodeMeasuredValues(scans[i], options_.unit, options_.status);
     if (!t) continue;
-    if (SendMessage(std::move(*t))) {
-      std::lock_guard<std::mutex> lock(sent_mutex_);
-      sent_intact_.push_back(i);
-    }
+    if (SendMessage(std::move(*t))) sent_intact_.Add(i);
   }
   if (next_scan_ >= scans.size()) {
     SetFinished();

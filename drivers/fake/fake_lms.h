@@ -11,10 +11,9 @@
 
 #include <cstdint>
 #include <memory>
-#include <mutex>
-#include <vector>
 
 #include "drivers/fake/fake_serial_device.h"
+#include "drivers/fake/sent_record.h"
 #include "drivers/sick/lms_messages.h"
 #include "drivers/sick/lms_telegram.h"
 
@@ -25,6 +24,8 @@ struct FakeLmsOptions {
   int power_up_baud = 9600;  // the scanner's rate after (re)power
   sick::Unit unit = sick::Unit::kCentimetre;
   uint8_t status = 0x10;  // STATUS byte of every reply
+  // sent_intact() keeps the last N
+  size_t sent_record_capacity = kDefaultSentRecordCapacity;
   FaultOptions faults;
   std::string Validate() const;
 };
@@ -37,8 +38,9 @@ class FakeLms final : public FakeSerialDevice {
 
   int baud() const { return baud_.load(); }
   bool streaming() const { return streaming_.load(); }
-  // Indices (into recording->scans) of the scans sent intact, in order.
-  std::vector<size_t> SentIntact() const;
+  // Indices (into recording->scans) of the scans sent intact, in order: the last
+  // sent_record_capacity of them, and the count of all.
+  const SentRecord<size_t>& sent_intact() const { return sent_intact_; }
   uint64_t commands_answered() const { return commands_.load(); }
   uint64_t commands_ignored_wrong_rate() const { return wrong_rate_.load(); }
 
@@ -58,8 +60,7 @@ class FakeLms final : public FakeSerialDevice {
   std::atomic<uint64_t> commands_{0};
   std::atomic<uint64_t> wrong_rate_{0};
   size_t next_scan_ = 0;
-  mutable std::mutex sent_mutex_;
-  std::vector<size_t> sent_intact_;
+  SentRecord<size_t> sent_intact_;
 };
 
 // For benchmarks that write the 0xB0 telegrams themselves on a pseudo-terminal they own: answers

@@ -34,7 +34,9 @@ FakeP2os::FakeP2os(const FakeP2osOptions& options, std::shared_ptr<const Recordi
                    std::shared_ptr<const PlaybackClock> clock)
     : FakeSerialDevice("fake P2OS", options.link, options.faults, std::move(clock)),
       options_(options),
-      recording_(std::move(recording)) {}
+      recording_(std::move(recording)),
+      sent_intact_(options.sent_record_capacity),
+      pulse_times_(options.sent_record_capacity) {}
 
 FakeP2os::~FakeP2os() { Stop(); }
 
@@ -42,16 +44,6 @@ void FakeP2os::OnPowerUp() {
   state_.store(State::kWaitSync0);
   sonar_on_ = false;
   host_decoder_.Reset();
-}
-
-std::vector<Time> FakeP2os::PulseTimes() const {
-  std::lock_guard<std::mutex> lock(sent_mutex_);
-  return pulse_times_;
-}
-
-std::vector<SonarReading> FakeP2os::SentIntact() const {
-  std::lock_guard<std::mutex> lock(sent_mutex_);
-  return sent_intact_;
 }
 
 void FakeP2os::OnHostBytes(std::span<const uint8_t> bytes, Time now) {
@@ -78,9 +70,7 @@ void FakeP2os::OnHostBytes(std::span<const uint8_t> bytes, Time now) {
       next_sip_log_ = clock().started() ? clock().LogAt(now) : recording_->begin;
     } else if (s == State::kOpen || s == State::kReady) {
       if (c->command == p2os::kCmdPulse) {
-        pulses_.fetch_add(1);
-        std::lock_guard<std::mutex> lock(sent_mutex_);
-        pulse_times_.push_back(now);
+        pulse_times_.Add(now);
       } else if (c->command == p2os::kCmdClose) {
         state_.store(State::kWaitSync0);
         sonar_on_ = false;
@@ -125,10 +115,8 @@ Time FakeP2os::Tick(Time now) {
       }
     }
     auto packet = p2os::EncodeStandardSip(sip);
-    if (packet && SendMessage(std::move(*packet)) && !reading.returns.empty()) {
-      std::lock_guard<std::mutex> lock(sent_mutex_);
-      sent_intact_.push_back(std::move(reading));
-    }
+    if (packet && SendMessage(std::move(*packet)) && !reading.returns.empty())
+      sent_intact_.Add(std::move(reading));
   }
   return clock().WallAt(next_sip_log_);
 }

@@ -9,10 +9,10 @@
 // does. Like the fake LMS it answers only at its line rate.
 
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include "drivers/fake/fake_serial_device.h"
+#include "drivers/fake/sent_record.h"
 #include "drivers/p2os/p2os_messages.h"
 #include "drivers/p2os/p2os_packet.h"
 
@@ -25,6 +25,8 @@ struct FakeP2osOptions {
   p2os::RobotIdentity identity{"atlas-fake", "Pioneer", "p3dx"};
   double sip_period_s = 0.1;  // log time between SIPs
   Duration watchdog = std::chrono::seconds(2);
+  // sent_intact() and pulse_times() keep the last N each
+  size_t sent_record_capacity = kDefaultSentRecordCapacity;
   FaultOptions faults;
   std::string Validate() const;
 };
@@ -41,12 +43,12 @@ class FakeP2os final : public FakeSerialDevice {
   ~FakeP2os() override;
 
   bool is_open() const { return state_.load() == State::kOpen; }
-  uint64_t pulses() const { return pulses_.load(); }
   uint64_t watchdog_closes() const { return watchdog_closes_.load(); }
-  // The readings carried by the SIPs sent intact (with at least one return), in order.
-  std::vector<SonarReading> SentIntact() const;
-  // When each PULSE arrived (the fake's clock), in order.
-  std::vector<Time> PulseTimes() const;
+  // The readings carried by the SIPs sent intact (with at least one return), in order; and
+  // when each PULSE arrived (the fake's clock), in order. Each: the last sent_record_capacity,
+  // and the count of all (pulse_times().total() is the number of PULSEs).
+  const SentRecord<SonarReading>& sent_intact() const { return sent_intact_; }
+  const SentRecord<Time>& pulse_times() const { return pulse_times_; }
 
  protected:
   void OnPowerUp() override;
@@ -64,11 +66,9 @@ class FakeP2os final : public FakeSerialDevice {
   Time last_command_{};
   Time next_sip_log_{};
   uint16_t timer_ = 0;
-  std::atomic<uint64_t> pulses_{0};
   std::atomic<uint64_t> watchdog_closes_{0};
-  mutable std::mutex sent_mutex_;
-  std::vector<SonarReading> sent_intact_;
-  std::vector<Time> pulse_times_;  // under sent_mutex_
+  SentRecord<SonarReading> sent_intact_;
+  SentRecord<Time> pulse_times_;
 };
 
 }  // namespace atlas::fake

@@ -30,7 +30,7 @@ void RunAndCheck(DriverRig& rig, bool sonar_exact = true) {
   // SIPs). A message lost anywhere else is a second run. Otherwise everything sent intact
   // comes out. Odometry frames are not matched by content: a few per disconnection.
   EXPECT_LE(missing.laser, 2 * rig.laser_->Health().disconnects);
-  EXPECT_LE(rig.base_->SentIntact().size() - rig.odometry.size(),
+  EXPECT_LE(rig.base_->sent_intact().total() - rig.odometry.size(),
             3 * rig.odo_->Health().disconnects);
   if (sonar_exact) {
     EXPECT_LE(missing.sonar, 2 * rig.sonar_->Health().disconnects);
@@ -142,8 +142,8 @@ TEST(FaultsTest, DeviceUnpluggedAndBackIsReopened) {
   // what was sent intact came out (of all sent, not of the slice: on a loaded machine the fake
   // itself sends fewer).
   ASSERT_FALSE(rig.scans.empty());
-  EXPECT_GT(rig.lms_->SentIntact().back(), rec->scans.size() - 5);
-  EXPECT_GT(rig.scans.size(), rig.lms_->SentIntact().size() / 2);
+  EXPECT_GT(rig.lms_->sent_intact().Items().back(), rec->scans.size() - 5);
+  EXPECT_GT(rig.scans.size(), rig.lms_->sent_intact().total() / 2);
 }
 
 TEST(FaultsTest, ShortStallIsReportedAndOutlived) {
@@ -161,7 +161,7 @@ TEST(FaultsTest, ShortStallIsReportedAndOutlived) {
     EXPECT_GE(h.stalls, 1u) << h.device;
     EXPECT_EQ(h.disconnects, 0u) << h.device;
   }
-  EXPECT_GT(rig.lms_->SentIntact().back(), rec->scans.size() - 5);
+  EXPECT_GT(rig.lms_->sent_intact().Items().back(), rec->scans.size() - 5);
 }
 
 TEST(FaultsTest, LongStallRestartsTheDeviceWhichIsFoundAtItsNewRate) {
@@ -183,7 +183,7 @@ TEST(FaultsTest, LongStallRestartsTheDeviceWhichIsFoundAtItsNewRate) {
   // The scanner stayed at 500000 baud: the restarted driver found it there, not at 9600.
   EXPECT_EQ(rig.laser_->found_baud(), 500000);
   EXPECT_GE(rig.lms_->commands_ignored_wrong_rate(), 1u);
-  EXPECT_GT(rig.lms_->SentIntact().back(), rec->scans.size() - 5);
+  EXPECT_GT(rig.lms_->sent_intact().Items().back(), rec->scans.size() - 5);
 }
 
 }  // namespace

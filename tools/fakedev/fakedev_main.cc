@@ -270,22 +270,24 @@ int main(int argc, char** argv) {
     if (lms) {
       const auto& f = lms->fault_counts();
       std::printf(
-          " laser %zu scans intact / %llu sent (garbage %llu corrupt %llu trunc %llu "
+          " laser %llu scans intact / %llu sent (garbage %llu corrupt %llu trunc %llu "
           "drops %llu stalls %llu);",
-          lms->SentIntact().size(), (unsigned long long)lms->messages_sent(),
+          (unsigned long long)lms->sent_intact().total(), (unsigned long long)lms->messages_sent(),
           (unsigned long long)f.garbage, (unsigned long long)f.corrupted,
           (unsigned long long)f.truncated, (unsigned long long)f.drops,
           (unsigned long long)f.stalls);
     }
     if (base) {
       const auto& f = base->fault_counts();
-      std::printf(" odometry %zu 0x311 intact, %llu frames (jumps %llu drops %llu);",
-                  base->SentIntact().size(), (unsigned long long)base->frames_sent(),
-                  (unsigned long long)f.jumps, (unsigned long long)f.drops);
+      std::printf(" odometry %llu 0x311 intact, %llu frames (jumps %llu drops %llu);",
+                  (unsigned long long)base->sent_intact().total(),
+                  (unsigned long long)base->frames_sent(), (unsigned long long)f.jumps,
+                  (unsigned long long)f.drops);
     }
     if (p2os)
-      std::printf(" sonar %zu SIPs with returns, %llu pulses", p2os->SentIntact().size(),
-                  (unsigned long long)p2os->pulses());
+      std::printf(" sonar %llu SIPs with returns, %llu pulses",
+                  (unsigned long long)p2os->sent_intact().total(),
+                  (unsigned long long)p2os->pulse_times().total());
     std::printf("\n");
     std::fflush(stdout);
   };
