@@ -212,6 +212,7 @@ int main(int argc, char** argv) {
     o.link = laser_link;
     o.power_up_baud = power_up_baud;
     o.faults = faults_for("laser");
+    o.sent_record_capacity = 0;  // only the totals are reported
     if (std::string e = o.Validate(); !e.empty()) return Fail(e);
     lms = std::make_unique<fake::FakeLms>(o, rec, clock);
     if (!lms->Open(&error)) return Fail(error);
@@ -222,6 +223,7 @@ int main(int argc, char** argv) {
     fake::FakeAgilexOptions o;
     o.socket_path = can_socket;
     o.faults = faults_for("odometry");
+    o.sent_record_capacity = 0;  // only the totals are reported
     if (std::string e = o.Validate(); !e.empty()) return Fail(e);
     base = std::make_unique<fake::FakeAgilexBase>(o, rec, clock);
     if (!base->Open(&error)) return Fail(error);
@@ -231,6 +233,7 @@ int main(int argc, char** argv) {
     fake::FakeP2osOptions o;
     o.link = sonar_link;
     o.faults = faults_for("sonar");
+    o.sent_record_capacity = 0;  // only the totals are reported
     if (std::string e = o.Validate(); !e.empty()) return Fail(e);
     p2os = std::make_unique<fake::FakeP2os>(o, rec, clock);
     if (!p2os->Open(&error)) return Fail(error);
