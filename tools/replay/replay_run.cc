@@ -414,6 +414,9 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     sum.refine_constraints = refined.edges;
     sum.refine_initial_cost = refined.initial_cost;
     sum.refine_final_cost = refined.final_cost;
+    sum.refine_iterations = refined.iterations;
+    sum.refine_unreached_frames = refined.unreached;
+    sum.refine_skipped_edges = refined.skipped_edges;
     text = FormatGlobalTrajectory(sink.trajectory, refined.refined,
                                   "atlas-replay global_refined: timestamp x y theta (global "
                                   "least-squares arrangement of the frames, frame 0 fixed)",
@@ -484,9 +487,11 @@ std::string SummaryJson(const ReplaySummary& s) {
     Append(t,
            ", \"refine_status\": \"%s\", \"refined_frames\": %d, \"refine_constraints\": %d, "
            "\"refined_rows\": %d, \"refine_initial_cost\": %.6g, \"refine_final_cost\": %.6g, "
-           "\"refine_seconds\": %.3f",
+           "\"refine_seconds\": %.3f, \"refine_iterations\": %d, \"refine_unreached_frames\": %d, "
+           "\"refine_skipped_edges\": %d",
            s.refine_status.c_str(), s.refined_frames, s.refine_constraints, s.refined_rows,
-           s.refine_initial_cost, s.refine_final_cost, s.refine_seconds);
+           s.refine_initial_cost, s.refine_final_cost, s.refine_seconds, s.refine_iterations,
+           s.refine_unreached_frames, s.refine_skipped_edges);
   }
   t += "}\n";
   return t;
@@ -552,10 +557,12 @@ std::string SummaryText(const ReplaySummary& s) {
   }
   if (!s.refine_status.empty()) {
     Append(t,
-           "refinement           %s: %d frames, %d constraints, cost %.6g -> %.6g, %.3f s, %d "
-           "rows\n",
+           "refinement           %s: %d frames, %d constraints, cost %.6g -> %.6g, %d "
+           "iterations, %.3f s, %d rows; left out: %d frames not connected to frame 0, %d edges "
+           "with unusable covariance\n",
            s.refine_status.c_str(), s.refined_frames, s.refine_constraints, s.refine_initial_cost,
-           s.refine_final_cost, s.refine_seconds, s.refined_rows);
+           s.refine_final_cost, s.refine_iterations, s.refine_seconds, s.refined_rows,
+           s.refine_unreached_frames, s.refine_skipped_edges);
   }
   return t;
 }

@@ -94,9 +94,13 @@ struct ReplaySummary {
   int reference_rows = 0;
   int closures_checked = -1, false_closures_chi2 = -1, false_closures_axis = -1;
   int gross_closures = -1;
-  // With refinement: frames placed, constraints, costs, status ("" when not asked for).
+  // With refinement: frames placed, constraints, costs, status ("" when not asked for); the
+  // solver's iterations (its log's length, the initial evaluation included), the frames not
+  // connected to frame 0 and the edges whose covariance was not usable (both left out; see
+  // RefineResult).
   std::string refine_status;
   int refined_frames = 0, refine_constraints = 0, refined_rows = 0;
+  int refine_iterations = 0, refine_unreached_frames = 0, refine_skipped_edges = 0;
   double refine_initial_cost = 0.0, refine_final_cost = 0.0, refine_seconds = 0.0;
 };
 

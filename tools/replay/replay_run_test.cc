@@ -61,6 +61,8 @@ class ReplayMitCsail : public ::testing::Test {
   carmen::CarmenReadResult read_;
 };
 
+// Run a refines (--refine) after the run, run b does not: refinement changes none of the other
+// files, and only a's summary carries its figures.
 TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   ReplayOptions options;
   options.max_scans = 300;
@@ -68,9 +70,11 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   ASSERT_FALSE(a.empty());
   ASSERT_FALSE(b.empty());
   int64_t progress_calls = 0;
+  options.refine = true;
   const ReplayResult ra = RunReplay(
       read_.log.events, options, a, [&](int64_t, int64_t) { ++progress_calls; }, 100);
   ASSERT_TRUE(ra.error.empty()) << ra.error;
+  options.refine = false;
   const ReplayResult rb = RunReplay(read_.log.events, options, b);
   ASSERT_TRUE(rb.error.empty()) << rb.error;
   EXPECT_EQ(progress_calls, 3);
@@ -137,6 +141,26 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   const std::string json = ReadAll(a + "/summary.json");
   EXPECT_NE(json.find("\"scans\": 300"), std::string::npos) << json;
   EXPECT_NE(json.find("\"frames\": " + std::to_string(ra.summary.frames)), std::string::npos);
+
+  // The refinement's figures: every frame placed or counted as not connected, at least one
+  // solver iteration for the constraints and no more than allowed (plus the initial one).
+  const ReplaySummary& sa = ra.summary;
+  EXPECT_EQ(sa.refine_status, "converged");
+  EXPECT_EQ(sa.refined_frames + sa.refine_unreached_frames, sa.frames);
+  EXPECT_EQ(sa.refine_unreached_frames, 0);  // the graph is connected (global.tsv above)
+  EXPECT_LE(sa.refine_constraints + sa.refine_skipped_edges, sa.edges);
+  EXPECT_GT(sa.refine_constraints, 0);
+  EXPECT_GE(sa.refine_iterations, 1);
+  EXPECT_LE(sa.refine_iterations, options.refine_options.max_iterations + 1);
+  for (const std::string& field :
+       {"\"refine_iterations\": " + std::to_string(sa.refine_iterations),
+        "\"refine_unreached_frames\": " + std::to_string(sa.refine_unreached_frames),
+        "\"refine_skipped_edges\": " + std::to_string(sa.refine_skipped_edges),
+        "\"refine_constraints\": " + std::to_string(sa.refine_constraints)})
+    EXPECT_NE(json.find(field), std::string::npos) << field << " in " << json;
+  const std::string json_b = ReadAll(b + "/summary.json");
+  EXPECT_EQ(json_b.find("\"refine_iterations\""), std::string::npos) << json_b;
+  EXPECT_FALSE(std::filesystem::exists(b + "/global_refined.tsv"));
   std::filesystem::remove_all(a);
   std::filesystem::remove_all(b);
 }
