@@ -3,21 +3,20 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <system_error>
 
 namespace atlas {
 
-bool ParseNumber(const char* text, double* value) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(v)) return false;
+bool ParseNumber(std::string_view text, double* value) {
+  const char* end = text.data() + text.size();
+  double v = 0;
+  const auto [p, ec] = std::from_chars(text.data(), end, v, std::chars_format::general);
+  if (ec != std::errc() || p != end || !std::isfinite(v)) return false;
   *value = v;
   return true;
 }
 
-bool ParseNumberIn(const char* text, double lo, double hi, double* value) {
+bool ParseNumberIn(std::string_view text, double lo, double hi, double* value) {
   double v = 0;
   if (!ParseNumber(text, &v) || v < lo || v > hi) return false;
   *value = v;
@@ -27,11 +26,11 @@ bool ParseNumberIn(const char* text, double lo, double hi, double* value) {
 namespace {
 
 template <typename T>
-bool ParseWholeInteger(const char* text, T* value) {
-  const char* end = text + std::strlen(text);
+bool ParseWholeInteger(std::string_view text, T* value) {
+  const char* end = text.data() + text.size();
   T v{};
-  const auto [p, ec] = std::from_chars(text, end, v, 10);
-  if (text == end || ec != std::errc() || p != end) return false;
+  const auto [p, ec] = std::from_chars(text.data(), end, v, 10);
+  if (ec != std::errc() || p != end) return false;
   *value = v;
   return true;
 }
@@ -44,10 +43,11 @@ std::string Shortest(double v) {
 
 }  // namespace
 
-bool ParseInteger(const char* text, int64_t* value) { return ParseWholeInteger(text, value); }
-bool ParseInteger(const char* text, uint64_t* value) { return ParseWholeInteger(text, value); }
+bool ParseInteger(std::string_view text, int64_t* value) { return ParseWholeInteger(text, value); }
+bool ParseInteger(std::string_view text, uint64_t* value) { return ParseWholeInteger(text, value); }
+bool ParseInteger(std::string_view text, int* value) { return ParseWholeInteger(text, value); }
 
-bool ParseIntegerIn(const char* text, long lo, long hi, long* value) {
+bool ParseIntegerIn(std::string_view text, long lo, long hi, long* value) {
   int64_t v = 0;
   if (!ParseInteger(text, &v) || v < lo || v > hi) return false;
   *value = static_cast<long>(v);

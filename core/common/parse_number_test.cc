@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace atlas {
 namespace {
@@ -19,6 +22,55 @@ TEST(ParseNumber, TakesOnlyAWholeFiniteNumber) {
     EXPECT_FALSE(ParseNumber(bad, &v));
     EXPECT_EQ(v, -7);  // left as it was
   }
+}
+
+TEST(ParseNumber, AcceptsPlainDecimalAndExponentForms) {
+  const struct {
+    const char* text;
+    double value;
+  } good[] = {{"-1.5", -1.5}, {"2e-3", 2e-3}, {"1e3", 1000}, {"1E+3", 1000}, {"0", 0},
+              {".5", 0.5},    {"5.", 5},      {"-.5", -0.5}, {"007", 7},     {"4e-320", 4e-320}};
+  for (const auto& [text, value] : good) {
+    SCOPED_TRACE(text);
+    double v = -7;
+    EXPECT_TRUE(ParseNumber(text, &v));
+    EXPECT_EQ(v, value);
+  }
+  double v = 7;
+  EXPECT_TRUE(ParseNumber("-0", &v));
+  EXPECT_EQ(v, 0);
+  EXPECT_TRUE(std::signbit(v));
+}
+
+// strtod took leading spaces, '+', hex and the locale's decimal point; from_chars takes none.
+TEST(ParseNumber, RefusesWhatStrtodWouldHaveTaken) {
+  for (const char* bad : {" 5",     "5 ",     "\t5", "5\n", "+5",     "0x10", "0X1p3", "1e999",
+                          "-1e999", "1e-400", "nan", "NAN", "nan(1)", "inf",  "INF",   "infinity",
+                          "",       ".",      "-",   "1e",  "1e+",    "--1",  "1_0"}) {
+    SCOPED_TRACE(bad);
+    double v = -7;
+    EXPECT_FALSE(ParseNumber(bad, &v));
+    EXPECT_EQ(v, -7);
+  }
+}
+
+TEST(ParseNumber, ReadsOnlyTheGivenView) {
+  const std::string_view line = "12.5 7 -3x";
+  double v = 0;
+  EXPECT_TRUE(ParseNumber(line.substr(0, 4), &v));
+  EXPECT_EQ(v, 12.5);
+  EXPECT_TRUE(ParseNumber(line.substr(5, 1), &v));
+  EXPECT_EQ(v, 7);
+  EXPECT_FALSE(ParseNumber(line.substr(7), &v));  // "-3x"
+  EXPECT_TRUE(ParseNumber(line.substr(7, 2), &v));
+  EXPECT_EQ(v, -3);
+  EXPECT_FALSE(ParseNumber(std::string_view(), &v));
+  EXPECT_EQ(v, -3);
+  int64_t i = 0;
+  EXPECT_TRUE(ParseInteger(line.substr(5, 1), &i));
+  EXPECT_EQ(i, 7);
+  EXPECT_FALSE(ParseInteger(line.substr(0, 4), &i));
+  EXPECT_EQ(i, 7);
 }
 
 TEST(ParseNumberIn, ChecksTheRange) {
@@ -62,6 +114,15 @@ TEST(ParseInteger, TakesTheWholeRangeOfItsTypeAndNothingElse) {
     EXPECT_FALSE(ParseInteger(bad, &u));
     EXPECT_EQ(u, 7u);
   }
+  int n = 0;
+  EXPECT_TRUE(ParseInteger("-2147483648", &n));
+  EXPECT_EQ(n, INT32_MIN);
+  EXPECT_TRUE(ParseInteger("2147483647", &n));
+  EXPECT_EQ(n, INT32_MAX);
+  EXPECT_FALSE(ParseInteger("2147483648", &n));
+  EXPECT_FALSE(ParseInteger("-2147483649", &n));
+  EXPECT_FALSE(ParseInteger("+1", &n));
+  EXPECT_EQ(n, INT32_MAX);
 }
 
 TEST(OptionArguments, RangeMessagesPrintTheBoundsAsWritten) {
@@ -77,7 +138,8 @@ TEST(OptionArguments, RangeMessagesPrintTheBoundsAsWritten) {
 TEST(OptionArguments, NumbersAreWholeFiniteNumbersInRange) {
   double d = 2;
   std::string error;
-  for (const char* bad : {"5x", "", "nan", "inf", "1e999", "-1e999", "11", "-0.5", "abc"}) {
+  for (const char* bad :
+       {"5x", "", "nan", "inf", "1e999", "-1e999", "11", "-0.5", "abc", " 5", "+5", "0x1"}) {
     SCOPED_TRACE(bad);
     EXPECT_FALSE(NumberArgument("--budget", bad, 0, 10, d, error));
     EXPECT_EQ(error, std::string("--budget must be a number in [0, 10], got '") + bad + "'");
