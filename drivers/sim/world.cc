@@ -1,10 +1,11 @@
 #include "drivers/sim/world.h"
 
 #include <charconv>
-#include <cmath>
 #include <istream>
 #include <ostream>
 #include <sstream>
+
+#include "core/common/parse_number.h"
 
 namespace atlas::sim {
 namespace {
@@ -20,16 +21,6 @@ std::vector<std::string_view> SplitWords(std::string_view line) {
     i = j;
   }
   return words;
-}
-
-bool ParseDouble(std::string_view s, double* v) {
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), *v);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size() && std::isfinite(*v);
-}
-
-bool ParseInt(std::string_view s, int* v) {
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), *v);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
 // Shortest text that reads back to the same double.
@@ -106,18 +97,18 @@ WorldParseResult ParseWorld(std::istream& in, const std::string& source) {
       double v[4];
       if (words.size() != 5) return fail("'wall' needs 4 numbers: x1 y1 x2 y2");
       for (int i = 0; i < 4; ++i)
-        if (!ParseDouble(words[i + 1], &v[i]))
+        if (!ParseNumber(words[i + 1], &v[i]))
           return fail("'wall': '" + std::string(words[i + 1]) + "' is not a finite number");
       world.walls.push_back(Wall{Vec2(v[0], v[1]), Vec2(v[2], v[3])});
     } else if (key == "node") {
       int id;
       double x, y;
       if (words.size() != 5) return fail("'node' needs: id x y kind");
-      if (!ParseInt(words[1], &id)) return fail("'node': id is not an integer");
+      if (!ParseInteger(words[1], &id)) return fail("'node': id is not an integer");
       if (id != static_cast<int>(world.nodes.size()))
         return fail("'node': expected id " + std::to_string(world.nodes.size()) +
                     " (ids count up from 0 in order)");
-      if (!ParseDouble(words[2], &x) || !ParseDouble(words[3], &y))
+      if (!ParseNumber(words[2], &x) || !ParseNumber(words[3], &y))
         return fail("'node': x y must be finite numbers");
       RouteNode node{Vec2(x, y), NodeKind::kCorridor};
       if (words[4] == "corridor") {
@@ -133,7 +124,7 @@ WorldParseResult ParseWorld(std::istream& in, const std::string& source) {
       world.nodes.push_back(node);
     } else if (key == "edge") {
       int a, b;
-      if (words.size() != 3 || !ParseInt(words[1], &a) || !ParseInt(words[2], &b))
+      if (words.size() != 3 || !ParseInteger(words[1], &a) || !ParseInteger(words[2], &b))
         return fail("'edge' needs two node ids");
       const int n = static_cast<int>(world.nodes.size());
       if (a < 0 || a >= n || b < 0 || b >= n || a == b)

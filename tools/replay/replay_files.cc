@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
 
 #include "core/atlas/dijkstra_projection.h"
+#include "core/common/parse_number.h"
 #include "core/geometry/covariance.h"
 
 namespace atlas::replay {
@@ -52,22 +52,10 @@ std::string ForEachRow(std::string_view text, const std::string& source, size_t 
   return "";
 }
 
-bool Number(std::string_view s, double* v) {
-  const char* end = s.data() + s.size();
-  const auto r = std::from_chars(s.data(), end, *v);
-  return r.ec == std::errc() && r.ptr == end && std::isfinite(*v);
-}
-
-bool Integer(std::string_view s, int64_t* v) {
-  const char* end = s.data() + s.size();
-  const auto r = std::from_chars(s.data(), end, *v);
-  return r.ec == std::errc() && r.ptr == end;
-}
-
 // Parses fields [first, first + n) as numbers into `v`; "" or what is wrong.
 std::string Numbers(const std::vector<std::string_view>& f, size_t first, size_t n, double* v) {
   for (size_t k = 0; k < n; ++k)
-    if (!Number(f[first + k], &v[k]))
+    if (!ParseNumber(f[first + k], &v[k]))
       return "field " + std::to_string(first + k + 1) + " '" + std::string(f[first + k]) +
              "' is not a finite number";
   return "";
@@ -95,7 +83,7 @@ std::string StampRange(double t, size_t field) {
 
 std::string FrameField(std::string_view s, size_t index, bool allow_none, FrameId* frame) {
   int64_t v = 0;
-  if (!Integer(s, &v) || v < (allow_none ? -1 : 0) || v > 100000000)
+  if (!ParseInteger(s, &v) || v < (allow_none ? -1 : 0) || v > 100000000)
     return "field " + std::to_string(index + 1) + " '" + std::string(s) + "' is not a frame id";
   *frame = static_cast<FrameId>(v);
   return "";
@@ -143,7 +131,7 @@ std::string ParseTrajectoryRows(std::string_view text, const std::string& source
       [&](const std::vector<std::string_view>& f) {
         StampedFramePose r;
         double v[3];
-        if (!Number(f[0], &r.stamp_s)) return std::string("field 1 is not a timestamp");
+        if (!ParseNumber(f[0], &r.stamp_s)) return std::string("field 1 is not a timestamp");
         if (std::string e = StampRange(r.stamp_s, 0); !e.empty()) return e;
         if (std::string e = FrameField(f[1], 1, false, &r.frame); !e.empty()) return e;
         if (std::string e = Numbers(f, 2, 3, v); !e.empty()) return e;
@@ -193,8 +181,9 @@ std::string ParseTimingRows(std::string_view text, const std::string& source,
   return ForEachRow(text, source, 6, [&](const std::vector<std::string_view>& f) {
     TimingRecord r;
     int64_t frames = 0, hyps = 0;
-    if (!Integer(f[0], &r.step) || !Number(f[1], &r.stamp_s) || !Integer(f[2], &frames) ||
-        !Integer(f[3], &hyps) || frames < 0 || hyps < 0 || !Integer(f[5], &r.step_ns))
+    if (!ParseInteger(f[0], &r.step) || !ParseNumber(f[1], &r.stamp_s) ||
+        !ParseInteger(f[2], &frames) || !ParseInteger(f[3], &hyps) || frames < 0 || hyps < 0 ||
+        !ParseInteger(f[5], &r.step_ns))
       return std::string("expected: step timestamp frames hypotheses dominant step_ns");
     if (std::string e = FrameField(f[4], 4, true, &r.dominant); !e.empty()) return e;
     r.frames = static_cast<int>(std::min<int64_t>(frames, 100000000));
@@ -209,7 +198,7 @@ std::string ParseFrameRows(std::string_view text, const std::string& source,
   return ForEachRow(text, source, 4, [&](const std::vector<std::string_view>& f) {
     FrameRecord r;
     if (std::string e = FrameField(f[0], 0, false, &r.frame); !e.empty()) return e;
-    if (!Integer(f[1], &r.step) || !Number(f[2], &r.stamp_s))
+    if (!ParseInteger(f[1], &r.step) || !ParseNumber(f[2], &r.stamp_s))
       return std::string("expected: frame step timestamp parent");
     if (std::string e = FrameField(f[3], 3, true, &r.parent); !e.empty()) return e;
     out->push_back(r);
@@ -223,7 +212,7 @@ std::string ParseMapRows(std::string_view text, const std::string& source,
     FrameLine r;
     if (std::string e = FrameField(f[0], 0, false, &r.frame); !e.empty()) return e;
     int64_t id = 0;
-    if (!Integer(f[1], &id)) return std::string("field 2 is not a line id");
+    if (!ParseInteger(f[1], &id)) return std::string("field 2 is not a line id");
     double v[9];
     if (std::string e = Numbers(f, 2, 9, v); !e.empty()) return e;
     r.line.id = static_cast<int>(id);
@@ -285,7 +274,7 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
        [&](auto t, auto& s) {
          return ForEachRow(t, s, 2, [&](const std::vector<std::string_view>& f) {
            int64_t step = 0, ns = 0;
-           if (!Integer(f[0], &step) || !Integer(f[1], &ns) ||
+           if (!ParseInteger(f[0], &step) || !ParseInteger(f[1], &ns) ||
                step != static_cast<int64_t>(out->step_cpu_ns.size()) + 1)
              return std::string("expected: step cpu_ns, steps counting up from 1");
            out->step_cpu_ns.push_back(ns);
