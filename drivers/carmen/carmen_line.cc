@@ -1,8 +1,9 @@
 #include "drivers/carmen/carmen_line.h"
 
-#include <charconv>
 #include <cmath>
 #include <numbers>
+
+#include "core/common/parse_number.h"
 
 namespace atlas::carmen {
 namespace {
@@ -53,8 +54,7 @@ class FieldCursor {
     if (failed()) return 0.0;
     if (!w.empty() && w[0] == '+') w.remove_prefix(1);
     double v = 0.0;
-    auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
-    if (ec != std::errc() || ptr != w.data() + w.size() || !std::isfinite(v)) {
+    if (!ParseNumber(w, &v)) {
       Fail(LineError::kBadNumber, std::string("field ") + std::to_string(index + 1) + " (" + what +
                                       ") is " + QuoteForMessage(w) + ", not a number");
       return 0.0;

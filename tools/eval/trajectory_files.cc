@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cassert>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <utility>
 
+#include "core/common/parse_number.h"
 #include "core/geometry/covariance.h"
 
 namespace atlas::eval {
@@ -29,8 +29,7 @@ bool ParseNumbers(std::string_view line, std::vector<double>& out, std::string& 
     std::string_view w = line.substr(start, i - start);
     if (w[0] == '+') w.remove_prefix(1);
     double v = 0.0;
-    auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
-    if (ec != std::errc() || ptr != w.data() + w.size() || !std::isfinite(v)) {
+    if (!ParseNumber(w, &v)) {
       error = "field " + std::to_string(out.size() + 1) + " is " +
               carmen::QuoteForMessage(line.substr(start, i - start)) + ", not a number";
       return false;
