@@ -176,12 +176,9 @@ const StepStats& Atlas::LocalizeWith(const Pose2& odometry_delta, const Mat3* in
 
 bool Atlas::UsableInput(const Pose2& odometry_delta, const Mat3* increment_cov,
                         const LaserScan* scan, bool first) {
-  auto finite = [](const Pose2& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
-  };
-  if (scan != nullptr && !finite(scan->sensor_pose)) return false;
+  if (scan != nullptr && !scan->sensor_pose.IsFinite()) return false;
   if (first) return true;  // the first step's odometry is not used
-  return finite(odometry_delta) &&
+  return odometry_delta.IsFinite() &&
          std::hypot(odometry_delta.x, odometry_delta.y) <= kMaxStepTranslation &&
          (increment_cov == nullptr || increment_cov->allFinite());
 }
@@ -673,10 +670,6 @@ constexpr int64_t kNoGenesisStep = -1000000;
 // overflow.
 constexpr int32_t kMaxScanCount = 1 << 20;
 
-bool Finite(const Pose2& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
-}
-
 // Finite, symmetric and positive semi-definite (eigenvalues >= -tiny relative to its scale).
 bool ValidCovariance(const Mat3& c) {
   if (!c.allFinite()) return false;
@@ -873,7 +866,7 @@ bool Atlas::Deserialize(const std::string& bytes) {
     if (static_cast<uint8_t>(e.kind) > 2 || e.origin == EdgeKind::kRefined ||
         static_cast<uint8_t>(e.origin) > 2 || (e.kind != e.origin && e.kind != EdgeKind::kRefined))
       return false;
-    if (!Finite(e.b_in_a.mean) || !ValidCovariance(e.b_in_a.cov) || e.made_step < 0 ||
+    if (!e.b_in_a.mean.IsFinite() || !ValidCovariance(e.b_in_a.cov) || e.made_step < 0 ||
         e.made_step > step)
       return false;
     const bool refined = e.kind == EdgeKind::kRefined;
@@ -931,7 +924,7 @@ bool Atlas::Deserialize(const std::string& bytes) {
             if (!r.Get(&h.seed.cov(row, col))) return false;
             h.seed.cov(col, row) = h.seed.cov(row, col);
           }
-        if (!Finite(h.seed.mean) || !ValidCovariance(h.seed.cov)) return false;
+        if (!h.seed.mean.IsFinite() || !ValidCovariance(h.seed.cov)) return false;
       }
     }
     // Z grows by at most one scan a step, only while the juvenile is not bootstrapped, and is

@@ -33,6 +33,7 @@ struct Pose2 {
   double theta = 0.0;
 
   Vec3 ToVector() const { return Vec3(x, y, theta); }
+  bool IsFinite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(theta); }
   static Pose2 FromVector(const Vec3& v) { return Pose2{v.x(), v.y(), WrapAngle(v.z())}; }
   // Maps a point given in this pose's frame into the parent frame.
   Vec2 TransformPoint(const Vec2& p) const;

@@ -35,7 +35,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         const atlas::Pose2 before = integrator.sample().pose;
         const OdometryStep step = integrator.Update(stamp, m.odometry);
         const atlas::Pose2 after = integrator.sample().pose;
-        FUZZ_CHECK(std::isfinite(after.x) && std::isfinite(after.y) && std::isfinite(after.theta));
+        FUZZ_CHECK(after.IsFinite());
         if (step != OdometryStep::kIntegrated) {
           FUZZ_CHECK(before.x == after.x && before.y == after.y && before.theta == after.theta);
         }

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/atlas/dijkstra_projection.h"
+#include "core/atlas/frame_components.h"
 #include "core/geometry/covariance.h"
 
 namespace atlas::refine {
@@ -104,29 +105,16 @@ RefineResult RefineGlobal(const AtlasGraph& graph, const RefineOptions& options)
 
   // The frames reached from frame 0 through usable constraints; the initial arrangement is the
   // Dijkstra projection from frame 0.
-  std::vector<std::vector<FrameId>> adjacent(static_cast<size_t>(n));
-  for (const Constraint& c : constraints) {
-    adjacent[static_cast<size_t>(c.a)].push_back(c.b);
-    adjacent[static_cast<size_t>(c.b)].push_back(c.a);
-  }
+  FrameComponents reach;
+  for (int f = 0; f < n; ++f) reach.AddFrame();
+  for (const Constraint& c : constraints) reach.Join(c.a, c.b);
   std::vector<uint8_t> placed(static_cast<size_t>(n), 0);
-  std::vector<FrameId> todo{0};
-  placed[0] = 1;
-  while (!todo.empty()) {
-    const FrameId f = todo.back();
-    todo.pop_back();
-    for (FrameId g : adjacent[static_cast<size_t>(f)])
-      if (!placed[static_cast<size_t>(g)]) {
-        placed[static_cast<size_t>(g)] = 1;
-        todo.push_back(g);
-      }
-  }
+  for (FrameId f = 0; f < n; ++f) placed[static_cast<size_t>(f)] = reach.Connected(f, 0);
   std::vector<std::array<double, 3>> x(static_cast<size_t>(n));
   std::vector<uint8_t> started(static_cast<size_t>(n), 0);  // x holds an initial value
   for (const ProjectedFrame& f : DijkstraProjection(graph, 0).entries) {
     const Pose2& p = f.pose.mean;
-    if (f.frame < 0 || f.frame >= n || !placed[static_cast<size_t>(f.frame)] ||
-        !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta))
+    if (f.frame < 0 || f.frame >= n || !placed[static_cast<size_t>(f.frame)] || !p.IsFinite())
       continue;
     x[static_cast<size_t>(f.frame)] = {p.x, p.y, p.theta};
     started[static_cast<size_t>(f.frame)] = 1;
