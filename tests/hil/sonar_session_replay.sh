@@ -8,8 +8,8 @@
 #     it stepped; both: readings and scans), with no pose gap over 0.5 s;
 #   - MODE sonar: the poses follow the sonar readings at once (the sonar reader wakes the loop):
 #     median from a reading's arrival stamp to its pose received by an LCM subscriber
-#     (atlas-pose-latency) under 2 ms (2026-11-23: 0.42 ms; with the loop woken only by the
-#     laser at 4 Hz or its 10 ms idle wait, as before, 3.5 ms);
+#     (atlas-pose-latency) under 2 ms (measured 0.42 ms; with the loop woken only by the
+#     laser at 4 Hz or its 10 ms idle wait, 3.5 ms);
 #   - `atlasd --replay` of the recording with the same configuration file steps the same
 #     items in the same order and gives the same poses: the n-th replay step has the n-th live
 #     step's stamp, frame, x, y, theta (printed to 1e-6) and q (to 1e-4).
