@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# HIL: a sonar session re-run. `sonar_session_replay.sh MODE` (MODE: sonar or both, the
+# HIL: a sonar recording re-run. `sonar_recording_replay.sh MODE` (MODE: sonar or both, the
 # [localmap] sensors value): atlas-sim makes a short run through a small building; atlas-fakedev
 # plays it at 2x on the fake laser, CAN base and P2OS sonar (returns synthesised from the
 # laser, drivers/fake/fake_p2os.h); atlasd maps it with the raw channels republished and
@@ -15,7 +15,7 @@
 #     step's stamp, frame, x, y, theta (printed to 1e-6) and q (to 1e-4).
 source "$(dirname "$0")/hil_lib.sh"
 need_multicast
-MODE=${1:?usage: sonar_session_replay.sh sonar|both}
+MODE=${1:?usage: sonar_recording_replay.sh sonar|both}
 : "${SIM:?set SIM to the atlas-sim binary}" "${POSE_LATENCY:?set POSE_LATENCY}"
 SPEED=2
 # MODE sonar: the laser at 4 Hz, so that most readings (10 Hz) come without a scan to wake the
