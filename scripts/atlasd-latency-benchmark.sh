@@ -5,7 +5,7 @@
 # a route for 224.0.0.0/4 on lo, LCM_DEFAULT_URL udpm with ttl=0. Takes minutes (ATLAS_LATENCY_SECONDS
 # of timed scans per variant, default 60); not a ctest.
 #
-#   ATLAS_BUILD_DIR=/work/build-latency scripts/atlasd-latency-benchmark.sh \
+#   ATLAS_BUILD_DIR=build/release scripts/atlasd-latency-benchmark.sh \
 #     --benchmark_filter='fifo:40/sub_fifo:40/pin:0' --benchmark_repetitions=3
 #
 # Arguments go to the benchmark binary (Google Benchmark flags). Needs root for the real-time

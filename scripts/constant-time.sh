@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Issue 4, constant time on the simulator: a >= 10 km run through a generated building with many
+# Constant time on the simulator (docs/design.md, "Constant time"): a >= 10 km run through a generated building with many
 # loops, replayed through the Atlas. Default 25 km through >= 2400 rooms: the atlas makes about
-# 22 frames per km of simulated route (10 km made 174 frames in 128 rooms and 211 in 652 rooms,
-# 2026-11-22), so 500 frames need about 25 km. Prints the frames made, the median step time over the first
+# 22 frames per km of simulated route (10 km made 174 frames in 128 rooms and 211 in 652 rooms),
+# so 500 frames need about 25 km. Prints the frames made, the median step time over the first
 # and the last tenth of the steps (target: within 15 %), the maximum step time against the step
 # budget, overruns (wall time, and the stepping thread's CPU time: the machine may be shared),
 # and resident memory after the run and per frame; draws step time against
@@ -99,7 +99,7 @@ if cpu and repeats:
         if len(other) == len(least):
             least = [min(x, y) for x, y in zip(least, other)]
     # The medians above come from one replay, and on a shared machine they move by up to 0.15
-    # between two replays of the same binary (docs/atlas.md, session 17); the least of the
+    # between two replays of the same binary; the least of the
     # replays at each step is the steadier figure.
     first, last = median(least[:tenth]), median(least[-tenth:])
     print("  CPU  median step of the least of %d replays, first tenth %.1f us, last tenth %.1f us: "

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Issue 4, corrected logs over many odometry seeds. One seed of scripts/eval-corrected.sh
+# Corrected logs over many odometry seeds. One seed of scripts/eval-corrected.sh
 # cannot tell a better atlas from luck: on aces the open revisit pairs ranged from 7 to 13 of 22
-# across seeds 1-10 with the same binary (docs/atlas.md, session 14). This runs
+# across seeds 1-10 with the same binary. This runs
 # eval-corrected.sh once per seed (two at a time) and prints, per log, the revisit pairs more
 # than 0.5 m off summed over the seeds, their share, the worst seed, how many pairs the atlas
 # joined (one frame, neighbouring frames, a path through a map-match edge) or left on a chain of

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 4, corrected logs: for each of the six Radish "corrected" logs, synthesise wheel
+# Corrected logs: for each of the six Radish "corrected" logs, synthesise wheel
 # odometry from the corrected poses (seeded, a calibrated base's noise: drivers/sim
 # WheelOdometryNoiseOptions defaults), run atlas-replay, score the Dijkstra-projected global
 # trajectory against the reference (atlas-eval --reference; dead reckoning of the same

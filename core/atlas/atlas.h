@@ -1,80 +1,29 @@
 #pragma once
 // The Atlas framework's step (paper, Sections II-III): a graph of map-frames with a bounded set
 // of competing hypotheses, Genesis, traversal, map-matching and edge refinement, in constant
-// time per step. No I/O.
+// time per step. No I/O. The reasoning behind each part, and the choices the paper leaves open,
+// are in docs/design.md (sections III-A to III-F, "Constant time").
 //
 // Step(odometry_delta, scan), in this order:
-//  1. Every live hypothesis predicts with the odometry increment and updates with the scan
-//     (mature: may add features; juvenile: may not, and works on a private clone of its frame's
-//     map). q (eq. 5) is recomputed. A juvenile still bootstrapping keeps its scans; after
-//     `lifecycle.bootstrap_scans` of them, w (eq. 12) solves its pose from the scans alone: the
-//     pose is replaced by w's solution (and the trial map by w's M_i^new when w makes one),
-//     or the juvenile is killed if w fails. While w is undetermined (Z does not fix the pose
-//     yet) Z keeps growing and w is tried at every step until the end of probation.
-//  2. Juveniles at the end of probation mature (q beats every mature hypothesis) or are deleted
-//     (Fig. 4). The frame of a deleted juvenile is not reseeded for `seed_cooldown_steps`.
-//     The matured juvenile's trial map replaces the frame's map. Without w (no bootstrapper:
-//     the sonar atlas) `keep_frame_map_without_w` instead keeps the frame's map and gives it
-//     the juvenile's robot pose (an experiment, off: docs/sonar.md, session 7).
-//  3. Failing mature hypotheses (q < q_fail for fail_steps scans, or, other than the dominant
-//     one, q more than retire_margin below the dominant's for lag_steps scans: hypothesis.h) are
-//     retired if another mature hypothesis is healthy. If none is, Genesis (III-C) starts a new
-//     frame from the dominant one and the failing ones retire, unless juveniles are still on
-//     probation (they get their probation first: a known place must win over a new frame when the
-//     robot returns). A mature hypothesis in a frame adjacent to the dominant one whose pose
-//     contradicts the dominant pose across their edge (ContradictsDominant: the edge
-//     observation of eq. 14-15 outside `refine_gate_chi2`) counts as failing at once (our
-//     addition): both track the same robot, so one of them is lost, and the dominant one is
-//     the output. On mit-csail such lost hypotheses took over as dominant with 5-20 m errors.
-//  4. Traversal (III-E, eq. 10-11): when the dominant q is below q_traverse, juveniles are
-//     seeded in frames near the dominant frame (bounded Dijkstra projection, at most
-//     `traversal_max_hops` edges away, nearest in rho first) that carry no hypothesis and
-//     have a line within `traversal_reach` of the seed:
-//     x_i* = T_i^d (+) x_d with T_i^d the pose of the dominant frame in frame i composed along
-//     the projection tree (one edge for adjacent frames, exactly eq. 10-11).
-//     With `return_q` above q_traverse, a dominant q in [q_traverse, return_q) seeds too, but
-//     only frames whose origin lies within `return_radius` of the seed, and frames more than
-//     `traversal_max_hops` edges away (still within the projection) whose origin lies within
-//     `return_far_radius` of it (see the options).
-//  5. Genesis at capacity (III-C): the dominant map is full, its q is below q_traverse, it
-//     explains less than `capacity_explanation` of its recent observations (it would have to
-//     grow), no other
-//     mature hypothesis sits in a frame that can still grow, and no juvenile is alive (known
-//     frames nearby get their probation before a new frame competes with them).
-//  6. Map-matching (III-D): candidates are the frames of the bounded projection from the
-//     dominant frame that are not adjacent to it, whose origin lies within `match_radius` of
-//     the robot (plus 3 sigma of the projection), with enough lines. At most
-//     `match_candidates_per_step` are matched per step, round-robin over the candidates, so the
-//     search is spread over steps; a pair is not re-matched until one of its maps changed. A
-//     self-match (map_match.h) that is not cached counts as one of those searches: it is
-//     computed in this step and the pair matched in a later one, so that a step does at most
-//     `match_candidates_per_step` bounded searches of either kind (each bounded by
-//     match.max_line_checks), never a self-match of each map and a cross-match at once. The
-//     projection (prior) only gates (Condition 2); t comes from the maps (map_match.h).
-//     After ResumeInNewFrame() the graph has unconnected parts; their frames are matched
-//     without a prior (at most `resume_candidates_per_step`, see ResumeInNewFrame).
-//  7. Edge refinement (III-F): for mature hypotheses in adjacent frames, covariance
-//     intersection (edge_refinement.h), at most `max_refinements_per_step`, each edge at most
-//     once per `refine_interval_steps`. An observation that disagrees with the edge beyond
-//     `refine_gate_chi2` is rejected (RefineEdge), not fused. Only edges made by Genesis are
-//     refined unless `refine_map_match_edges` (our choice): a map-match edge's t comes from the
-//     two maps alone (eq. 9), while the observation of eq. 14-15 comes from the hypotheses'
-//     robot poses, which on the sonar alcove loop and intel were less consistent than the
-//     maps; fused in, they made 2 true sonar closures and 1 laser one false (docs/atlas.md).
+//  1. Every live hypothesis predicts and updates with the scan; q (eq. 5) is recomputed. A
+//     juvenile bootstrapping keeps its scans, and after `lifecycle.bootstrap_scans` of them w
+//     (eq. 12) solves its pose (killed if w fails; retried each step while undetermined).
+//  2. Juveniles at the end of probation mature (q beats every mature hypothesis; the trial map
+//     replaces the frame's map) or are deleted (Fig. 4); a deleted juvenile's frame is not
+//     reseeded for `seed_cooldown_steps`.
+//  3. Failing mature hypotheses (hypothesis.h; and one contradicting the dominant pose across
+//     an edge beyond `refine_gate_chi2`) retire if another mature hypothesis is healthy; else
+//     Genesis (III-C) starts a frame from the dominant one, unless juveniles are on probation.
+//  4. Traversal (III-E, eq. 10-11): juveniles seeded in frames near the dominant one, bounded by
+//     `traversal_max_hops`, `traversal_reach` and the return band (`return_q`).
+//  5. Genesis at capacity (III-C).
+//  6. Map-matching (III-D, map_match.h): at most `match_candidates_per_step` bounded searches
+//     (cross-matches or uncached self-matches) per step; the projection only gates.
+//  7. Edge refinement (III-F, edge_refinement.h): at most `max_refinements_per_step`, Genesis
+//     edges only unless `refine_map_match_edges`; observations outside the gate are rejected.
 //
-// Constant time: every loop above is bounded by an option (hypotheses alive, projection frames,
-// seeds, candidates, refinements) and by the map capacity; no loop runs over all frames or
-// edges. Memory per frame: its map (bounded by capacity) and at most max_degree edges, plus
-// O(1) bookkeeping. The graph grows by one frame per Genesis.
-//
-// Choices the paper leaves open (all configurable):
-// - probation length: 8 scans, bootstrap after 4 (hypothesis.h says why);
-// - form of m and t: line-pair hypotheses verified by Mahalanobis gating (map_match.h);
-// - q thresholds: q_traverse 0.6 (traversal starts while the map still mostly explains the data,
-//   so juveniles have their probation before the dominant fails), q_fail 0.35;
-// - a juvenile is seeded from the dominant hypothesis only (the output), not from every mature
-//   one, which keeps seeding O(max_seeds_per_step).
-//
+// Constant time: every loop is bounded by an option and the map capacity; none runs over all
+// frames or edges. Memory per frame: its map, at most max_degree edges, its points, O(1) more.
 // Errors: Step never throws; construction needs valid options (Validate()) and a map factory.
 // Without a bootstrapper (w), juveniles keep their seeded pose and are judged on q alone.
 
@@ -114,15 +63,15 @@ struct AtlasOptions {
   // the dominant q lies in [q_traverse, return_q), juveniles are seeded as in step 4, but only
   // in frames whose origin the seeded position lies within `return_radius` metres of: the
   // robot is back where that frame began, and its map may explain the scans better than the
-  // dominant one, which still explains them well enough not to fall below q_traverse (a
-  // square loop whose frame also covers the start: seattle, docs/atlas.md session 16).
+  // dominant one, which still explains them well enough not to fall below q_traverse
+  // (docs/design.md, "III-E. Traversal").
   double return_q = 0.0;
   double return_radius = 4.0;
   // In that band only, frames farther than `traversal_max_hops` edges (any frame of the
   // bounded projection) are seeded too when their origin lies within this many metres of the
   // seed: the robot is back where a frame began that the chain of Genesis edges has carried
-  // far along the graph (freiburg-079 gains most; docs/atlas.md session 18). Tighter than
-  // return_radius, because the seed comes along a longer chain. 0: off.
+  // far along the graph (docs/design.md, "III-E. Traversal"). Tighter than return_radius,
+  // because the seed comes along a longer chain. 0: off.
   double return_far_radius = 0.0;
   // Bounded Dijkstra projection used by traversal and map-matching.
   int projection_max_frames = 24;
@@ -143,21 +92,20 @@ struct AtlasOptions {
   // which comes from other frames and the edges but enters the EKF as independent of frame i's
   // features, so adopting them fuses that seed into the frame's map at each re-entry. On:
   // the frame keeps its own map and takes the juvenile's robot pose (with no correlation to
-  // the features, so later updates count the map's information twice instead). Measured on the
-  // simulator's sonar atlases (docs/sonar.md, session 7): building NEES 9.59 -> 12.28, alcove
-  // loop 6.91 -> 6.34; so off.
+  // the features, so later updates count the map's information twice instead). Off: on the
+  // simulator's sonar atlases it made the robot NEES worse (docs/design.md, "III-E. Traversal").
   bool keep_frame_map_without_w = false;
   // Without w: traversal seeds (eq. 10-11) get their covariance times this factor. The seed's
   // correlation with frame i's map is unknown (dropped with the frames' independence); a factor
-  // 1/omega is the seed's side of covariance intersection (eq. 16-18) with weight omega. An
-  // experiment (docs/sonar.md, session 7); 1 = the plain projection.
+  // 1/omega is the seed's side of covariance intersection (eq. 16-18) with weight omega. Not
+  // used by atlasd (docs/design.md, "III-E. Traversal"); 1 = the plain projection.
   double seed_cov_scale_without_w = 1.0;
   // Genesis (III-C) puts the robot's covariance in the old frame on the new edge, times this
   // (our addition; 1 = the paper). The local maps' covariance there is optimistic: on the six
   // corrected logs (30 seeds) the edges of the Genesis chain lie at a median chi-square of
-  // 3.6-4.9 on four logs and 13.7 on freiburg-079 against the reference, where 2.37 is expected
-  // (docs/atlas.md, session 17), and a prior composed from them gates map-matching and seeds
-  // traversal. atlasd's laser atlas uses 2.
+  // 3.6-4.9 on four logs and 13.7 on freiburg-079 against the reference, where 2.37 is expected,
+  // and a prior composed from them gates map-matching and seeds traversal (docs/design.md,
+  // "III-C. Genesis"). atlasd's laser atlas uses 2.
   double genesis_cov_scale = 1.0;
   double capacity_explanation = 0.8;
   int genesis_min_interval_steps = 5;

@@ -4,8 +4,9 @@
 // (paper, Section III-D).
 //
 // Why: a local map of at most ten lines in a building of long corridors often matches itself
-// under shifts of one corridor width or one door spacing (docs/atlas.md, session 20: on the
-// corrected aces and seattle logs 65-73 % of the map-matching tries were refused as repetitive).
+// under shifts of one corridor width or one door spacing (on the corrected aces and
+// seattle logs 65-73 % of the map-matching tries were refused as repetitive; docs/design.md,
+// "Points: structure beyond the lines").
 // The lines alone cannot tell those placements apart, but the scans that made them can: door
 // jambs, furniture, wall ends and clutter too short or too scattered to become lines. The cells
 // do not form t (t comes from the lines, eq. 9); they only decide between placements the lines

@@ -164,7 +164,7 @@ struct LifecycleOptions {
   // A mature hypothesis other than the dominant one whose q is more than retire_margin below
   // the dominant's for lag_steps consecutive scans is retired (see the transitions above).
   // 0.2 and 15 scans (3 s at 5 scans/s): measured on the simulator's sonar atlases (alcove
-  // corridor loop and building, docs/atlas.md), neutral on the laser logs.
+  // corridor loop and building), neutral on the laser logs (docs/design.md, "III-B. Hypotheses").
   double retire_margin = 0.2;
   int lag_steps = 15;
   std::string Validate() const;

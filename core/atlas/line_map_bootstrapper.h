@@ -17,7 +17,8 @@
 // kInconsistent (the scans contradict the map) are kFailed. On the six corrected logs this keeps
 // juveniles alive that re-enter a frame along a corridor: intel's returns more than 0.5 m off
 // went from 48 and 50 of 108 to 19 and 10 (seeds 1 and 2), with no false loop closure
-// (docs/atlas.md, session 10). Treating kTooFewMatches the same way too brought false closures.
+// (docs/design.md, "III-B. Hypotheses"). Treating kTooFewMatches the same way too brought false
+// closures.
 
 #include "core/atlas/hypothesis.h"
 #include "core/localmap/localmap_options.h"

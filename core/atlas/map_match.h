@@ -1,115 +1,28 @@
 #pragma once
-// Map-matching between two line maps (paper, Section III-D, eq. 7-9), for loop closure.
+// Map-matching between two line maps (paper, Section III-D, eq. 7-9), for loop closure. The
+// forms of m and t, and why each Condition 2 check exists: docs/design.md, "III-D.
+// Map-matching".
 //
-// The paper leaves the forms of m (eq. 7-8) and t (eq. 9) open. Choices made here:
-// - t, the transform, is hypothesised from the maps alone (never from the robot pose): for a
-//   pair of non-parallel lines (i, j) of map A and a pair (k, l) of map B whose angles agree
-//   (the angle between two lines is invariant under SE(2)), aligning k with i and l with j
-//   fixes the rotation (two solutions, theta and theta + pi, since a line's normal direction is
-//   not invariant) and the translation (two line equations, non-parallel so solvable).
-// - m, the degree of match, is the support of a hypothesis: the number of lines of B that,
-//   transformed into A, fall within the chi-square gate of a distinct line of A (Mahalanobis
-//   over (rho, alpha) with both lines' covariances) and whose segments overlap (with slack).
-//   A match needs `min_support` lines and a support that leads every distinct rival transform
-//   by `min_lead` lines: a unique best.
-// - Self-match (III-D: "only structure elements that match uniquely within a map"): each map is
-//   matched with itself; a non-identity self-transform S with at least `self_min_support` lines
-//   is repetitive structure, and its lines are excluded. Condition 2: a repetition only matters
-//   when the prior (the Dijkstra projection of B in A) cannot tell S (+) T from T, i.e. when
-//   S (+) T lies inside the prior's gate; without a prior every repetition matters. The same
-//   gate filters cross-match rivals. When exclusion leaves too little structure, or two
-//   distinct transforms inside the gate are equally supported, the result is kAmbiguous.
-//   After that, each remaining repetition's rival placement S (+) T (or T (+) S_b) inside the
-//   gate is verified on the usable lines, and one that explains B within `min_lead` lines as
-//   well as T does also makes the result kAmbiguous (kRepetitive). (Tried on 2026-11-23: using
-//   only these verified rivals, without the exclusion, closes many more loops on the corrected
-//   logs but accepts a wrong period in a repetitive corridor when the shifted placement
-//   overlaps more of B than the true one: core/sonar/sonar_condition2_test.cc.)
-// - Condition 2 per direction (redundancy): every matched pair must be redundant, i.e. the
-//   other pairs alone fix t's translation to `redundancy_sigma` in every direction. A direction
-//   fixed by one pair only (in a corridor: two walls and a single jamb, or one wall and jambs)
-//   rests on a correspondence nothing else checks: any other line of that orientation would do
-//   as well, and t's covariance, from that pair's own covariance, says nothing about the
-//   choice. Such a match is kAmbiguous (kSinglePair), unless the prior's gate along that
-//   direction reaches no further than `redundancy_prior_halfwidth` either side (Condition 2:
-//   the prior tells the alternatives apart). On the sonar alcove loop (tools/sonar_eval, seeds
-//   1-20) every gross false closure (2.3-2.4 m along or across the corridor, d2 > 1000) was
-//   of this kind; the sonar atlas's priors are themselves inconsistent, so it uses 0.5 m
-//   (sonar_eval::SonarAtlasOptions; 1-2 m let gross ones back). The default 2 m left the six
-//   corrected laser logs' closures as they were (0.5 m refused 2 of intel's 4 true ones); laser
-//   lines use 1 m since a 1.7 m alternative was accepted on csail (LaserMapMatchOptions).
-// - Condition 2 against alternative lines: the redundancy test above asks whether the other
-//   pairs fix a direction to an absolute redundancy_sigma; the maps themselves say which
-//   alternatives there are. For each matched pair (i of A, k of B), every other line of A
-//   nearly parallel to i (within parallel_tolerance) that k could lie on instead, and every
-//   other line of B nearly parallel to k that could lie on i, gives a placement t' = t + shift
-//   (t's rotation, translation moved along the alternative's normal). If the shift exceeds
-//   `alternative_sigmas` standard deviations of t's covariance along it (smaller shifts are
-//   what the covariance already allows), the two segments lie side by side at t'
-//   (overlap_slack), t' lies inside the prior's gate, and every other pair stays inside its
-//   line gate at t', then neither the other pairs nor the prior tell t from t': kAmbiguous
-//   (kSinglePair). The case that made this test (freiburg-079, edge 8-0, 2026-11-23 session 6,
-//   docs/atlas.md): a wall with a 0.4 m step; frame 8's map held both faces (a 4.8 m line and
-//   a 1 m one, 0.09 rad apart), frame 0's map only the recessed one, which the match paired
-//   with the 4.8 m line. That pair alone fixed t's x (sigma 0.105 m with it, 0.44 m without:
-//   "redundant" by the 1 m test), and t came out 0.40 m off the reference (d2 18.7); the three
-//   other pairs and the prior allowed the true placement as well. atlasd turns it on (3 sigma)
-//   for laser lines (LaserMapMatchOptions), SonarMapMatchOptions for sonar lines;
-//   off by default.
-// - t's covariance comes from the matched lines' covariances: Gauss-Newton over all matched
-//   pairs, Sigma = (sum H^T S^-1 H)^-1. The lines of one local map are correlated (they share
-//   the robot's errors when they were seen) and MapLine carries only each line's marginal, so
-//   this is optimistic; `unknown_line_correlation` scales it by n for n pairs (covariance
-//   intersection with equal weights, eq. 16 with omega = 1/n), consistent whatever the
-//   correlation. It is off by default: on the six corrected logs it cut the edges beyond 3
-//   sigma of the reference (11 of 31 -> 2 of 57, gross 4 -> 1), but the looser edges widen the
-//   Dijkstra projection's priors, and in the seeded sonar run on a repetitive corridor
-//   (tools/sonar_eval SonarAtlasCondition2) a wrong period then passed the prior gate
-//   (session 5). atlasd turns it on for laser lines (LaserMapMatchOptions) and, since session
-//   16, for sonar ones (SonarMapMatchOptions: measured there). Matched
-//   lines that are all parallel leave a singular information matrix: kRejected (degenerate),
-//   never a guess.
-// - Points (our addition; frame_points.h). Ten lines of a building of long corridors often
-//   repeat within the map (a shift of one corridor width or door spacing), and then the match
-//   is refused as kRepetitive or kRivalTransform above. On the corrected aces log that was 65 %
-//   of all tries, and one was accepted in 60 seeds (docs/atlas.md, sessions 20 and 21). When
-//   both frames keep the laser endpoints their maps were built from, such a refusal is looked
-//   at again:
-//   - every transform hypothesised from all lines (repeated ones included) that is inside the
-//     prior's gate and has `min_support` lines is a placement;
-//   - so is each repetition of the best of them (S (+) T, T (+) S_b), as above;
-//   - each placement is scored by the cells of B's points that land next to cells of A's;
-//   - the placement with the most hits is accepted only if it has `point_min_hits` of them
-//     and no other placement reaches `point_rival_ratio` of its hits. Only structure that is
-//     unique within the maps (III-D) can make that difference: door jambs, furniture, wall ends
-//     and clutter that never became lines. Points that repeat as the lines do leave the
-//     refusal standing (Condition 2);
-//   - t and its covariance come from the lines of the chosen placement as above, and the
-//     checks that follow stay. A direction that one pair alone fixes passes only if the points
-//     fix it too: every shift along it of at least `distinct_translation`, out to the prior's
-//     gate, has at most `point_rival_ratio` of t's hits. A gate reaching farther than
-//     `point_max_shift` along it leaves the direction unfixed (the search is one Hits() per
-//     cell of shift, so this bounds it). An alternative line's placement is dismissed the
-//     same way.
-//   The points never form t. Measured over 60 seeds of the six corrected logs (session 21): aces
-//   went from 585 to 336 open returns, all six from 1805 to 1555, with no false closure. A search
-//   along one pair of parallel lines by the points alone, for maps that share no two
-//   non-parallel lines, was tried and dropped: it added 2 false closures on intel and nothing on
-//   seattle. So was a placement voted for by the points alone over the prior's gate: 6 false
-//   closures, and seattle's returns still open.
-// Cost: O(n^4) hypotheses over at most `max_lines` lines per map (longest lines first), each
-// verified in O(n^2); bounded by the map capacity, independent of the atlas size, and by a hard
-// work bound, `max_line_checks` (verified hypotheses x lines of A x lines of B): on maps of
-// many parallel walls the O(n^4) can reach tens of milliseconds. A search cut short by the
-// bound cannot show that a match is unique (Condition 2), so it is refused (kRejected,
-// kWorkBound), and a self-match cut short makes every match of its map refused the same way.
-// The points' second look (above) is one more enumeration under the same bound, restricted to
-// the prior's gate, plus at most 64 placements and the maps' repetitions scored, each by at most
-// FramePointsOptions::max_scored cells (9 look-ups each), plus the shifts of the per-direction
-// check (one cell apart, out to the prior's gate). All bounded by the map capacity and the point
-// capacity. atlas_atlas_benchmark's BM_MatchMapsWithPoints (full frames, a loose prior, the
-// laser settings) takes 2.6 ms per match; on the 25 km constant-time run the largest step was
-// 6.15 ms (docs/atlas.md, session 21).
+// Contract:
+// - t is hypothesised from the maps alone (pairs of non-parallel lines whose angles agree),
+//   never from the robot pose; the prior (the Dijkstra projection of B in A) only gates.
+// - m is the support: lines of B that land inside the chi-square gate of a distinct line of A
+//   with overlapping segments. Accepted only with `min_support` lines and a lead of `min_lead`
+//   over every distinct rival transform inside the prior's gate.
+// - Condition 2: self-matched repetitions inside the prior's gate are excluded and their rival
+//   placements verified (kRepetitive); every matched pair must be redundant to
+//   `redundancy_sigma` unless the prior is narrower than `redundancy_prior_halfwidth`
+//   (kSinglePair); a nearly parallel alternative line that gives a placement more than
+//   `alternative_sigmas` away, allowed by the other pairs and the prior, is kSinglePair too.
+// - t's covariance: Gauss-Newton over the matched pairs, times n with
+//   `unknown_line_correlation`; all-parallel matched lines are kRejected (kDegenerate).
+// - Points (frame_points.h): a kRepetitive or kRivalTransform refusal is looked at again with
+//   the frames' laser endpoints; the placement they single out (`point_min_hits`,
+//   `point_rival_ratio`) is accepted, with t still from its lines and every check above.
+// Cost: O(n^4) hypotheses over at most `max_lines` lines per map, each verified in O(n^2),
+// bounded by the map capacity and by `max_line_checks`; a search (or self-match) cut short is
+// kRejected (kWorkBound). The points' look adds a bounded number of placements, each scored over
+// at most FramePointsOptions::max_scored cells. Independent of the atlas size.
 
 #include <Eigen/LU>
 #include <cstdint>
@@ -166,38 +79,17 @@ struct MapMatchOptions {
 };
 
 // The Condition 2 settings for maps of laser lines (atlasd with a laser, atlas-replay): `o`
-// with unknown_line_correlation and alternative_sigmas 3 (why: above), redundancy_prior_halfwidth
-// 1 m (default 2 m) and sigma_alpha_floor 0.02 rad (default 0.01). Over 100 seeds of the six
-// corrected logs (scripts/eval-corrected-seeds.sh, docs/atlas.md session 15) the defaults' 2 m and
-// 0.01 rad let 3 false closures through (chi2 beyond 3 sigma), these none:
-// - csail, edge 6-2 in three seeds, 1.6-1.8 m off (d2 70-82): a 1.8 m line of one map paired
-//   with a wall of the other whose parallel neighbour 1.7 m away, where the line really lies,
-//   that map had not mapped there; that one pair fixed t across the walls, and a prior whose
-//   gate reached 1.6-2 m either side vouched for it. An unmapped parallel wall is an
-//   alternative nothing in the maps shows, and corridor walls stand 1.5-2.5 m apart, so the
-//   prior vouches only when its gate is narrower than 1 m.
-// - intel, edges 8-3 and 8-2 of one seed (with the 1 m half-width alone), 2 m off along a wall:
-//   three short lines of a jagged wall, 0.1-0.35 rad apart, fixed t along it by their angle
-//   differences, with angle variances near the 0.01 rad floor; short laser lines are off by
-//   several times that (docs/atlas.md session 9: 1-3 m lines, -3.5 to +3.9 deg).
-// Cost: 4 % more revisit pairs left open over the 100 seeds (intel's, mostly); mit-csail
-// 0.0763 -> 0.0773 m, 0.769 deg unchanged.
+// with unknown_line_correlation and alternative_sigmas 3, redundancy_prior_halfwidth 1 m
+// (default 2 m) and sigma_alpha_floor 0.02 rad (default 0.01). Why each, and what the defaults
+// let through on the corrected logs: docs/design.md, "III-D. Map-matching".
 MapMatchOptions LaserMapMatchOptions(MapMatchOptions o = {});
 
 // The Condition 2 settings for maps of wide-beam sonar lines: `o` with redundancy_sigma 0.25 m
 // and redundancy_prior_halfwidth 0.5 m (defaults 1 m / 2 m, laser 1 m / 1 m),
-// alternative_sigmas 3, and unknown_line_correlation. Without the last, sonar edges were
-// overconfident: over 200 simulated runs per cell (building and alcove loop, 16 and 24
-// transducers; docs/sonar.md, session 16) the edges' chi-square against the truth averaged
-// 4.0-4.4 (3 dof: 3), 12-14 % beyond the 95 % point, and 41 of 1134 edges were false closures
-// (beyond 3 sigma: 0.05-1.1 m, median 0.3 m, and 0.2-5 deg off); with it 4 of 1094, the edges more
-// than 0.5 m or 5 deg off 16 either way, the steps inside the robot NEES band within 1.3 points.
-// A sonar atlas's priors are less consistent (robot NEES mean 6-8 on the alcove loop): with the
-// laser's values of session 5 the alcove loop had gross false closures (docs/sonar.md, session 5).
-// Sonar maps initialised without edge echoes (SonarInitOptions, session 11) hold few lines across a
-// corridor, and a match pairing a corridor wall with the back wall of an alcove 1 m deeper was
-// accepted 0.8 m off: the alternative-lines test refuses it (docs/sonar.md, session 11). Used by
-// atlasd (sensors = "sonar") and by tools/sonar_eval.
+// alternative_sigmas 3, and unknown_line_correlation. Why: a sonar atlas's priors are less
+// consistent than a laser atlas's, and its maps hold few lines across a corridor
+// (docs/design.md, "III-D. Map-matching"). Used by atlasd (sensors = "sonar") and by
+// tools/sonar_eval.
 MapMatchOptions SonarMapMatchOptions(MapMatchOptions o = {});
 
 enum class MapMatchResult { kAccepted, kRejected, kAmbiguous };

@@ -322,11 +322,11 @@ TEST(MapMatch, PointsFixADirectionOnlyWithinTheirSearchBound) {
   EXPECT_EQ(searched.result, MapMatchResult::kAccepted) << MapMatchReasonName(searched.reason);
 }
 
-// csail, edge 6-2 (docs/atlas.md session 15): the pair that alone fixes one direction of t
-// has an alternative 1.7 m away that the maps do not show. Here a corridor with one jamb: A
-// mapped the jamb at x = 6, B (seen from x = 2) only another at x = 7.7 (world), so pairing the
-// two jambs puts t 1.7 m off along the corridor. A prior of sigma 0.4 m (gate +-1.6 m) holds
-// both placements. With the default 2 m half-width the prior vouches for the one pair and the
+// A csail edge (docs/design.md, "Redundancy: one direction, one pair"): the pair that alone fixes
+// one direction of t has an alternative 1.7 m away that the maps do not show. Here a corridor with
+// one jamb: A mapped the jamb at x = 6, B (seen from x = 2) only another at x = 7.7 (world), so
+// pairing the two jambs puts t 1.7 m off along the corridor. A prior of sigma 0.4 m (gate +-1.6 m)
+// holds both placements. With the default 2 m half-width the prior vouches for the one pair and the
 // wrong t is accepted; with the laser's 1 m it does not: kSinglePair.
 TEST(MapMatch, PriorVouchesForASinglePairOnlyWithinTheLaserHalfWidth) {
   const Pose2 truth{2.0, 0.0, 0.0};
@@ -348,7 +348,7 @@ TEST(MapMatch, PriorVouchesForASinglePairOnlyWithinTheLaserHalfWidth) {
             MapMatchResult::kAccepted);
 }
 
-// A wall with a 0.4 m step (freiburg-079, edge 8-0, docs/atlas.md session 6): the recessed face
+// A wall with a 0.4 m step (freiburg-079; docs/design.md, "Alternative lines"): the recessed face
 // x = -0.4 (y 1 .. -1.6) and the forward face x = 0 (y -1.6 .. -6.4), and three cross walls
 // whose normals lie within 0.13 rad of the y axis, so they fix y and the rotation well and x
 // only loosely. A saw the forward face whole and a metre of the recessed one (its line 0.09 rad

@@ -151,13 +151,13 @@ TEST(LineEkfMapTest, LineNearAFeatureIsNotAddedAgain) {
   EXPECT_EQ(map.Complexity(), 1);
 }
 
-// The recovery pass's failure mode (mit-csail, docs/atlas.md session 6): the map holds one wall;
-// the odometry is right, but the robot now sees only an unmapped segment turned 2.8 sigma of the
-// heading away from that wall (a door leaf; with the line noises, d2 between the 99 % and the
-// 99.99 % quantiles). Its pairing with the wall fails the 99 % gate and
-// passes the 99.99 % one. Alone, nothing verifies it: with recovery_min_pairings 2 it is left
-// unpaired and the heading stays right; with 1 (the default) the map pairs it and turns the robot
-// by about the segment's angle, while claiming a smaller heading sigma than before.
+// The recovery pass's failure mode (mit-csail; docs/design.md, "Laser line local map"): the map
+// holds one wall; the odometry is right, but the robot now sees only an unmapped segment turned 2.8
+// sigma of the heading away from that wall (a door leaf; with the line noises, d2 between the 99 %
+// and the 99.99 % quantiles). Its pairing with the wall fails the 99 % gate and passes the 99.99 %
+// one. Alone, nothing verifies it: with recovery_min_pairings 2 it is left unpaired and the heading
+// stays right; with 1 (the default) the map pairs it and turns the robot by about the segment's
+// angle, while claiming a smaller heading sigma than before.
 TEST(LineEkfMapTest, RecoveryPassLeavesALonePairingUnpaired) {
   const std::vector<Wall> mapped = {{Vec2(3.0, -2.0), Vec2(3.0, 2.0)}};
   for (const int min_pairings : {2, 1}) {

@@ -72,8 +72,8 @@ TEST(LineExtractionTest, EstimatedCovarianceMatchesSampleCovariance) {
 // the map inconsistent within minutes. In the corridor world, the side walls seen at grazing
 // incidence next to door jambs: the mean error of 4000 fits is below 0.04 of a fit's sigma in
 // rho and alpha (the standard error of that mean is 0.011-0.016). Sanitized builds fit 400
-// scans and allow the same number of standard errors (0.04 * sqrt(10)). The extraction of
-// session 2 (point-space fit, no sparse-end trim, corner points kept) gave 0.07-0.08 here.
+// scans and allow the same number of standard errors (0.04 * sqrt(10)). An extraction with a
+// point-space fit, no sparse-end trim and corner points kept gives 0.07-0.08 here.
 TEST(LineExtractionTest, UnbiasedAtGrazingIncidenceAndNextToCorners) {
   FakeLaserOptions lo;
   lo.range_sigma = 0.01;

@@ -1,4 +1,4 @@
-// Speed of the local map's per-scan work (issue 3): line extraction from a 361-beam real scan,
+// Speed of the local map's per-scan work: line extraction from a 361-beam real scan,
 // one EKF update with 10 features, JCBB with 10 features and 10 observations in its worst case.
 #include <benchmark/benchmark.h>
 #include <zlib.h>

@@ -87,10 +87,10 @@ struct AssociationOptions {
   // On mit-csail the recovery pass made the heading better as often as worse when it paired
   // one line (9 and 9 of 28 by more than 2 degrees, against the relations' reference), and one
   // such pairing turned the robot 18 degrees wrong in the step that made the Genesis edge 10-11
-  // (docs/atlas.md, session 6). 2 made mit-csail better at all 8 laser offsets tried, but the
-  // corrected logs worse with seed 1 (csail ATE 0.31 -> 1.22 m; a false closure, freiburg-079
-  // 4-1, that the map-matching of f830dea does not refuse), so the default stays 1 (any
-  // pairing, the behaviour before) until that is understood.
+  // (docs/design.md, "Laser line local map"). 2 made mit-csail better at all 8 laser offsets tried,
+  // but the corrected logs worse with seed 1 (csail ATE 0.31 -> 1.22 m; a false closure,
+  // freiburg-079 4-1, that the alternative-lines test does not refuse), so the default stays 1 (any
+  // pairing) until that is understood.
   int recovery_min_pairings = 1;
   double new_feature_min_length = 1.0;  // metres
   // Nor if, in the map-frame at the estimated pose, it is parallel to a feature's line within

@@ -6,9 +6,9 @@
 // only as good as its local maps (Condition 1), and a line EKF associates its observations by
 // gating around the predicted pose. With the B21 of mit-csail the wheels turn 6-19 deg wrong
 // within 0.4 s; the 99 % gate then admits walls 20-40 deg off, lone wrong pairings turn the
-// heading, and every Genesis edge made afterwards inherits the error (docs/atlas.md, session 6).
-// The scans themselves fix the heading change between consecutive scans to a fraction of a
-// degree wherever two non-parallel surfaces are in view. The result replaces the odometry
+// heading, and every Genesis edge made afterwards inherits the error (docs/design.md, "Scan
+// matching"). The scans themselves fix the heading change between consecutive scans to a fraction
+// of a degree wherever two non-parallel surfaces are in view. The result replaces the odometry
 // increment and its covariance Q(u) in the maps' Predict (LocalMap::Predict(u, Q)).
 //
 // Method: point-to-line ICP (Censi's PL-ICP without the closed form), maximum a posteriori:
@@ -17,9 +17,9 @@
 // point and its surface normal (local fit over neighbouring beams), found by projecting x (+) q_i
 // into the reference scan's beam index (bounded: `search_beams` either side), rho a Huber
 // kernel, u the odometry increment with covariance Q (the prior). Optionally (`heading_search`,
-// off by default: on mit-csail it cost 50 % more time and gained nothing, docs/atlas.md session
-// 8) a bounded search over the heading (either side of u in `heading_step` steps) first picks
-// the start with the most point pairs within `coarse_distance`.
+// off by default: on mit-csail it cost 50 % more time and gained nothing, docs/design.md,
+// "Scan matching") a bounded search over the heading (either side of u in `heading_step` steps)
+// first picks the start with the most point pairs within `coarse_distance`.
 //
 // Covariance: C = (J^T W J / (sigma^2 s) + Q^-1)^-1 at the solution, s = `information_scale`^-1.
 // The Hessian of ICP is known to be over-confident (Censi 2007: the pairing and the normals'
@@ -76,8 +76,8 @@ struct ScanMatchOptions {
   // 0.6 s while the robot turns, then reports 45-degree steps: its increments (and their
   // covariance, zero for zero motion) are then not a prior worth keeping. Off by default: on
   // mit-csail it recovered 30-50 such steps per run and made the short relations better at 7
-  // of 8 laser time offsets, but the atlas's median over the offsets worse (docs/atlas.md,
-  // session 8).
+  // of 8 laser time offsets, but the atlas's median over the offsets worse (docs/design.md,
+  // "Scan matching").
   double recovery_heading_search = 0.0;
   double recovery_sigma_xy = 0.3;  // metres
   double heading_step = 0.0175;    // radians

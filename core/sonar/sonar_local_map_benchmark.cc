@@ -152,7 +152,7 @@ BENCHMARK(BM_UpdateSonarAllVantagePoints)->Unit(benchmark::kMicrosecond);
 // ten-sided room) for Z of N readings, each of the whole 24-transducer ring (the worst case: a
 // P2OS SIP or the simulator carries about 4 returns); the atlas calls it once per juvenile and
 // step from bootstrap_scans until it solves or probation (kSonarBootstrapProbation) ends.
-// 2026-11-23 (RelWithDebInfo, shared 2-core VM, load 4-6): N = 4, 190 us CPU (undetermined: the
+// Measured (RelWithDebInfo, shared 2-core VM, load 4-6): N = 4, 190 us CPU (undetermined: the
 // heading's sigma 0.11 rad from one place); N = 30 (720 returns), 2.2 ms CPU, solved.
 void BM_SonarWSolve(benchmark::State& state) {
   const int readings = static_cast<int>(state.range(0));

@@ -5,7 +5,8 @@
 // robot at the seed x_i*, which comes from other frames across edges but enters the EKF as
 // independent of frame i's features (the atlas keeps no correlation between frames). A trial
 // map updated from it, adopted at maturation, carries that information into frame i at every
-// re-entry (docs/sonar.md, session 7: the robot NEES grew with the re-entries of a frame). This
+// re-entry (the robot NEES grew with the re-entries of a frame; docs/design.md, "Sonar local
+// maps"). This
 // w discards the trial map and solves from M_i, the frame's map as the juvenile found it, and
 // the juvenile's readings Z alone; the seed only proposes correspondences, as for the laser's
 // w (core/localmap/bootstrap.h).
@@ -36,11 +37,11 @@
 //   increments by dead reckoning, its covariance grown by their odometry noise Q(u); not the
 //   juvenile's current pose. The juvenile's clone of M_i, updated from the seed by its own
 //   readings, can be drawn during probation to lines that are not where it is (sonar maps hold
-//   phantom lines: docs/sonar.md), and w then started there paired its readings as the clone
-//   did. Measured on the simulated building (24 transducers, 100 runs, docs/sonar.md session
-//   14): started at the juvenile's pose, 73 of 766 solutions had a robot NEES above 20 and 31
-//   above 50; 65 of those 73 had started from a juvenile pose already above 9.35, whose seed
-//   had been below 9.35 in 50. From the dead-reckoned seed: 49 of 717 above 20, 12 above 50.
+//   phantom lines), and w then started there paired its readings as the clone
+//   did. Measured on the simulated building (24 transducers, 100 runs): started at the juvenile's
+//   pose, 73 of 766 solutions had a robot NEES above 20 and 31 above 50; 65 of those 73 had started
+//   from a juvenile pose already above 9.35, whose seed had been below 9.35 in 50. From the
+//   dead-reckoned seed: 49 of 717 above 20, 12 above 50.
 // - Outcome: kSolved; kUndetermined while Z does not fix the pose: fewer than `min_returns`
 //   paired returns, A singular, or Cov(x) with a position standard deviation (largest axis)
 //   above max_sigma_xy or a heading one above max_sigma_theta (one wall or parallel walls leave
@@ -68,9 +69,8 @@ namespace atlas {
 
 // Probation (LifecycleOptions::probation_scans, in sonar readings) of a sonar-only atlas's
 // juveniles with this w: at 10 readings of about 4 returns each, Z rarely fixes the pose within
-// the default 8 (building: 307 of 428 juveniles killed by w); measured with in-cone pairings
-// (docs/sonar.md, session 8): probation 16 / 30, robot NEES building 6.31 / 5.96, alcove loop
-// 7.65 / 6.49.
+// the default 8 (building: 307 of 428 juveniles killed by w); measured with in-cone pairings:
+// probation 16 / 30, robot NEES building 6.31 / 5.96, alcove loop 7.65 / 6.49.
 inline constexpr int kSonarBootstrapProbation = 30;
 
 struct SonarBootstrapOptions {
@@ -85,10 +85,10 @@ struct SonarBootstrapOptions {
   // tie the range to the heading strongly and the jambs and corners that echo at the cone's
   // edge are the model's worst fits; with them w's solutions were further off than their
   // covariance (simulated alcove loop: robot NEES 20.1, 1 gross false closure; in-cone only:
-  // 6.49, none gross; building 6.69 -> 5.96, docs/sonar.md session 8).
+  // 6.49, none gross; building 6.69 -> 5.96).
   bool edge_echoes = false;
   // The start estimate (see above): the seed moved by Z's odometry (true), or the juvenile's
-  // current pose (false; before 2026-11-24).
+  // current pose (false; docs/design.md, "Sonar local maps").
   bool dead_reckoned_start = true;
   std::string Validate() const;  // empty when valid
 };

@@ -46,7 +46,7 @@ struct SonarUpdateOptions {
   // world (atlas-sonar-eval atlas, seeds 1-91, w off), the alcove loop's robot NEES was inside
   // the band at 83.8 % of steps instead of 44.9 % (gross false closures 3 -> 0) and the building
   // at 48.4 % (49.4 %); 0.5 or 0.3 make both worse (building 41 / 23 %), 2.0 and 3.0 are
-  // between (docs/sonar.md, session 12).
+  // between (docs/design.md, "Sonar local maps").
   double max_extent_gap = 1.5;
   // An edge-of-cone echo grows a feature's extent only to the point of its cone's footprint on
   // the line nearest to the extent (none when they overlap), not to where its edge ray meets the
@@ -97,7 +97,7 @@ struct SonarInitOptions {
   // tell a wall from a point and no line is made from them. Off: only min_extent_ratio. In the
   // simulated corridor (atlas-sonar-eval mc, 20 runs, 24 transducers, edge echoes off) it
   // removes 105 of the 123 initialisations farther than 0.25 m or 10 deg from every wall and
-  // none of the 40 on a wall (docs/sonar.md, session 11).
+  // none of the 40 on a wall (docs/design.md, "Sonar local maps").
   bool point_rival = true;
   // Whether grouping counts edge-of-cone echoes (SonarModelOptions::edge_incidence) as inliers.
   // Off: RANSAC, the refinement and the line's covariance use the tangent model alone (in-cone
@@ -105,13 +105,12 @@ struct SonarInitOptions {
   // 2 x edge_incidence of angles, and the edge terms' strong d range / d alpha make a wrong
   // angle look certain: diagonal phantom lines at corners and end walls approached head-on
   // were initialised some 15 degrees off (line NEES at initialisation 9.8 against 2 expected).
-  // Edge echoes of mapped features are still used by the updates. Off by default since session
-  // 11, together with point_rival and the sonar atlas's alternative_sigmas
-  // (SonarMapMatchOptions): over 100 seeded runs each of the building and of the alcove loop
-  // (docs/sonar.md, session 11) the sonar-only atlas makes half the false closures (11, 5
-  // gross, against 25, 9 gross with edge echoes on) and its robot NEES is inside the band on
-  // 49 % of the building's steps (37 %); on the alcove loop it closes fewer loops and is inside
-  // the band less often (45 %, 51 %).
+  // Edge echoes of mapped features are still used by the updates. Off, together with point_rival
+  // and the sonar atlas's alternative_sigmas (SonarMapMatchOptions): over 100 seeded runs each of
+  // the building and of the alcove loop (docs/design.md, "Sonar local maps") the sonar-only atlas
+  // makes half the false closures (11, 5 gross, against 25, 9 gross with edge echoes on) and its
+  // robot NEES is inside the band on 49 % of the building's steps (37 %); on the alcove loop it
+  // closes fewer loops and is inside the band less often (45 %, 51 %).
   bool edge_echoes = false;
   int max_new_per_decision = 2;
   // Delayed decision making with consistent covariance (SonarLocalMap, delayed_vantages.h): the

@@ -1,5 +1,5 @@
 #pragma once
-// The atlas as the store keeps it (issue 6, Persistence): what the step loop hands to the
+// The atlas as the store keeps it (docs/atlasd.md, "Persistence"): what the step loop hands to the
 // store's writer thread, and how a start resumes from what was saved.
 //
 // The authoritative record is the whole atlas image (Atlas::Serialize(), graph, maps,

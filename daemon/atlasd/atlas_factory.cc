@@ -40,13 +40,13 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
       o.lifecycle.probation_scans = std::max(o.lifecycle.probation_scans, kSonarBootstrapProbation);
   } else {
     o.match = LaserMapMatchOptions(o.match);
-    // Measured on the six corrected logs (60 seeds) and mit-csail (docs/atlas.md, sessions 17
-    // and 18).
+    // Measured on the six corrected logs (60 seeds) and mit-csail (docs/design.md,
+    // "III-C. Genesis" and "III-E. Traversal").
     o.genesis_cov_scale = 2.0;
     o.return_q = 0.9;
     o.return_radius = 4.0;
     o.return_far_radius = 1.5;
-    // Condition 2 with the frames' points (map_match.h, "Points"; docs/atlas.md, session 21).
+    // Condition 2 with the frames' points (docs/design.md, "Points: structure beyond the lines").
     o.points.enabled = true;
   }
   return o;

@@ -5,8 +5,8 @@
 // SonarLocalMaps (core/sonar: the same EKF, fed by Atlas::Step with SonarReadings too), w from
 // the laser scans when there is a laser; for sonar alone the sonar w (SonarMapBootstrapper,
 // core/sonar/sonar_map_bootstrapper.h) unless MapperSettings::sonar_bootstrap is off (then
-// juveniles keep their seeded pose and are judged on q alone: docs/sonar.md, session 8). With
-// sonar alone, map-matching uses SonarMapMatchOptions, with laser lines LaserMapMatchOptions
+// juveniles keep their seeded pose and are judged on q alone: docs/design.md, "III-E. Traversal").
+// With sonar alone, map-matching uses SonarMapMatchOptions, with laser lines LaserMapMatchOptions
 // (core/atlas/map_match.h says what each setting refused, and where it was measured).
 //
 // MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
@@ -46,9 +46,9 @@ struct MapperSettings {
   // they use the sonar; the sonar model keeps core/sonar's defaults.
   RangeSensors sensors = RangeSensors::kLaser;
   std::vector<SonarTransducer> sonar_ring;
-  // Sonar alone: w (eq. 12) from the sonar readings (SonarMapBootstrapper). On by default since
-  // session 12: with the sonar extent gap of 1.5 m, w gives fewer false loop closures and a
-  // consistent robot pose more often than without it (docs/sonar.md, session 12).
+  // Sonar alone: w (eq. 12) from the sonar readings (SonarMapBootstrapper). On by default: with the
+  // sonar extent gap of 1.5 m, w gives fewer false loop closures and a consistent robot pose
+  // more often than without it (docs/design.md, "Sonar local maps").
   bool sonar_bootstrap = true;
   // Scan-to-scan matching before each laser step (StepLoop; off by default).
   ScanMatchOptions scan_match;

@@ -10,9 +10,9 @@ namespace {
 // With laser lines, atlasd's atlas doubles the Genesis edges' covariance and seeds traversal
 // where the robot returns: in frames near the dominant one within return_radius of their
 // origin, and in frames farther along the graph within the tighter return_far_radius
-// (docs/atlas.md, sessions 17 and 18). The sonar atlas keeps the paper's Genesis edge and has
+// (docs/design.md, "III-E. Traversal"). The sonar atlas keeps the paper's Genesis edge and has
 // no return band (on the simulator's sonar atlases the band made the robot NEES and the false
-// closures worse, docs/atlas.md session 16).
+// closures worse).
 TEST(AtlasFactory, LaserAtlasSeedsWhereTheRobotReturnsAndTheSonarAtlasDoesNot) {
   MapperSettings s;
   for (RangeSensors sensors : {RangeSensors::kLaser, RangeSensors::kBoth}) {

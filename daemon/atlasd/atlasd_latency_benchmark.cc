@@ -1,5 +1,5 @@
-// Latency of atlasd's whole live path in one process, with the real parts (issue 6, acceptance
-// "Latency"): from the last byte of a SICK LMS telegram written on a pseudo-terminal to the
+// Latency of atlasd's whole live path in one process, with the real parts (docs/atlasd.md,
+// "Measurements"): from the last byte of a SICK LMS telegram written on a pseudo-terminal to the
 // ATLAS_POSE it produced, received by an LCM subscriber over UDP multicast.
 //
 //   pty (termios) -> LaserReader thread -> SpscQueue -> the live daemon's loop thread (StepLoop,

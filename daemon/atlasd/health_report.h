@@ -1,5 +1,5 @@
 #pragma once
-// atlasd's health (issue 6, "health, at 1 Hz"): step-time statistics, overruns, queue depths
+// atlasd's health (docs/atlasd.md, "Outputs"): step-time statistics, overruns, queue depths
 // and drops, driver states and counters, frame and hypothesis counts, resident memory, and the
 // one-line summary that goes to systemd (STATUS=) and to stderr.
 

@@ -1,6 +1,6 @@
 #pragma once
 // The live atlasd: device reader threads -> fixed-capacity queues -> one loop thread (StepLoop)
-// -> LCM; the main thread handles signals and systemd (issue 6).
+// -> LCM; the main thread handles signals and systemd (docs/atlasd.md).
 //
 // Threads:
 // - one reader thread per enabled device (drivers/device), each with its SPSC queue;

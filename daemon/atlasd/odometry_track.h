@@ -1,6 +1,6 @@
 #pragma once
-// The recent odometry samples, for integrating odometry up to a scan's stamp (issue 6, "The
-// loop": "odometry integrated up to the scan's time").
+// The recent odometry samples, for integrating odometry up to a scan's stamp (docs/design.md,
+// "The step loop and the daemon").
 //
 // Contract:
 // - Fixed capacity: the oldest samples are overwritten; no allocation after construction.

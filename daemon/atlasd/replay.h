@@ -1,5 +1,5 @@
 #pragma once
-// Offline replay (issue 6, "Offline replay from LCM logs"): the raw channels of an lcm-logger
+// Offline replay (docs/atlasd.md, "Offline replay"): the raw channels of an lcm-logger
 // file (lcm.channels.raw_odometry / raw_laser / raw_sonar, recorded with lcm.republish_raw =
 // true) go through the same StepLoop as a live run, in log order, each scan or sonar reading
 // stepped as soon as it is read; the scans and readings stepped are those the configuration's

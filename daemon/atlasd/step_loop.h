@@ -1,6 +1,6 @@
 #pragma once
 // The step loop's logic, without threads or devices, so that the live daemon and the offline
-// replay run the same code (issue 6, "The loop" and "Offline replay").
+// replay run the same code (docs/atlasd.md, "Threads and the loop" and "Offline replay").
 //
 // Contract:
 // - AddOdometry / AddScan / Pending never block and never allocate beyond fixed capacities
@@ -40,8 +40,8 @@
 //   but the mirror swept the beams before the scanner sent the telegram, and the serial line
 //   takes time: a 361-value SICK LMS telegram (732 bytes, 10 bits a byte) takes about 0.19 s at
 //   38400 baud and about 15 ms at 500 kbaud (a 181-value one half as long), plus the sweep
-//   itself. On mit-csail (361 beams at 4.7 Hz, the rate 38400 baud allows: specs/devices.md)
-//   the odometry fits best 0.10-0.12 s before the stamps (docs/atlas.md, "Laser time offset";
+//   itself. On mit-csail (361 beams at 4.7 Hz, the rate 38400 baud allows: docs/devices.md)
+//   the odometry fits best 0.10-0.12 s before the stamps (docs/design.md, "Laser time offset";
 //   tools/replay/laser_time_offset.h calibrates the offset without ground truth). Only the
 //   odometry lookup uses the offset: the scan's stamp stays its identity (the stamp of the
 //   pose reported to the sink, of last_scan_stamp(), of the laser-silence rule), as the

@@ -194,7 +194,7 @@ TEST(ConfigLoader, CrossFieldRulesNameKeyAndLine) {
                  "lcm.channels.raw_laser", 2, "same channel as lcm.channels.pose");
 }
 
-// localmap.sensors: the local maps run on the laser, the sonar or both (issue 7).
+// localmap.sensors: the local maps run on the laser, the sonar or both.
 TEST(ConfigLoader, LocalMapSensorsChoosesLaserSonarOrBoth) {
   const ConfigResult sonar =
       LoadConfigString("[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\n", "test.toml");

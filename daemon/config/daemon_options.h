@@ -25,7 +25,7 @@ struct MountPose {
 
 enum class LaserUnit { kCentimetre, kMillimetre };
 
-// SICK LMS-2xx on a serial line (specs/devices.md, section 1).
+// SICK LMS-2xx on a serial line (docs/devices.md, section 1).
 struct LaserOptions {
   bool enabled = true;
   std::string device = "/dev/ttyUSB0";
@@ -42,7 +42,7 @@ struct LaserOptions {
   double time_offset_s = 0.0;
 };
 
-// AgileX base odometry on CAN (specs/devices.md, section 2).
+// AgileX base odometry on CAN (docs/devices.md, section 2).
 struct OdometryOptions {
   // A SocketCAN interface name ("can0") or "unix:PATH" for the fake bus.
   std::string interface = "can0";
@@ -58,7 +58,7 @@ struct OdometryOptions {
 
 enum class SonarRing { kP3dx16, kB21_24 };
 
-// Pioneer P2OS sonar ring on a serial line (specs/devices.md, section 3).
+// Pioneer P2OS sonar ring on a serial line (docs/devices.md, section 3).
 struct SonarOptions {
   bool enabled = false;
   std::string device = "/dev/ttyS0";
@@ -76,8 +76,8 @@ enum class LocalMapSensors { kLaser, kSonar, kBoth };
 struct LocalMapConfig {
   LocalMapSensors sensors = LocalMapSensors::kLaser;
   // With the sonar alone: the sonar w of eq. 12 (core/sonar/sonar_map_bootstrapper.h) solves
-  // traversal juveniles' poses from their readings (the default since session 12); false: they
-  // keep their seeded pose (docs/sonar.md, sessions 9 and 12).
+  // traversal juveniles' poses from their readings (the default); false: they keep their seeded
+  // pose (docs/design.md, "Sonar local maps").
   bool sonar_bootstrap = true;
 };
 
@@ -95,8 +95,9 @@ struct ScanMatchConfig {
 // Odometry error model of the local maps (core/localmap OdometryNoiseOptions): each sigma is
 // the standard deviation after one unit of motion; variances grow linearly with the motion
 // (sigma with its square root). The calibration errors grow with the motion itself. Defaults:
-// the B21 of the mit-csail log (measured with atlas-replay, docs/atlas.md), a base whose
-// odometry turns a few degrees wrong in a second: generous for a well calibrated base.
+// the B21 of the mit-csail log (measured with atlas-replay; docs/design.md, "Laser line local
+// map"), a base whose odometry turns a few degrees wrong in a second: generous for a well
+// calibrated base.
 struct OdometryErrorConfig {
   double wheel_sigma_per_m = 0.01;          // metres per metre rolled, each wheel
   double translation_sigma_per_m = 0.0316;  // metres per metre driven, each of x and y

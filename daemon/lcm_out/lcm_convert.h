@@ -1,8 +1,8 @@
 #pragma once
-// Conversion between atlasd's plain structs and the LCM types of lcmtypes/ (issue 6, "LCM
-// output"). Pure functions: no LCM instance, no I/O; the publisher (daemon/atlasd) sends what
-// these return, and the replay path (daemon/atlasd) turns logged raw messages back into sensor
-// structs with the inverse functions, so that live and replay feed the loop the same data.
+// Conversion between atlasd's plain structs and the LCM types of lcmtypes/ (docs/lcm.md). Pure
+// functions: no LCM instance, no I/O; the publisher (daemon/atlasd) sends what these return, and
+// the replay path (daemon/atlasd) turns logged raw messages back into sensor structs with the
+// inverse functions, so that live and replay feed the loop the same data.
 //
 // Times are atlas::Time (monotonic, ns) in, microseconds (utime) out; the raw conversions
 // round-trip exactly at microsecond resolution.

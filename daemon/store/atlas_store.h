@@ -2,7 +2,7 @@
 // The saved atlas: an SQLite database <state directory>/atlas.sqlite holding the map-frames (each
 // local map as its LocalMap::Serialize() byte image), the edges of the atlas graph, and
 // metadata. A restart loads it; the robot then starts in a new frame and map-matching
-// reconnects it to the saved ones (issue 6, Persistence).
+// reconnects it to the saved ones (docs/atlasd.md, "Persistence").
 //
 // Contract:
 // - Open() creates the file and schema when absent (or when the file holds no table at all: a

@@ -1,6 +1,6 @@
 #pragma once
 // The thread that saves the atlas: the step loop hands it snapshot batches and never waits for
-// SQLite (issue 6: "from a writer thread, never from the step loop").
+// SQLite (docs/atlasd.md, "Persistence").
 //
 // Contract:
 // - Submit() is O(1) apart from a merge when the queue is full; it never touches SQLite and

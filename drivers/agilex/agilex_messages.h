@@ -1,5 +1,5 @@
 #pragma once
-// AgileX mobile-base CAN protocol v2 (shared/specs/devices.md, section 2): pure decoders and
+// AgileX mobile-base CAN protocol v2 (docs/devices.md, section 2): pure decoders and
 // encoders of the frames atlasd reads. Standard 11-bit identifiers, fields big-endian.
 //
 //   0x311 odometry      bytes 0-3 int32 left wheel distance mm, 4-7 int32 right (cumulative)

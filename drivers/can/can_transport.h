@@ -1,6 +1,6 @@
 #pragma once
 // Where CAN frames come from: one interface, two implementations chosen by the interface name
-// (shared/specs/devices.md, section 2, "SocketCAN and the fake bus"):
+// (docs/devices.md, section 2, "SocketCAN and the fake bus"):
 //
 //   "can0", "vcan1", ...  SocketCAN: socket(PF_CAN, SOCK_RAW, CAN_RAW), a CAN_RAW_FILTER for the
 //                         AgileX ids 0x311/0x221/0x211, error frames enabled (CAN_RAW_ERR_FILTER,

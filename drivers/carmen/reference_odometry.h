@@ -1,5 +1,5 @@
 #pragma once
-// Wheel odometry synthesised from a log's reference trajectory (the corrected logs, issue 2):
+// Wheel odometry synthesised from a log's reference trajectory (the corrected logs):
 // every reference pose is fed, in order, to the simulator's WheelOdometryModel
 // (drivers/sim/wheel_odometry_model.h: noise proportional to distance travelled, wheel-radius
 // and track-width errors, seeded), and its output becomes an OdometrySample at the same stamp.

@@ -1,7 +1,7 @@
 #pragma once
 // The thread that owns one device: opens it, runs the device's start-up sequence, reads until
-// the device goes away, and reopens it with capped exponential backoff until it is back
-// (issue 5, "Faults"). Subclasses (LaserReader, OdometryReader, SonarReader) supply Connect /
+// the device goes away, and reopens it with capped exponential backoff until it is back.
+// Subclasses (LaserReader, OdometryReader, SonarReader) supply Connect /
 // ReadUntilGone / Disconnect and push their samples into their own SpscQueue, so the consumer
 // never blocks on a device.
 //

@@ -125,8 +125,8 @@ TEST(DeviceReaderTest, BackoffGrowsWhileSessionsBringNoData) {
   const Time deadline = Now() + std::chrono::seconds(5);
   while (d.delays().size() < 8 && Now() < deadline) std::this_thread::sleep_for(milliseconds(1));
   d.Stop();
-  // Sessions 1-3 bring nothing: 5, 10, 20 ms; session 4 decodes a message, so the count starts
-  // again: 5; then 10, 20, 40 and the cap, 80.
+  // The first three sessions bring nothing: 5, 10, 20 ms; the fourth decodes a message, so the
+  // count starts again: 5; then 10, 20, 40 and the cap, 80.
   const std::vector<Duration> want = {milliseconds(5),  milliseconds(10), milliseconds(20),
                                       milliseconds(5),  milliseconds(10), milliseconds(20),
                                       milliseconds(40), milliseconds(80)};

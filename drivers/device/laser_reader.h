@@ -1,5 +1,5 @@
 #pragma once
-// The SICK LMS 2xx reader thread (shared/specs/devices.md, section 1). Start-up sequence:
+// The SICK LMS 2xx reader thread (docs/devices.md, section 1). Start-up sequence:
 //   1. open the line at 9600 8N1 raw and check the scanner answers a status request (0x31);
 //      if nothing answers at 9600, try the other rates (the scanner may still be at a higher
 //      rate after a host restart);

@@ -1,5 +1,5 @@
 #pragma once
-// The AgileX odometry reader thread (shared/specs/devices.md, section 2): frames from a
+// The AgileX odometry reader thread (docs/devices.md, section 2): frames from a
 // CanTransport (SocketCAN "can0" or the fake bus "unix:PATH"), decoded by drivers/agilex,
 // 0x311 wheel distances integrated by WheelOdometryIntegrator (discontinuities skipped and
 // counted), each integrated step pushed as an OdometrySample stamped at arrival (the kernel's

@@ -1,5 +1,5 @@
 #pragma once
-// The P2OS sonar reader thread (shared/specs/devices.md, section 3). Start-up: open the line at
+// The P2OS sonar reader thread (docs/devices.md, section 3). Start-up: open the line at
 // 9600 8N1 raw (or the next probe rate if no SYNC0 echo comes; SIPs instead of an echo mean
 // the controller is still open from an earlier session: CLOSE, then SYNC0 again), the
 // SYNC0/SYNC1/SYNC2 handshake (each echoed; SYNC2's echo names the robot), OPEN, sonar on (command

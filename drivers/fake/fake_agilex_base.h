@@ -1,5 +1,5 @@
 #pragma once
-// A fake AgileX mobile base on the fake CAN bus (shared/specs/devices.md, section 2): every
+// A fake AgileX mobile base on the fake CAN bus (docs/devices.md, section 2): every
 // 20 ms of log time a 0x311 (cumulative wheel distances) and a 0x221 (motion state), every
 // 100 ms a 0x211 (system state, rolling count). The wheel distances are those of a
 // differential-drive base of the configured track width following the recording's odometry

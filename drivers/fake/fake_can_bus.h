@@ -1,5 +1,5 @@
 #pragma once
-// The device side of the fake CAN bus (shared/specs/devices.md, "SocketCAN and the fake bus"):
+// The device side of the fake CAN bus (docs/devices.md, "SocketCAN and the fake bus"):
 // listens on a Unix SOCK_SEQPACKET socket at PATH, accepts any number of clients (atlasd
 // connects as "unix:PATH"), and sends every frame to all of them as one 16-byte
 // struct can_frame per datagram. Clients that went away are forgotten. Not thread-safe: one

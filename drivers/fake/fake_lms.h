@@ -1,5 +1,5 @@
 #pragma once
-// A fake SICK LMS 2xx on a pseudo-terminal (shared/specs/devices.md, section 1). It powers up
+// A fake SICK LMS 2xx on a pseudo-terminal (docs/devices.md, section 1). It powers up
 // at 9600 baud with output off and follows the protocol as the real scanner does: it answers
 // the status request (0x31 -> B1), the mode commands (0x20 -> A0: baud switch, continuous
 // output, values on request, installation mode), the variant (0x3B -> BB) and single-scan

@@ -1,5 +1,5 @@
 #pragma once
-// A fake Pioneer P2OS controller on a pseudo-terminal (shared/specs/devices.md, section 3): the
+// A fake Pioneer P2OS controller on a pseudo-terminal (docs/devices.md, section 3): the
 // SYNC0/SYNC1/SYNC2 handshake (echoes; SYNC2 names the robot), OPEN, sonar on/off, PULSE and
 // CLOSE; once open it sends a standard SIP every sip_period of log time, carrying the sonar
 // returns of the ring synthesised from the recording's laser scan at that time (each

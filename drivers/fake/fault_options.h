@@ -1,8 +1,8 @@
 #pragma once
-// Fault injection for the fake devices (issue 5, "Fake devices"). Counts are in messages of the
-// device concerned (LMS telegrams, P2OS SIPs, AgileX 0x311 frames); times are wall seconds
-// after the playback clock started. A fake records every fault it injected (FaultCounts), so
-// a test can check that the driver counted each one.
+// Fault injection for the fake devices (docs/atlasd.md, "Hardware-in-loop tests"). Counts are in
+// messages of the device concerned (LMS telegrams, P2OS SIPs, AgileX 0x311 frames); times are wall
+// seconds after the playback clock started. A fake records every fault it injected (FaultCounts),
+// so a test can check that the driver counted each one.
 
 #include <atomic>
 #include <cstdint>

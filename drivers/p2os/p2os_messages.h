@@ -1,5 +1,5 @@
 #pragma once
-// P2OS commands, SYNC handshake and standard SIPs (shared/specs/devices.md, section 3), and the
+// P2OS commands, SYNC handshake and standard SIPs (docs/devices.md, section 3), and the
 // conversion of a SIP's sonar returns to an atlas::SonarReading. Pure functions over packet
 // payloads (p2os_packet.h); the encoders give whole packets.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Pioneer P2OS packets (shared/specs/devices.md, section 3): checksum, framing and an
+// Pioneer P2OS packets (docs/devices.md, section 3): checksum, framing and an
 // incremental stream decoder. Pure: bytes in, packet views out; no file descriptors.
 //
 //   0xFA 0xFB | N | payload (N - 2 bytes) | checksum hi | checksum lo

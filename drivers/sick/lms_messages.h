@@ -1,5 +1,5 @@
 #pragma once
-// SICK LMS 2xx messages (shared/specs/devices.md, section 1): the host commands, the scanner's
+// SICK LMS 2xx messages (docs/devices.md, section 1): the host commands, the scanner's
 // replies, and the measured values (reply 0xB0) as an atlas::LaserScan. Pure functions over
 // TelegramView (lms_telegram.h); the encoders produce whole telegrams with CRC, used by the
 // driver (host commands) and by the fake scanner (replies).

@@ -1,5 +1,5 @@
 #pragma once
-// SICK LMS 2xx telegrams (shared/specs/devices.md, section 1): CRC16, framing and an
+// SICK LMS 2xx telegrams (docs/devices.md, section 1): CRC16, framing and an
 // incremental stream decoder. Pure: bytes in, telegram views out; no file descriptors.
 //
 // Frame, both directions:

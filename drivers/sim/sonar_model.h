@@ -11,7 +11,7 @@
 // true range), otherwise, or if that exceeds the maximum range, it reports no return.
 //
 // The transducers fire in sequence; a reading carries those fired since the previous one, as a
-// P2OS SIP does (specs/devices.md, section 3).
+// P2OS SIP does (docs/devices.md, section 3).
 
 #include <string>
 #include <vector>

@@ -20,7 +20,7 @@
 // slip in a reference trajectory) is passed through unchanged in the robot frame, so that with
 // every error zero the odometry reproduces the truth exactly. The odometry frame starts at the
 // first true pose. Used by the simulator and to synthesise odometry for logs whose reference
-// trajectory is known (issue 2). Pure computation: no I/O.
+// trajectory is known (the corrected logs). Pure computation: no I/O.
 
 #include <cstdint>
 #include <random>

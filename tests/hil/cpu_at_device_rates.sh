@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CPU use of atlasd at the real device rates (issue 6 acceptance: at most 5 % of one core over
+# CPU use of atlasd at the real device rates (the target: at most 5 % of one core over
 # several minutes). Not a ctest (it runs for minutes): run by hand inside a private network
 # namespace (docs/atlasd.md), with ATLASD, FAKEDEV and SIM set:
 #

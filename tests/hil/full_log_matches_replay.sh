@@ -28,7 +28,7 @@
 # computation as the replay: its odometry comes from CAN wheel counters (1 mm steps, sent every
 # 20 ms of log time) stamped at arrival, with the scheduling delays of a shared 2-core machine
 # times the speed, and the atlas's discrete decisions (new frames, matches) amplify small
-# differences. Runs on 2026-11-22 (load 8 to 9): replay 1.666 m / 5.29 deg, 67 frames, live
+# differences. Runs on a loaded machine (load 8 to 9): replay 1.666 m / 5.29 deg, 67 frames, live
 # 1.809 m / 6.36 deg, 73 frames; a later tree: replay 1.742 m / 5.30 deg, 68 frames, live
 # 2.109 m / 7.89 deg, 78 frames (6 odometry messages counted bad). The tolerance comes from
 # these few runs: the live path is close to replay, measurably worse under load at 4x, not
@@ -38,10 +38,9 @@ need_multicast
 need_dataset
 [ -f "$RELATIONS" ] || { echo "SKIP: $RELATIONS absent" >&2; exit 77; }
 SPEED=4
-# The noise models are config/noise-simulator.toml's (core/localmap's defaults, those of this
-# test before the [noise.*] keys reached the maps), not the shipped B21 profile: with the B21 profile one run scored replay
-# 1.37 m / 2.1 deg against live 2.66 m / 6.2 deg (2026-11-23, loaded machine), beyond the
-# tolerance below; see docs/atlasd.md.
+# The noise models are config/noise-simulator.toml's (core/localmap's defaults), not the shipped B21 profile: with the B21 profile one run scored replay
+# 1.37 m / 2.1 deg against live 2.66 m / 6.2 deg (loaded machine), beyond the
+# tolerance below.
 write_config "$WORK/atlasd.toml" "$SPEED" \
   "[atlas]" "map_capacity = 10" "max_hypotheses = 4" "probation_steps = 8" \
   "max_sigma_x = 0.5" "max_sigma_y = 0.5" "max_sigma_theta = 0.2" \

@@ -1,4 +1,5 @@
-// atlas-localmap-eval: evaluation of the line-feature EKF local map (issue 3).
+// atlas-localmap-eval: evaluation of the line-feature EKF local map (docs/design.md, "Laser line
+// local map").
 //
 //   atlas-localmap-eval mc   [--runs N] [--minutes M] [--seed S] [--capacity C]
 //       Monte Carlo consistency in a simulated corridor (drivers/sim ray caster, laser and
@@ -66,7 +67,7 @@ constexpr char kUsage[] =
     "      (per-run), or absent and not modelled (off). --per-run 1 prints each run's NEES at\n"
     "      the first scan, mean, max; --dump F writes every run's per-scan NEES to F.\n"
     "      The filter's range sigma is the simulator's (1 cm) times 1.05: the margin for the\n"
-    "      line fits' residual biases (docs/localmap.md, session 10). --set overrides filter\n"
+    "      line fits' residual biases. --set overrides filter\n"
     "      options as in real (--set range_sigma=0.01: the simulator's sigma exactly).\n"
     "real: mit-csail.clf.gz, one local map per stretch of M metres of travel, restarting at\n"
     "      each stretch (no Genesis). Scores the relations whose two poses lie in one stretch\n"
@@ -117,10 +118,10 @@ struct OdometryCheck {
 
 // The filter's range sigma over the simulated laser's. The line fits of a straight wall keep
 // biases of a few hundredths of their sigma (head-on: the fit's second-order bias; next to door
-// jambs: the split's noise-dependent corner; docs/localmap.md, session 9) that repeat in every
+// jambs: the split's noise-dependent corner) that repeat in every
 // scan and add up over the thousands of fits fused into one feature. Five per cent more range
 // noise covers them: over seeds 1-1000 the robot NEES averages 2.99 (3 dof) and the feature
-// NEES 0.98 per dof, against 3.16 and 1.07 with the exact sigma (docs/localmap.md, session 10).
+// NEES 0.98 per dof, against 3.16 and 1.07 with the exact sigma.
 constexpr double kRangeSigmaMargin = 1.05;
 constexpr double kSimRangeSigma = 0.01;  // the simulated laser's, metres
 

@@ -1,5 +1,5 @@
 #pragma once
-// False loop closures against a reference trajectory (issue 4, corrected logs): every edge made
+// False loop closures against a reference trajectory (the corrected logs): every edge made
 // by map-matching (paper, Section III-D) is compared with the reference transform between the
 // origins of its two frames.
 //

@@ -36,10 +36,10 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
   // rays, corner echoes) stays SonarModelOptions' 0.02 m, as atlasd has it. The one-map check
   // (atlas-sonar-eval mc --runs 50 --minutes 4, seeds 1-50 / 101-150) has the robot NEES inside
   // its 95 % band on 94.0 / 89.2 % of steps with 24 transducers and 94.4 / 95.6 % with 16; the
-  // 0.03 m used before session 13 gave 92.4 / 62.8 % and 86.2 / 74.1 %, too conservative
-  // wherever few phantom lines happened to be made (docs/sonar.md, session 13). Over twenty
-  // blocks (seeds 1-1000) 0.02 m gives 88.0 / 84.7 % on average (24 / 16), 0.01 m 92.0 /
-  // 89.2 % but more false closures in the atlas (docs/sonar.md, session 23).
+  // former 0.03 m gave 92.4 / 62.8 % and 86.2 / 74.1 %, too conservative
+  // wherever few phantom lines happened to be made (docs/design.md, "Sonar local maps"). Over
+  // twenty blocks (seeds 1-1000) 0.02 m gives 88.0 / 84.7 % on average (24 / 16), 0.01 m 92.0 /
+  // 89.2 % but more false closures in the atlas.
   return o;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The atlas part of atlas-sonar-eval (issue 7): a simulated run recorded once, then stepped
+// The atlas part of atlas-sonar-eval: a simulated run recorded once, then stepped
 // through an Atlas (paper, Sections II-III) of sonar-only SonarLocalMaps or of laser maps, with
 // the ground truth kept beside it.
 //

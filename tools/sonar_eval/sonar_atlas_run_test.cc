@@ -98,9 +98,9 @@ TEST(PoseNees, FloorKeepsASingularCovarianceFinite) {
 // closure, and two matches refused because a direction of t rests on one line pair. (Until
 // the delayed vantage states, core/sonar/delayed_vantages.h, this was seed 2 over 0.3 km, then
 // seed 6 over 0.12 km, then, without w, seed 23 over 0.3 km, then seed 17 with w and a line
-// extent that bridges 1.5 m; since session 13 the model misfit noise is atlasd's 0.02 m, and
-// seed 17 made 2 frames and no match, so seed 22; since session 14 w starts from the
-// dead-reckoned seed, and seed 22 makes no match, so seed 61: docs/sonar.md.)
+// extent that bridges 1.5 m; with the model misfit noise at atlasd's 0.02 m
+// seed 17 made 2 frames and no match, so seed 22; with w starting from the dead-reckoned seed,
+// seed 22 makes no match, so seed 61.)
 TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
   const AlcoveLoopOptions loop;
   const sim::World world = AlcoveLoopWorld(loop);

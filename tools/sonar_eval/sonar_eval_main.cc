@@ -1,4 +1,4 @@
-// atlas-sonar-eval: evaluation of sonar-only line mapping (issue 7).
+// atlas-sonar-eval: evaluation of sonar-only line mapping (docs/design.md, "Sonar local maps").
 //
 //   atlas-sonar-eval mc   [--runs N] [--minutes M] [--ring 16|24] [--seed S] [--capacity C]
 //       Seeded simulator runs in a corridor (drivers/sim ray caster; sonar ring with specular
@@ -105,7 +105,7 @@ constexpr char kUsage[] =
     "      --redundancy-prior H its redundancy_prior_halfwidth (0: never; SonarAtlasOptions);\n"
     "      --alternative-sigmas A its alternative_sigmas (0: off; SonarAtlasOptions).\n"
     "      --line-correlation 0: map_match's unknown_line_correlation off (t's covariance not\n"
-    "      times the pairs; on in SonarAtlasOptions since session 16). Each edge is also judged\n"
+    "      times the pairs; on in SonarAtlasOptions). Each edge is also judged\n"
     "      as map-matching made it (before edge refinement).\n"
     "      --keep-frame-map 1 (with --sonar-w 0): a juvenile that matures leaves the frame's map\n"
     "      as it was (not the features it updated from its seeded pose) and gives it its robot\n"

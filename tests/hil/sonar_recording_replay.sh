@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# HIL: a sonar session re-run. `sonar_session_replay.sh MODE` (MODE: sonar or both, the
+# HIL: a sonar recording re-run. `sonar_recording_replay.sh MODE` (MODE: sonar or both, the
 # [localmap] sensors value): atlas-sim makes a short run through a small building; atlas-fakedev
 # plays it at 2x on the fake laser, CAN base and P2OS sonar (returns synthesised from the
 # laser, drivers/fake/fake_p2os.h); atlasd maps it with the raw channels republished and
@@ -8,14 +8,14 @@
 #     it stepped; both: readings and scans), with no pose gap over 0.5 s;
 #   - MODE sonar: the poses follow the sonar readings at once (the sonar reader wakes the loop):
 #     median from a reading's arrival stamp to its pose received by an LCM subscriber
-#     (atlas-pose-latency) under 2 ms (2026-11-23: 0.42 ms; with the loop woken only by the
-#     laser at 4 Hz or its 10 ms idle wait, as before, 3.5 ms);
+#     (atlas-pose-latency) under 2 ms (measured 0.42 ms; with the loop woken only by the
+#     laser at 4 Hz or its 10 ms idle wait, 3.5 ms);
 #   - `atlasd --replay` of the recording with the same configuration file steps the same
 #     items in the same order and gives the same poses: the n-th replay step has the n-th live
 #     step's stamp, frame, x, y, theta (printed to 1e-6) and q (to 1e-4).
 source "$(dirname "$0")/hil_lib.sh"
 need_multicast
-MODE=${1:?usage: sonar_session_replay.sh sonar|both}
+MODE=${1:?usage: sonar_recording_replay.sh sonar|both}
 : "${SIM:?set SIM to the atlas-sim binary}" "${POSE_LATENCY:?set POSE_LATENCY}"
 SPEED=2
 # MODE sonar: the laser at 4 Hz, so that most readings (10 Hz) come without a scan to wake the
