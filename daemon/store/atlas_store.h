@@ -2,11 +2,12 @@
 // The saved atlas: an SQLite database <state directory>/atlas.sqlite holding the map-frames (each
 // local map as its LocalMap::Serialize() byte image), the edges of the atlas graph, and
 // metadata. A restart loads it; the robot then starts in a new frame and map-matching
-// reconnects it to the saved ones (issue 6, Persistence).
+// reconnects it to the saved ones.
 //
 // Contract:
 // - Open() creates the file and schema when absent (or when the file holds no table at all: a
-//   creation interrupted by a crash). A file that is not an SQLite database,
+//   creation interrupted by a crash). An empty file beside a non-empty -wal (a writer killed
+//   before its first checkpoint), a file that is not an SQLite database,
 //   fails `PRAGMA integrity_check`, or lacks our schema is refused as corrupt; a file whose
 //   schema_version is newer than kSchemaVersion is refused as newer. A refused file is never
 //   overwritten: it is renamed (with its -wal and -shm companions) to
