@@ -53,11 +53,11 @@ run_ctest() {  # dir, ctest args...
 mkdir -p "$ROOT/build"
 
 # 1. Release.
-configure_and_build "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo
+configure_and_build "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DATLAS_WERROR=ON
 run_ctest "$ROOT/build/release" -LE hil
 
 # 2. Sanitizers.
-configure_and_build "$ROOT/build/sanitize" -DCMAKE_BUILD_TYPE=Debug -DATLAS_SANITIZE=ON \
+configure_and_build "$ROOT/build/sanitize" -DCMAKE_BUILD_TYPE=Debug -DATLAS_WERROR=ON -DATLAS_SANITIZE=ON \
   -DATLAS_BENCHMARKS=OFF
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   run_ctest "$ROOT/build/sanitize" -LE hil

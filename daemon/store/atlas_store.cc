@@ -443,13 +443,24 @@ StoreOpenResult AtlasStore::Open(const std::string& directory) {
   uintmax_t size = 0;
   if (!FindStoreFile(directory, path_, &size, &result.message)) return result;
   const bool existed = size > 0;
+  // An empty main file beside a write-ahead log that holds data (a writer killed before the
+  // first checkpoint wrote the header): SQLite would open it as a new database and delete the
+  // log, so the pair is refused and kept like any corrupt store.
+  const uintmax_t wal_size = existed ? 0 : fs::file_size(path_ + "-wal", ec);
+  const bool orphan_wal = !existed && !ec && wal_size > 0;
 
   result.status = existed ? StoreOpenStatus::kOpened : StoreOpenStatus::kCreated;
-  if (existed) {
+  if (existed || orphan_wal) {
     std::string why;
     int version = 0;
     int code = SQLITE_OK;
-    const Check check = CheckExisting(&why, &version, &code);
+    Check check = Check::kNotOurs;
+    if (orphan_wal) {
+      why = "its main file is empty beside a write-ahead log of " + std::to_string(wal_size) +
+            " bytes (written by an atlasd stopped before its first checkpoint)";
+    } else {
+      check = CheckExisting(&why, &version, &code);
+    }
     if (check == Check::kUnreadable) {
       result.status = StoreOpenStatus::kFailed;
       result.message = "cannot read the atlas store " + path_ + " (" + why +

@@ -6,7 +6,8 @@
 //
 // Contract:
 // - Open() creates the file and schema when absent (or when the file holds no table at all: a
-//   creation interrupted by a crash). A file that is not an SQLite database,
+//   creation interrupted by a crash). An empty file beside a non-empty -wal (a writer killed
+//   before its first checkpoint), a file that is not an SQLite database,
 //   fails `PRAGMA integrity_check`, or lacks our schema is refused as corrupt; a file whose
 //   schema_version is newer than kSchemaVersion is refused as newer. A refused file is never
 //   overwritten: it is renamed (with its -wal and -shm companions) to

@@ -295,6 +295,38 @@ TEST_F(StoreDir, WalLeftByAKilledWriterIsRecoveredNotRefused) {
   ExpectConsistentPrefix(a, 5);
 }
 
+// kill -9 before the first checkpoint can leave the main file empty beside a full -wal. SQLite
+// would open that as a new database and delete the log: the pair must be moved aside instead.
+TEST_F(StoreDir, EmptyMainFileBesideAFullWalIsMovedAsideNotDiscarded) {
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    AtlasStore store;
+    std::string error;
+    if (!store.Open(dir_.string()).ok()) _exit(2);
+    for (int k = 1; k <= 5; ++k) {
+      if (!store.Save(Batch(k), &error)) _exit(3);
+    }
+    raise(SIGKILL);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  fs::resize_file(db(), 0);
+  const std::string wal = ReadFile(db() + "-wal");
+  ASSERT_FALSE(wal.empty());
+
+  AtlasStore store;
+  const StoreOpenResult r = store.Open(dir_.string());
+  ASSERT_EQ(r.status, StoreOpenStatus::kMovedAsideCorrupt) << r.message;
+  EXPECT_NE(r.message.find("write-ahead log"), std::string::npos) << r.message;
+  EXPECT_EQ(ReadFile(r.moved_to + "-wal"), wal);
+  StoredAtlas a;
+  std::string error;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  EXPECT_TRUE(a.frames.empty());
+}
+
 TEST_F(StoreDir, UnusableDirectoryFailsWithAMessage) {
   fs::create_directories(dir_);
   std::ofstream(dir_ / "file") << "x";

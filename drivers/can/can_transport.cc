@@ -36,7 +36,8 @@ std::string CanErrnoText(const std::string& name, int err) {
     case ENOENT:
     case ECONNREFUSED:
       return what + "nobody is listening (" + (err == ENOENT ? "ENOENT" : "ECONNREFUSED") +
-             "): start the fake device (atlas-fakedev --can " + name + ")";
+             "): start the fake device (atlas-fakedev --can-socket " +
+             (name.starts_with("unix:") ? name.substr(5) : name) + ")";
     case EACCES:
       return what + "permission denied (EACCES)";
     default:

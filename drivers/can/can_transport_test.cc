@@ -52,6 +52,9 @@ TEST(CanTransportTest, FakeBusWithNobodyListening) {
   EXPECT_FALSE(t->Open(&err));
   EXPECT_NE(err.find("nobody is listening"), std::string::npos) << err;
   EXPECT_NE(err.find("unix:/nonexistent/atlas_bus"), std::string::npos) << err;
+  // The hint names atlas-fakedev's real option and the socket path without the scheme.
+  EXPECT_NE(err.find("atlas-fakedev --can-socket /nonexistent/atlas_bus)"), std::string::npos)
+      << err;
 }
 
 // A bare SOCK_SEQPACKET listener: frames arrive whole, odd-sized datagrams are rejected, and the

@@ -105,9 +105,11 @@ std::optional<StreamEvent> StreamDecoder::Next() {
       continue;
     }
     if (b.size() < kHeaderSize) return std::nullopt;
+    const uint64_t position = counters_.bytes_fed - window_.size();
+    const bool counted = position >= failed_end_;
     const std::size_t len = LenField(b);
     if (!LenValid(b[1], len)) {
-      ++counters_.bad_length;
+      if (counted) ++counters_.bad_length;
       SkipGarbage(1);
       continue;
     }
@@ -115,10 +117,14 @@ std::optional<StreamEvent> StreamDecoder::Next() {
     if (b.size() < total) return std::nullopt;
     const std::span<const uint8_t> whole = b.first(total);
     if (!CrcMatches(whole)) {
-      ++counters_.bad_crc;
+      if (counted) {
+        ++counters_.bad_crc;
+        failed_end_ = position + total;
+      }
       SkipGarbage(1);
       continue;
     }
+    failed_end_ = 0;
     StreamEvent e;
     e.kind = StreamEventKind::kTelegram;
     e.telegram = ViewOf(whole);

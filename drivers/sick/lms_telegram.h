@@ -63,7 +63,9 @@ struct StreamEvent {
 //   bytes_fed == telegram_bytes + acks + naks + garbage_bytes + buffered()
 // A rejected frame start (bad length or bad CRC) counts one event in bad_length / bad_crc,
 // and its STX byte counts as garbage; decoding resumes at the next byte, so a real telegram
-// hidden behind a false STX is still found.
+// hidden behind a false STX (or behind a telegram cut short by lost bytes) is still found.
+// Frame starts inside the span of a telegram that failed its CRC (0x02 bytes in its range
+// data) are not counted again: one damaged telegram is one bad_crc.
 struct StreamCounters {
   uint64_t bytes_fed = 0;
   uint64_t telegrams = 0;
@@ -91,6 +93,10 @@ class StreamDecoder
   // The next event, or nullopt if more bytes are needed. The event's spans stay valid until the
   // next Feed().
   std::optional<StreamEvent> Next();
+
+ private:
+  // Stream position just past the last counted telegram that failed its CRC.
+  uint64_t failed_end_ = 0;
 };
 
 }  // namespace atlas::sick

@@ -189,6 +189,49 @@ TEST(LmsStream, FalseStxWithPlausibleLengthDoesNotHideTheRealTelegram) {
   ExpectBytesAccounted(d);
 }
 
+TEST(LmsStream, OneDamagedTelegramCountsOnceWhateverItsDataHolds) {
+  // Range data full of 0x02 bytes with plausible lengths behind them: each damaged telegram
+  // is one bad_crc, not one per false start inside it.
+  std::vector<uint8_t> data;
+  for (int i = 0; i < 60; ++i) {
+    const uint8_t chunk[] = {0x02, 0x80, 0x05, 0x00, 0x02, 0x00, 0x01, 0x00};
+    data.insert(data.end(), std::begin(chunk), std::end(chunk));
+  }
+  std::vector<uint8_t> stream;
+  for (int i = 0; i < 50; ++i) {
+    std::vector<uint8_t> t = EncodeTelegram(0x80, 0xB0, data, uint8_t{0x10});
+    t[t.size() - 1] ^= 0x5A;
+    stream.insert(stream.end(), t.begin(), t.end());
+  }
+  const std::vector<uint8_t> good = EncodeTelegram(0x80, 0xB0, data, uint8_t{0x10});
+  stream.insert(stream.end(), good.begin(), good.end());
+  for (std::size_t chunk : {std::size_t{1}, std::size_t{7}, stream.size()}) {
+    StreamDecoder d;
+    const Collected c = FeedInChunks(&d, stream, chunk);
+    ASSERT_EQ(c.telegrams.size(), 1u) << "chunk " << chunk;
+    EXPECT_EQ(c.telegrams[0], good);
+    EXPECT_EQ(d.counters().bad_crc, 50u) << "chunk " << chunk;
+    EXPECT_EQ(d.counters().bad_length, 0u) << "chunk " << chunk;
+    ExpectBytesAccounted(d);
+  }
+}
+
+TEST(LmsStream, TelegramCutShortDoesNotHideTheNextOne) {
+  // A telegram that lost bytes on the line fails its CRC; the next telegram, which starts inside
+  // the span the damaged one announced, is still found.
+  std::vector<uint8_t> cut = Hex(kSpecVectors[6]);
+  cut.erase(cut.begin() + 5, cut.begin() + 7);
+  const std::vector<uint8_t> good = Hex(kSpecVectors[3]);
+  std::vector<uint8_t> stream = cut;
+  stream.insert(stream.end(), good.begin(), good.end());
+  stream.insert(stream.end(), good.begin(), good.end());
+  StreamDecoder d;
+  const Collected c = FeedInChunks(&d, stream, 1);
+  ASSERT_EQ(c.telegrams.size(), 2u);
+  EXPECT_EQ(d.counters().bad_crc, 1u);
+  ExpectBytesAccounted(d);
+}
+
 TEST(LmsStream, AckAndNakBytesAreEvents) {
   StreamDecoder d;
   const Collected c = FeedInChunks(&d, Hex("06 15 06"), 1);
