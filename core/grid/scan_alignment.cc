@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -35,6 +36,41 @@ double Evaluate(const InterpolatedGrid& map, const std::vector<Vec2>& points, co
   return cost;
 }
 
+// -d^2 s / dd^2 of the quadratic fitted by least squares to the scores of the placements of
+// `window` (heading, y, x order) within `cells` cells and `steps` heading steps of `best`,
+// d = (x, y, theta) relative to `best`.
+Mat3 ResponseCurvature(const std::vector<double>& scores, const SearchWindow& window,
+                       const Placement& best, int cells, int steps, double resolution) {
+  using Vec10 = Eigen::Matrix<double, 10, 1>;
+  Eigen::Matrix<double, 10, 10> normal = Eigen::Matrix<double, 10, 10>::Zero();
+  Vec10 rhs = Vec10::Zero();
+  size_t i = 0;
+  for (int h = 0; h < window.headings(); ++h) {
+    for (int y = -window.linear_cells; y <= window.linear_cells; ++y) {
+      for (int x = -window.linear_cells; x <= window.linear_cells; ++x, ++i) {
+        // In cells and heading steps, so that the system is well scaled.
+        const double a = x - best.x, b = y - best.y, c = h - best.heading;
+        if (std::abs(a) > cells || std::abs(b) > cells || std::abs(c) > steps) continue;
+        Vec10 f;
+        f << 1.0, a, b, c, 0.5 * a * a, 0.5 * b * b, 0.5 * c * c, a * b, a * c, b * c;
+        normal += f * f.transpose();
+        rhs += f * scores[i];
+      }
+    }
+  }
+  // Directions the window does not span (one heading, no translation) have no curvature.
+  normal.diagonal() += Vec10::Constant(1e-9 * normal.trace());
+  const Vec10 q = normal.ldlt().solve(rhs);
+  Mat3 hessian;
+  hessian << q(4), q(7), q(8), q(7), q(5), q(9), q(8), q(9), q(6);
+  const Vec3 unit(1.0 / resolution, 1.0 / resolution, 1.0 / window.angular_step);
+  return -(unit.asDiagonal() * hessian * unit.asDiagonal());
+}
+
+// Half-width of the response curvature's fit, cells; in heading, the steps that move a point
+// at the rms radius as far. Narrower, the cell-scale texture of the grid dominates the fit.
+constexpr int kCurvatureCells = 2;
+
 }  // namespace
 
 const char* ToString(AlignmentOutcome o) {
@@ -56,12 +92,13 @@ ScanAligner::ScanAligner(const ScanAlignmentOptions& options) : options_(options
 }
 
 Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vector<Vec2>& points,
-                                     const Pose2& initial, double* score) {
+                                     const Pose2& initial, AlignmentResult* out) {
   const double r = grid.limits().resolution;
   const SearchWindow window =
       MakeSearchWindow(options_.linear_window, options_.angular_window, r,
                        AngularSearchStep(points, r, options_.min_angular_step));
   DiscretizeScans(grid.limits(), points, initial, window, &scans_);
+  scores_.clear();
   Placement best;
   double best_sum = -1.0;
   long best_distance = 0;
@@ -73,6 +110,7 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
         for (int i = 0; i < scans_.points; ++i) {
           sum += grid.Probability(CellIndex{cells[i].x + x, cells[i].y + y});
         }
+        scores_.push_back(sum / scans_.points);
         const int dh = h - window.angular_steps;
         const long distance = static_cast<long>(x) * x + y * y + dh * dh;
         if (sum > best_sum || (sum == best_sum && distance < best_distance)) {
@@ -83,7 +121,10 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
       }
     }
   }
-  *score = best_sum / static_cast<double>(points.size());
+  out->correlative_score = best_sum / scans_.points;
+  const int steps = std::max(
+      1, static_cast<int>(std::lround(kCurvatureCells * r / (out->radius * window.angular_step))));
+  out->response_curvature = ResponseCurvature(scores_, window, best, kCurvatureCells, steps, r);
   return PlacementPose(best, initial, window, r);
 }
 
@@ -93,7 +134,13 @@ AlignmentResult ScanAligner::Align(const ProbabilityGrid& grid, const std::vecto
   out.pose.mean = initial;
   out.points = static_cast<int>(points.size());
   if (out.points < options_.min_points) return out;
-  Pose2 x = CorrelativeSearch(grid, points, initial, &out.correlative_score);
+  // (x, y, L theta) compares metres and radians; S maps it back to (x, y, theta).
+  double radius_squared = 0.0;
+  for (const Vec2& q : points) radius_squared += q.squaredNorm();
+  out.radius = std::max(0.1, std::sqrt(radius_squared / out.points));
+  const Eigen::DiagonalMatrix<double, 3> s_diagonal(1.0, 1.0, 1.0 / out.radius);
+
+  Pose2 x = CorrelativeSearch(grid, points, initial, &out);
   if (out.correlative_score < options_.min_score) {
     out.outcome = AlignmentOutcome::kLowScore;
     return out;
@@ -122,31 +169,27 @@ AlignmentResult ScanAligner::Align(const ProbabilityGrid& grid, const std::vecto
     if (small) break;
   }
 
-  // Covariance in (x, y, L theta): S maps those coordinates back to (x, y, theta).
-  double radius_squared = 0.0;
-  for (const Vec2& q : points) radius_squared += q.squaredNorm();
-  out.radius = std::max(0.1, std::sqrt(radius_squared / out.points));
-  const Vec3 s_diagonal(1.0, 1.0, 1.0 / out.radius);
   const double n = static_cast<double>(out.points);
   const double s2 =
       std::max(cost / (n - 3.0), options_.min_residual_sigma * options_.min_residual_sigma);
   out.information = h / s2;
-  const Mat3 scaled_h = s_diagonal.asDiagonal() * h * s_diagonal.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(scaled_h);
-  const Vec3 lambdas = eigen.eigenvalues();  // ascending
-  Vec3 variances;
-  for (int i = 2; i >= 0; --i) {
-    if (lambdas(i) > options_.degenerate_ratio * lambdas(2) && lambdas(i) > 0.0) {
-      variances(i) = s2 / lambdas(i);
-    } else {
-      variances(i) = options_.unconstrained_sigma * options_.unconstrained_sigma;
-      out.unconstrained_directions.col(out.unconstrained++) = eigen.eigenvectors().col(i);
-    }
+  Mat3 scaled_cov =
+      s2 * (s_diagonal * h * s_diagonal).completeOrthogonalDecomposition().pseudoInverse();
+
+  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(s_diagonal * out.response_curvature * s_diagonal);
+  const Vec3 curvatures = eigen.eigenvalues();  // ascending
+  Mat3 keep = Mat3::Identity();
+  Mat3 free_part = Mat3::Zero();
+  for (int i = 0; i < 3; ++i) {
+    if (curvatures(i) > options_.degenerate_ratio * curvatures(2) && curvatures(i) > 0.0) continue;
+    const Vec3 v = eigen.eigenvectors().col(i);
+    out.unconstrained_directions.col(out.unconstrained++) = v;
+    keep -= v * v.transpose();
+    free_part += options_.unconstrained_sigma * options_.unconstrained_sigma * v * v.transpose();
   }
-  const Mat3 scaled_cov =
-      eigen.eigenvectors() * variances.asDiagonal() * eigen.eigenvectors().transpose();
+  scaled_cov = keep * scaled_cov * keep + free_part;
   out.pose.mean = x;
-  out.pose.cov = s_diagonal.asDiagonal() * scaled_cov * s_diagonal.asDiagonal();
+  out.pose.cov = s_diagonal * scaled_cov * s_diagonal;
   double sum = 0.0;
   const RigidTransform t(x);
   for (const Vec2& q : points) sum += map.Evaluate(t.Apply(q), nullptr);

@@ -9,11 +9,16 @@
 //       x* = argmin_x  sum_i (1 - M(T_x q_i))^2
 //     with q_i the scan's points (scan frame) and M the bicubic probability.
 //  3. Covariance from the match: H = J^T J at x*, s^2 = sum_i r_i^2 / (n - 3) (at least
-//     min_residual_sigma^2); C = s^2 H^-1 evaluated in the coordinates (x, y, L theta), L the
-//     points' rms radius, so that metres and radians compare. Eigen-directions whose
-//     information is below degenerate_ratio times the largest are "unconstrained" (a
-//     corridor's length, a lone wall): they are reported and get unconstrained_sigma, so that
-//     the caller takes the odometry along them.
+//     min_residual_sigma^2), C = s^2 H^-1.
+//  4. Directions the grid does not fix (a corridor's length, a lone wall), from the response
+//     curvature of the correlative search (Olson 2009, Section III-C): a quadratic fitted by
+//     least squares to the mean score over the whole window gives A = -d^2 score / dx^2.
+//     Along a corridor the score is flat over the window while J^T J is not small there: the
+//     grid's cell-scale texture along a wall feeds J^T J but averages out over the window.
+//     In the coordinates (x, y, L theta), L the points' rms radius so that metres and radians
+//     compare, eigen-directions of A below degenerate_ratio times its largest eigenvalue are
+//     "unconstrained": they are reported, and C gets unconstrained_sigma along them (their
+//     share of C removed first), so that the caller takes the odometry there.
 //
 // Typed outcomes, never throws. Work is bounded: (2 linear_window / r + 1)^2 x headings x
 // points lookups, then at most max_iterations passes over the points.
@@ -39,7 +44,8 @@ struct AlignmentResult {
   AlignmentOutcome outcome = AlignmentOutcome::kTooFewPoints;
   // The scan's pose in the submap frame; the initial pose (zero covariance) unless aligned.
   UncertainPose pose;
-  Mat3 information = Mat3::Zero();  // H / s^2, over (x, y, theta)
+  Mat3 information = Mat3::Zero();         // H / s^2, over (x, y, theta)
+  Mat3 response_curvature = Mat3::Zero();  // A, over (x, y, theta), mean score per unit^2
   // Columns 0 .. unconstrained-1: unit directions of (x, y, radius theta) that the grid does
   // not fix.
   int unconstrained = 0;
@@ -62,12 +68,14 @@ class ScanAligner {
   const ScanAlignmentOptions& options() const { return options_; }
 
  private:
-  // The correlative optimum around `initial`; its mean probability in *score.
+  // The correlative optimum around `initial`; fills out's correlative_score and
+  // response_curvature.
   Pose2 CorrelativeSearch(const ProbabilityGrid& grid, const std::vector<Vec2>& points,
-                          const Pose2& initial, double* score);
+                          const Pose2& initial, AlignmentResult* out);
 
   ScanAlignmentOptions options_;
-  DiscreteScans scans_;  // scratch
+  DiscreteScans scans_;         // scratch
+  std::vector<double> scores_;  // scratch: mean score of every placement
 };
 
 }  // namespace atlas
