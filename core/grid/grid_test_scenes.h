@@ -2,6 +2,7 @@
 // Scenes for the grid tests and benchmarks: wall layouts scanned by core/localmap's
 // FakeWallScanner, and the grids and point sets made from them.
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +35,15 @@ inline std::vector<Wall> RoomWalls() {
   w.push_back({Vec2(-4.0, 2.0), Vec2(-2.0, 2.0)});  // counter
   w.push_back({Vec2(-2.0, 2.0), Vec2(-2.0, 1.2)});
   return w;
+}
+
+// Twelve poses spread over RoomWalls()'s floor, as a robot crossing it would scan it.
+inline std::vector<Pose2> RoomTour() {
+  std::vector<Pose2> poses;
+  for (int i = 0; i < 12; ++i) {
+    poses.push_back(Pose2{-3.5 + 0.6 * i, 2.5 * std::sin(0.7 * i), 0.5 * i});
+  }
+  return poses;
 }
 
 // Two parallel walls 2 m apart along x from -100 to 100 m: nothing fixes x.
