@@ -13,9 +13,9 @@
 
 namespace atlas {
 
-// A closed 10 x 8 m room, origin at its centre, with an alcove, a pillar and an L-shaped
-// counter, so that no placement but the true one fits it.
-inline std::vector<Wall> RoomWalls() {
+// A closed 10 x 8 m room (times `scale`), origin at its centre, with an alcove, a pillar and
+// an L-shaped counter, so that no placement but the true one fits it.
+inline std::vector<Wall> RoomWalls(double scale = 1.0) {
   std::vector<Wall> w;
   auto box = [&w](double x0, double y0, double x1, double y1) {
     w.push_back({Vec2(x0, y0), Vec2(x1, y0)});
@@ -34,14 +34,18 @@ inline std::vector<Wall> RoomWalls() {
   box(2.0, -2.5, 2.4, -2.1);                        // pillar
   w.push_back({Vec2(-4.0, 2.0), Vec2(-2.0, 2.0)});  // counter
   w.push_back({Vec2(-2.0, 2.0), Vec2(-2.0, 1.2)});
+  for (Wall& wall : w) {
+    wall.a *= scale;
+    wall.b *= scale;
+  }
   return w;
 }
 
-// Twelve poses spread over RoomWalls()'s floor, as a robot crossing it would scan it.
-inline std::vector<Pose2> RoomTour() {
+// Twelve poses spread over RoomWalls(scale)'s floor, as a robot crossing it would scan it.
+inline std::vector<Pose2> RoomTour(double scale = 1.0) {
   std::vector<Pose2> poses;
   for (int i = 0; i < 12; ++i) {
-    poses.push_back(Pose2{-3.5 + 0.6 * i, 2.5 * std::sin(0.7 * i), 0.5 * i});
+    poses.push_back(Pose2{scale * (-3.5 + 0.6 * i), scale * 2.5 * std::sin(0.7 * i), 0.5 * i});
   }
   return poses;
 }

@@ -99,18 +99,27 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
                        AngularSearchStep(points, r, options_.min_angular_step));
   DiscretizeScans(grid.limits(), points, initial, window, &scans_);
   scores_.clear();
+  // Ranked by the sum of stored values, unknown counted as 1: the probability is affine in the
+  // value and an unknown cell has the probability of value 1.
+  const std::vector<uint16_t>& values = grid.values();
+  const GridLimits& l = grid.limits();
   Placement best;
-  double best_sum = -1.0;
+  int64_t best_sum = -1;
   long best_distance = 0;
   for (int h = 0; h < window.headings(); ++h) {
     const CellIndex* cells = scans_.Heading(h);
     for (int y = -window.linear_cells; y <= window.linear_cells; ++y) {
       for (int x = -window.linear_cells; x <= window.linear_cells; ++x) {
-        double sum = 0.0;
+        int64_t sum = 0;
         for (int i = 0; i < scans_.points; ++i) {
-          sum += grid.Probability(CellIndex{cells[i].x + x, cells[i].y + y});
+          const CellIndex c{cells[i].x + x, cells[i].y + y};
+          sum += l.Contains(c) ? std::max<uint16_t>(values[l.IndexOf(c)], 1) : 1;
         }
-        scores_.push_back(sum / scans_.points);
+        scores_.push_back(
+            grid.ProbabilityOfValue(0) +
+            (grid.ProbabilityOfValue(ProbabilityGrid::kMaxValue) - grid.ProbabilityOfValue(0)) *
+                (static_cast<double>(sum) / scans_.points - 1.0) /
+                (ProbabilityGrid::kMaxValue - 1));
         const int dh = h - window.angular_steps;
         const long distance = static_cast<long>(x) * x + y * y + dh * dh;
         if (sum > best_sum || (sum == best_sum && distance < best_distance)) {
@@ -121,7 +130,7 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
       }
     }
   }
-  out->correlative_score = best_sum / scans_.points;
+  out->correlative_score = *std::max_element(scores_.begin(), scores_.end());
   const int steps = std::max(
       1, static_cast<int>(std::lround(kCurvatureCells * r / (out->radius * window.angular_step))));
   out->response_curvature = ResponseCurvature(scores_, window, best, kCurvatureCells, steps, r);
@@ -158,15 +167,16 @@ AlignmentResult ScanAligner::Align(const ProbabilityGrid& grid, const std::vecto
     const Vec3 delta = -a.ldlt().solve(g);
     const Pose2 next{x.x + delta.x(), x.y + delta.y(), WrapAngle(x.theta + delta.z())};
     const double next_cost = Evaluate(map, points, next, nullptr, nullptr);
-    const bool small = delta.norm() < options_.convergence_step;
+    bool converged = delta.norm() < options_.convergence_step;
     if (next_cost < cost) {
+      converged = converged || cost - next_cost < 1e-9 * cost;
       x = next;
-      lambda *= 0.1;
+      lambda = std::max(1e-9, 0.1 * lambda);
       cost = Evaluate(map, points, x, &h, &g);
     } else {
       lambda *= 10.0;
     }
-    if (small) break;
+    if (converged) break;
   }
 
   const double n = static_cast<double>(out.points);
