@@ -61,6 +61,14 @@ int64_t LevelZeroSum(const PrecomputationGridStack& grids, const std::vector<Vec
   return sum;
 }
 
+BranchAndBoundResult SearchAtOnce(const PrecomputationGridStack& grids,
+                                  const std::vector<Vec2>& points, const Pose2& center,
+                                  const BranchAndBoundOptions& options) {
+  BranchAndBoundSearch search(grids, points, center, options);
+  EXPECT_EQ(search.Run(std::numeric_limits<int64_t>::max()), SearchStatus::kDone);
+  return search.result();
+}
+
 TEST(BranchAndBound, EqualsExhaustiveSearchOnRandomCases) {
   for (uint64_t seed = 1; seed <= 40; ++seed) {
     const RandomCase c = MakeRandomCase(seed);
@@ -157,9 +165,7 @@ TEST(BranchAndBound, ARepetitivePlaceHasASmallMargin) {
   const PrecomputationGridStack grids(grid, o.search.depth);
   const Pose2 truth{0.3, -0.4, 0.2};
   const std::vector<Vec2> points = ScanPoints(walls, truth, o, 3, FullCircleLaser(361, 4.0));
-  BranchAndBoundSearch search(grids, points, Pose2{0.6, -0.2, 0.25}, o.search);
-  search.Run(std::numeric_limits<int64_t>::max());
-  const BranchAndBoundResult& r = search.result();
+  const BranchAndBoundResult r = SearchAtOnce(grids, points, Pose2{0.6, -0.2, 0.25}, o.search);
   ASSERT_TRUE(r.best.found);
   ASSERT_TRUE(r.runner_up.found);
   // Under half the room's (FindsAScanInARoom...: 0.124 of 0.605; here 0.055 of 0.710).
@@ -176,18 +182,10 @@ TEST(BranchAndBound, MatchesASubmapsOccupiedCells) {
   const ProbabilityGrid target = ScannedGrid(walls, RoomTour(), o);
   // A second submap whose frame is `truth` in the target's frame, built from other poses.
   const Pose2 truth{0.8, -0.5, 0.3};
-  std::vector<Wall> moved;
-  const RigidTransform to_source(Inverse(truth));
-  for (const Wall& w : walls) moved.push_back({to_source.Apply(w.a), to_source.Apply(w.b)});
-  std::vector<Pose2> tour;
-  for (const Pose2& p : RoomTour()) tour.push_back(Between(truth, Pose2{-p.x, p.y, -p.theta}));
-  const ProbabilityGrid source = ScannedGrid(moved, tour, o, 5);
-  const std::vector<Vec2> points = OccupiedCellCenters(source, 0.6);
+  const std::vector<Vec2> points = OtherSubmapPoints(walls, 1.0, truth, o);
   ASSERT_GT(points.size(), 200u);
   const PrecomputationGridStack grids(target, o.search.depth);
-  BranchAndBoundSearch search(grids, points, Pose2{0.0, 0.0, 0.0}, o.search);
-  search.Run(std::numeric_limits<int64_t>::max());
-  const BranchAndBoundResult& r = search.result();
+  const BranchAndBoundResult r = SearchAtOnce(grids, points, Pose2{0.0, 0.0, 0.0}, o.search);
   ASSERT_TRUE(r.best.found);
   EXPECT_NEAR(r.best.pose.x, truth.x, 0.05);
   EXPECT_NEAR(r.best.pose.y, truth.y, 0.05);

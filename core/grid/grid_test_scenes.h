@@ -104,4 +104,17 @@ inline std::vector<Vec2> ScanPoints(const std::vector<Wall>& walls, const Pose2&
   return range.returns;
 }
 
+// The occupied cells (probability >= 0.6) of a second submap of `walls` whose frame is
+// `frame` in the walls' frame, built from RoomTour(scale) mirrored in x: the same place seen
+// from other poses.
+inline std::vector<Vec2> OtherSubmapPoints(const std::vector<Wall>& walls, double scale,
+                                           const Pose2& frame, const GridOptions& options) {
+  std::vector<Wall> moved;
+  const RigidTransform to_frame(Inverse(frame));
+  for (const Wall& w : walls) moved.push_back({to_frame.Apply(w.a), to_frame.Apply(w.b)});
+  std::vector<Pose2> tour;
+  for (const Pose2& p : RoomTour(scale)) tour.push_back(Between(frame, Pose2{-p.x, p.y, -p.theta}));
+  return OccupiedCellCenters(ScannedGrid(moved, tour, options, 5), 0.6);
+}
+
 }  // namespace atlas

@@ -12,70 +12,58 @@ namespace {
 double Odds(double p) { return p / (1.0 - p); }
 double FromOdds(double o) { return o / (1.0 + o); }
 
-ProbabilityGrid FixedGrid(const ProbabilityGridOptions& o) {
-  return ProbabilityGrid(o, Vec2(-2.0, -2.0), Vec2(1.99, 1.99));
-}
+// A fixed 4 x 4 m grid of 5 cm cells around the origin, updated by single-beam scans.
+class OneBeamTest : public ::testing::Test {
+ protected:
+  InsertionStats Insert(const Vec2& origin, std::vector<Vec2> returns) {
+    scan_.origin = origin;
+    scan_.returns = std::move(returns);
+    return inserter_.Insert(scan_, &grid_);
+  }
+  double ProbabilityAt(const Vec2& p) const { return grid_.Probability(grid_.limits().CellOf(p)); }
+  bool KnownAt(const Vec2& p) const { return grid_.IsKnown(grid_.limits().CellOf(p)); }
 
-TEST(RangeInserter, OneBeamMarksItsReturnAndTheCellsBefore) {
-  const ProbabilityGridOptions o;
-  ProbabilityGrid grid = FixedGrid(o);
-  RangeInserter inserter(o);
-  RangeScan scan;
-  scan.origin = Vec2(0.01, 0.01);
-  scan.returns = {Vec2(1.01, 0.01)};
-  const InsertionStats stats = inserter.Insert(scan, &grid);
+  const ProbabilityGridOptions options_;
+  ProbabilityGrid grid_{options_, Vec2(-2.0, -2.0), Vec2(1.99, 1.99)};
+  RangeInserter inserter_{options_};
+  RangeScan scan_;
+};
+
+TEST_F(OneBeamTest, MarksItsReturnAndTheCellsBefore) {
+  const InsertionStats stats = Insert(Vec2(0.01, 0.01), {Vec2(1.01, 0.01)});
   EXPECT_EQ(stats.returns_inserted, 1);
   EXPECT_EQ(stats.cells_updated, 21);  // 20 cells of 5 cm crossed, the return's cell
-  const GridLimits& l = grid.limits();
-  EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(1.01, 0.01))), 0.55, 1e-4);
-  for (double x = 0.01; x < 1.0; x += 0.05) {
-    EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(x, 0.01))), 0.49, 1e-4) << x;
-  }
-  EXPECT_FALSE(grid.IsKnown(l.CellOf(Vec2(1.06, 0.01))));
-  EXPECT_FALSE(grid.IsKnown(l.CellOf(Vec2(0.5, 0.06))));
-  EXPECT_EQ(grid.known_cells(), 21);
+  EXPECT_NEAR(ProbabilityAt(Vec2(1.01, 0.01)), 0.55, 1e-4);
+  for (double x = 0.01; x < 1.0; x += 0.05) EXPECT_NEAR(ProbabilityAt(Vec2(x, 0.01)), 0.49, 1e-4);
+  EXPECT_FALSE(KnownAt(Vec2(1.06, 0.01)));
+  EXPECT_FALSE(KnownAt(Vec2(0.5, 0.06)));
+  EXPECT_EQ(grid_.known_cells(), 21);
 
   // Four more scans: the odds multiply, clamped at the bounds.
-  for (int i = 0; i < 4; ++i) inserter.Insert(scan, &grid);
-  EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(1.01, 0.01))), FromOdds(std::pow(Odds(0.55), 5)),
-              1e-4);
-  EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(0.5, 0.01))), FromOdds(std::pow(Odds(0.49), 5)), 1e-4);
-  EXPECT_EQ(grid.known_cells(), 21);
-  for (int i = 0; i < 100; ++i) inserter.Insert(scan, &grid);
-  EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(1.01, 0.01))), 0.9, 1e-4);
-  EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(0.5, 0.01))), 0.1, 1e-4);
+  for (int i = 0; i < 4; ++i) inserter_.Insert(scan_, &grid_);
+  EXPECT_NEAR(ProbabilityAt(Vec2(1.01, 0.01)), FromOdds(std::pow(Odds(0.55), 5)), 1e-4);
+  EXPECT_NEAR(ProbabilityAt(Vec2(0.5, 0.01)), FromOdds(std::pow(Odds(0.49), 5)), 1e-4);
+  EXPECT_EQ(grid_.known_cells(), 21);
+  for (int i = 0; i < 100; ++i) inserter_.Insert(scan_, &grid_);
+  EXPECT_NEAR(ProbabilityAt(Vec2(1.01, 0.01)), 0.9, 1e-4);
+  EXPECT_NEAR(ProbabilityAt(Vec2(0.5, 0.01)), 0.1, 1e-4);
 }
 
-TEST(RangeInserter, EachCellIsUpdatedOnceAScanAndHitsWin) {
-  const ProbabilityGridOptions o;
-  ProbabilityGrid grid = FixedGrid(o);
-  RangeInserter inserter(o);
-  RangeScan scan;
-  scan.origin = Vec2(0.01, 0.01);
+TEST_F(OneBeamTest, EachCellIsUpdatedOnceAScanAndHitsWin) {
   // Two returns in one cell, and a longer beam through that cell.
-  scan.returns = {Vec2(0.51, 0.01), Vec2(0.52, 0.02), Vec2(1.01, 0.01)};
-  inserter.Insert(scan, &grid);
-  const GridLimits& l = grid.limits();
-  EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(0.51, 0.01))), 0.55, 1e-4);
-  EXPECT_NEAR(grid.Probability(l.CellOf(Vec2(0.26, 0.01))), 0.49, 1e-4);
+  Insert(Vec2(0.01, 0.01), {Vec2(0.51, 0.01), Vec2(0.52, 0.02), Vec2(1.01, 0.01)});
+  EXPECT_NEAR(ProbabilityAt(Vec2(0.51, 0.01)), 0.55, 1e-4);
+  EXPECT_NEAR(ProbabilityAt(Vec2(0.26, 0.01)), 0.49, 1e-4);
 }
 
-TEST(RangeInserter, DiagonalRaysLeaveNoGaps) {
-  const ProbabilityGridOptions o;
-  ProbabilityGrid grid = FixedGrid(o);
-  RangeInserter inserter(o);
-  RangeScan scan;
-  scan.origin = Vec2(0.012, 0.013);
-  scan.returns = {Vec2(1.3, 0.9)};
-  inserter.Insert(scan, &grid);
+TEST_F(OneBeamTest, DiagonalRaysLeaveNoGaps) {
+  const Vec2 from(0.012, 0.013), to(1.3, 0.9);
+  Insert(from, {to});
   // Every cell the segment passes through is known (sampled finely along it).
-  for (double t = 0.0; t <= 1.0; t += 0.001) {
-    const Vec2 p = scan.origin + t * (scan.returns[0] - scan.origin);
-    EXPECT_TRUE(grid.IsKnown(grid.limits().CellOf(p))) << t;
-  }
+  for (double t = 0.0; t <= 1.0; t += 0.001) EXPECT_TRUE(KnownAt(from + t * (to - from))) << t;
   // Crossing cells of a supercover: 4-connected, one step per cell boundary.
-  const CellIndex a = grid.limits().CellOf(scan.origin), b = grid.limits().CellOf(scan.returns[0]);
-  EXPECT_EQ(grid.known_cells(), std::abs(b.x - a.x) + std::abs(b.y - a.y) + 1);
+  const CellIndex a = grid_.limits().CellOf(from), b = grid_.limits().CellOf(to);
+  EXPECT_EQ(grid_.known_cells(), std::abs(b.x - a.x) + std::abs(b.y - a.y) + 1);
 }
 
 TEST(RangeInserter, BeamsWithoutReturnFreeSpaceUpToTheCapOnly) {
