@@ -1,6 +1,7 @@
 #include "core/grid/branch_and_bound.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace atlas {
@@ -51,6 +52,7 @@ BranchAndBoundSearch::BranchAndBoundSearch(const PrecomputationGridStack& grids,
       options_(options),
       center_(center),
       window_(WindowFor(grids, points, options)) {
+  assert(options_.Validate().empty());
   DiscretizeScans(grids.limits(), points, center, window_, &scans_);
   min_sum_ = MinimumSum(grids, options.min_score, scans_.points);
   stack_.resize(grids.depth());

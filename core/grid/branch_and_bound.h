@@ -97,7 +97,7 @@ class BranchAndBoundSearch {
 
 // Every placement of the window scored at level 0: the reference for BranchAndBoundSearch (and
 // the correlative search of Olson 2009 without its speed-up). Ties go to the first placement in
-// (heading, y, x) order.
+// (heading, y, x) order. Memory: one integer per placement; for tests and measurements.
 BranchAndBoundResult ExhaustiveSearch(const PrecomputationGridStack& grids,
                                       const std::vector<Vec2>& points, const Pose2& center,
                                       const BranchAndBoundOptions& options);
