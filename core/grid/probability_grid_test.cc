@@ -1,0 +1,91 @@
+#include "core/grid/probability_grid.h"
+
+#include <gtest/gtest.h>
+
+namespace atlas {
+namespace {
+
+ProbabilityGridOptions SmallOptions() {
+  ProbabilityGridOptions o;
+  o.resolution = 0.1;
+  o.initial_cells = 8;
+  o.max_cells = 64;
+  return o;
+}
+
+TEST(GridLimits, CellsLieOnOneGlobalLattice) {
+  GridLimits l;
+  l.resolution = 0.1;
+  l.offset = CellIndex{-5, 3};
+  l.width = l.height = 10;
+  EXPECT_EQ(l.CellOf(Vec2(-0.45, 0.35)), (CellIndex{0, 0}));
+  EXPECT_EQ(l.CellOf(Vec2(-0.55, 0.35)), (CellIndex{-1, 0}));
+  EXPECT_TRUE(l.CenterOf(CellIndex{0, 0}).isApprox(Vec2(-0.45, 0.35)));
+  EXPECT_TRUE(l.Contains(CellIndex{9, 9}));
+  EXPECT_FALSE(l.Contains(CellIndex{10, 0}));
+}
+
+TEST(ProbabilityGrid, ValuesAndProbabilitiesConvert) {
+  const ProbabilityGrid grid(SmallOptions());
+  EXPECT_EQ(grid.ValueOfProbability(0.0), 1);
+  EXPECT_EQ(grid.ValueOfProbability(1.0), ProbabilityGrid::kMaxValue);
+  EXPECT_DOUBLE_EQ(grid.ProbabilityOfValue(ProbabilityGrid::kUnknown), 0.1);
+  for (double p : {0.1, 0.3, 0.5, 0.55, 0.9}) {
+    EXPECT_NEAR(grid.ProbabilityOfValue(grid.ValueOfProbability(p)), p, 2e-5);
+  }
+}
+
+TEST(ProbabilityGrid, GrowingKeepsEveryValueInItsCell) {
+  ProbabilityGrid grid(SmallOptions());
+  EXPECT_EQ(grid.limits().width, 0);
+  ASSERT_TRUE(grid.GrowToCover(Vec2(0.0, 0.0), Vec2(0.2, 0.2)));
+  EXPECT_EQ(grid.limits().width, 8);
+  const Vec2 p(0.15, 0.05);
+  const CellIndex c = grid.limits().CellOf(p);
+  grid.mutable_values()[grid.limits().IndexOf(c)] = 1234;
+  ASSERT_TRUE(grid.GrowToCover(Vec2(-1.5, -0.1), Vec2(0.1, 2.0)));
+  EXPECT_GE(grid.limits().width, 16);
+  EXPECT_EQ(grid.Value(grid.limits().CellOf(p)), 1234);
+  EXPECT_TRUE(grid.limits().Contains(grid.limits().CellOf(Vec2(-1.5, 2.0))));
+  int set = 0;
+  for (uint16_t v : grid.values()) set += v != 0;
+  EXPECT_EQ(set, 1);
+}
+
+TEST(ProbabilityGrid, NeverExceedsItsCap) {
+  ProbabilityGrid grid(SmallOptions());
+  ASSERT_TRUE(grid.GrowToCover(Vec2(0.0, 0.0), Vec2(0.1, 0.1)));
+  // 100 m away: beyond 64 cells of 0.1 m.
+  EXPECT_FALSE(grid.GrowToCover(Vec2(0.0, 0.0), Vec2(100.0, 0.1)));
+  EXPECT_EQ(grid.limits().width, 64);
+  EXPECT_LE(grid.limits().height, 64);
+  EXPECT_TRUE(grid.limits().Contains(grid.limits().CellOf(Vec2(0.0, 0.0))));
+  EXPECT_FALSE(grid.GrowToCover(Vec2(-100.0, -100.0), Vec2(0.0, 0.0)));
+  EXPECT_EQ(grid.limits().width, 64);
+  EXPECT_EQ(grid.limits().height, 64);
+  EXPECT_LE(grid.values().capacity(), 64u * 64u);
+}
+
+TEST(ProbabilityGrid, FixedBoundsNeverGrow) {
+  ProbabilityGrid grid(SmallOptions(), Vec2(-1.0, -1.0), Vec2(0.95, 0.95));
+  EXPECT_FALSE(grid.grows());
+  EXPECT_EQ(grid.limits().width, 20);
+  EXPECT_EQ(grid.limits().height, 20);
+  EXPECT_TRUE(grid.GrowToCover(Vec2(-0.5, -0.5), Vec2(0.5, 0.5)));
+  EXPECT_FALSE(grid.GrowToCover(Vec2(-0.5, -0.5), Vec2(5.0, 0.5)));
+  EXPECT_EQ(grid.limits().width, 20);
+  EXPECT_EQ(grid.Value(CellIndex{25, 0}), ProbabilityGrid::kUnknown);
+  EXPECT_DOUBLE_EQ(grid.Probability(CellIndex{-1, 0}), 0.1);
+}
+
+TEST(ProbabilityGrid, OccupiedCellCentersListsCellsAboveTheThreshold) {
+  ProbabilityGrid grid(SmallOptions(), Vec2(0.0, 0.0), Vec2(0.95, 0.95));
+  grid.mutable_values()[grid.limits().IndexOf(CellIndex{2, 3})] = grid.ValueOfProbability(0.8);
+  grid.mutable_values()[grid.limits().IndexOf(CellIndex{4, 4})] = grid.ValueOfProbability(0.4);
+  const std::vector<Vec2> points = OccupiedCellCenters(grid, 0.6);
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_TRUE(points[0].isApprox(Vec2(0.25, 0.35)));
+}
+
+}  // namespace
+}  // namespace atlas
