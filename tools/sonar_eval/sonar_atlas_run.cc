@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/localmap/line_model.h"
+#include "tools/monte_carlo/nees_band.h"
 #include "tools/render/run_data.h"
 #include "tools/replay/replay_run.h"
 
@@ -56,6 +57,13 @@ double PoseNees(const UncertainPose& est, const Pose2& truth) {
                                  .asDiagonal()
                                  .toDenseMatrix();
   return e.dot(cov.ldlt().solve(e));
+}
+
+void AddPairError(const Pose2& truth_delta, const Pose2& estimate_delta, std::vector<double>& trans,
+                  std::vector<double>& rot_deg) {
+  trans.push_back(std::hypot(truth_delta.x - estimate_delta.x, truth_delta.y - estimate_delta.y));
+  rot_deg.push_back(std::abs(WrapAngle(truth_delta.theta - estimate_delta.theta)) * 180.0 /
+                    std::numbers::pi);
 }
 
 Vec2 WallLine(const sim::Wall& wall) {
@@ -177,7 +185,7 @@ AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
     r.odometry.push_back(Between(odo0, e.odometry));
     r.frame.push_back(d.frame);
     const bool known = d.frame >= 0 && static_cast<size_t>(d.frame) < origin.size();
-    r.nees.push_back(known ? PoseNees(d.pose, Between(*origin[d.frame], truth)) : -1.0);
+    r.nees.push_back(known ? PoseNees(d.pose, Between(*origin[d.frame], truth)) : mc::kNoNees);
   }
   r.closures = replay::CheckClosures(atlas.Graph(), origin, replay::ClosureCheckOptions{});
   return r;
