@@ -24,6 +24,7 @@
 #include "tools/localmap_eval/filter_overrides.h"
 #include "tools/monte_carlo/corridor.h"
 #include "tools/monte_carlo/nees_band.h"
+#include "tools/monte_carlo/simulated_base.h"
 
 namespace atlas::localmap_eval {
 namespace {
@@ -71,17 +72,7 @@ LocalMapOptions SimFilterOptions(int capacity, const WheelOdometryNoiseOptions& 
   LocalMapOptions o;
   o.capacity = capacity;
   o.extraction.range_sigma = laser.range_sigma * kRangeSigmaMargin;
-  o.odometry.track_width = wheel.track_width_m;
-  o.odometry.wheel_var_per_m = wheel.wheel_noise_per_m;
-  o.odometry.xy_var_per_m = 0.0;
-  o.odometry.xy_var_per_rad = 0.0;
-  o.odometry.theta_var_per_m = 0.0;
-  o.odometry.theta_var_per_rad = 0.0;
-  // The simulated base's calibration errors (systematic, the same every step): their sizes are
-  // the standard deviations of the filter's calibration model (OdometryNoiseOptions).
-  o.odometry.wheel_scale_sigma =
-      std::max(std::abs(wheel.left_scale_error), std::abs(wheel.right_scale_error));
-  o.odometry.track_width_sigma = std::abs(wheel.track_width_error);
+  o.odometry = mc::SimulatedBaseOdometry(wheel);
   return o;
 }
 

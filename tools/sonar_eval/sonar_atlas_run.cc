@@ -8,6 +8,7 @@
 
 #include "core/localmap/line_model.h"
 #include "tools/monte_carlo/nees_band.h"
+#include "tools/monte_carlo/simulated_base.h"
 #include "tools/render/run_data.h"
 #include "tools/replay/replay_run.h"
 
@@ -21,16 +22,7 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
   o.ring = sonar.ring;
   o.line_map.capacity = capacity;
   o.line_map.extraction.range_sigma = 0.01;
-  o.line_map.odometry.track_width = wheel.track_width_m;
-  o.line_map.odometry.wheel_var_per_m = wheel.wheel_noise_per_m;
-  o.line_map.odometry.xy_var_per_m = 0.0;
-  o.line_map.odometry.xy_var_per_rad = 0.0;
-  o.line_map.odometry.theta_var_per_m = 0.0;
-  o.line_map.odometry.theta_var_per_rad = 0.0;
-  // The simulated base's calibration errors (systematic), as atlas-localmap-eval models them.
-  o.line_map.odometry.wheel_scale_sigma =
-      std::max(std::abs(wheel.left_scale_error), std::abs(wheel.right_scale_error));
-  o.line_map.odometry.track_width_sigma = std::abs(wheel.track_width_error);
+  o.line_map.odometry = mc::SimulatedBaseOdometry(wheel);
   o.model.range_sigma = sonar.range_sigma;
   o.model.range_sigma_per_m = sonar.range_sigma_per_m;
   // model_sigma (walls the wide-beam model does not quite explain: the simulator's discrete
