@@ -1,25 +1,17 @@
 #pragma once
-// The live atlasd: device reader threads -> fixed-capacity queues -> one loop thread (StepLoop)
-// -> LCM; the main thread handles signals and systemd (docs/atlasd.md).
+// The live atlasd (docs/atlasd.md): device reader threads -> fixed-capacity queues -> one loop
+// thread (loop_thread.h: drain, steps, LCM output, health, checkpoints, reloads) -> LCM. This is
+// the process shell, on the main thread:
+// - signals: SIGTERM/SIGINT stop, SIGHUP reloads the configuration file (reload.h; a file that
+//   does not load changes nothing), SIGUSR1 stalls the loop for stall_seconds when
+//   debug_stall_on_usr1 (tests of the watchdog); all are blocked in every other thread.
+// - sd_notify (live_timing.h): READY=1 once the devices are open (or after ready_timeout, with
+//   the missing devices in STATUS) and the loop runs; WATCHDOG=1 at half the watchdog interval
+//   only while the loop thread's heartbeat is fresh; STATUS= the one-line summary; STOPPING=1.
 //
-// Threads:
-// - one reader thread per enabled device (drivers/device), each with its SPSC queue;
-// - the loop thread: drains the queues (odometry first, then sonar, then scans), republishes
-//   raw data when lcm.republish_raw, steps the atlas on the oldest pending scan, or sonar
-//   reading when localmap.sensors maps with the sonar (older ones beyond
-//   loop.max_pending_scans are dropped and counted; a sonar reading waits for the next wake-up,
-//   at most 10 ms, as the sonar reader does not wake the loop), publishes the pose at every step,
-//   the local map, graph and hypotheses at their periods, and health every
-//   lcm.health_period_s; when idle it sleeps until the laser reader queues a scan (at most
-//   10 ms, for dead reckoning and health), never polling and never blocking on a device. It runs
-//   with the configured scheduling (policy, priority, affinity); when that is refused it
-//   carries on with the default scheduling and a warning.
-// - the main thread: signals (SIGTERM/SIGINT stop, SIGHUP reload, SIGUSR1 test stall when
-//   enabled), sd_notify: READY=1 once the devices are open (or after ready_timeout, with the
-//   missing devices in STATUS) and the loop runs; WATCHDOG=1 at half the watchdog interval only
-//   while the loop thread's heartbeat is fresh; STATUS= the one-line summary; STOPPING=1.
-//
-// Run() returns the process exit code.
+// RunLiveDaemon() returns the process exit code: 0 after a clean stop, 1 when LCM cannot be
+// opened, kExitConfigError for options ValidateDerivedOptions refuses, 70 (EX_SOFTWARE) when
+// the loop thread stopped on an internal error (the store keeps the last checkpoint).
 
 #include <string>
 

@@ -19,6 +19,7 @@
 #include "core/sonar/fake_sonar_ring.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/fake_step_sink.h"
+#include "daemon/atlasd/input_drain.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 
 namespace atlas {
@@ -65,14 +66,53 @@ struct LiveRun {
   int late_items = 0;  // items the maps use, added right after a newer one
 };
 
+// What the live loop thread does with a drain (loop_thread.h): every item republished raw on
+// LCM, and added to the loop when the maps use it; counts the items added after a newer one.
+class LiveDrainTarget final : public DrainTarget {
+ public:
+  LiveDrainTarget(AtlasPublisher* publisher, StepLoop* loop, const DaemonOptions& o, LiveRun* run)
+      : publisher_(publisher),
+        loop_(loop),
+        use_laser_(o.localmap.sensors != LocalMapSensors::kSonar),
+        use_sonar_(o.localmap.sensors != LocalMapSensors::kLaser),
+        run_(run) {}
+  void OnOdometry(const OdometrySample& s) override {
+    publisher_->RawOdometry(s);
+    loop_->AddOdometry(s);
+  }
+  void OnSonar(SonarReading& r) override {
+    publisher_->RawSonar(r);
+    if (!use_sonar_) return;
+    Added(r.stamp);
+    loop_->AddSonar(std::move(r));
+  }
+  void OnScan(LaserScan& s) override {
+    publisher_->RawLaser(s);
+    if (!use_laser_) return;
+    Added(s.stamp);
+    loop_->AddScan(std::move(s));
+  }
+
+ private:
+  void Added(Time stamp) {
+    if (stamp < last_added_) ++run_->late_items;
+    last_added_ = stamp;
+  }
+  AtlasPublisher* publisher_;
+  StepLoop* loop_;
+  bool use_laser_, use_sonar_;
+  LiveRun* run_;
+  Time last_added_{};
+};
+
 // A robot driving 3 m down a corridor (walls at y = +-1.2, an end wall), odometry at 50 Hz, the
 // laser (181 beams) at 25 Hz and the sonar ring at 10 Hz, through the live loop's order of work
-// (live_daemon.cc LoopThread): a wake-up drains the odometry, then the readings and scans in
-// stamp order (InStampOrder) - each republished raw on memq:// LCM (recorded into `log_path` as
-// lcm-logger does) and added if the maps use it - then steps one item, and steps on (or, at
-// random, takes the next arrivals first, as a loaded loop does). One scan in five reaches its
-// queue 20 ms after its arrival stamp (a reader preempted before its push), so that a newer
-// reading may be drained, and stepped or still pending, before it.
+// (loop_thread.h): a wake-up drains the queues with the live loop's InputDrain (the odometry,
+// then the readings and scans in stamp order, each republished raw on memq:// LCM, recorded
+// into `log_path` as lcm-logger does, and added if the maps use it), then steps one item, and
+// steps on (or, at random, takes the next arrivals first, as a loaded loop does). One scan in
+// five reaches its queue 20 ms after its arrival stamp (a reader preempted before its push), so
+// that a newer reading may be drained, and stepped or still pending, before it.
 LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t seed) {
   LiveRun run;
   lcm::LCM lcm("memq://");
@@ -94,49 +134,25 @@ LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t se
   FakeWallScanner laser(laser_walls, laser_options, seed);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution wakes(0.5), catches_up(0.3), late(0.2);
-  std::vector<OdometrySample> odometry_queue;
-  std::vector<SonarReading> sonar_queue;
-  std::vector<LaserScan> laser_queue;
+  SpscQueue<OdometrySample> odometry_queue(64);
+  SpscQueue<SonarReading> sonar_queue(64);
+  SpscQueue<LaserScan> laser_queue(64);
   std::vector<std::pair<int, LaserScan>> laser_in_flight;  // (tick of the push, scan)
-  const bool use_laser = o.localmap.sensors != LocalMapSensors::kSonar;
-  const bool use_sonar = o.localmap.sensors != LocalMapSensors::kLaser;
-  Time last_added{};
-  auto added = [&](Time stamp) {
-    if (stamp < last_added) ++run.late_items;
-    last_added = stamp;
-  };
+  InputDrain input(&odometry_queue, &sonar_queue, &laser_queue);
+  LiveDrainTarget target(&publisher, &loop, o, &run);
   auto drain = [&] {
-    for (const OdometrySample& s : odometry_queue) {
-      publisher.RawOdometry(s);
-      loop.AddOdometry(s);
-    }
-    InStampOrder(
-        sonar_queue, laser_queue,
-        [&](SonarReading& r) {
-          publisher.RawSonar(r);
-          if (!use_sonar) return;
-          added(r.stamp);
-          loop.AddSonar(std::move(r));
-        },
-        [&](LaserScan& s) {
-          publisher.RawLaser(s);
-          if (!use_laser) return;
-          added(s.stamp);
-          loop.AddScan(std::move(s));
-        });
-    odometry_queue.clear();
-    sonar_queue.clear();
-    laser_queue.clear();
+    input.Drain(&target);
     while (lcm.handleTimeout(0) > 0) {
     }
   };
   for (int k = 0; k <= 600; ++k) {  // 10 ms ticks
     const double t = 0.01 * k;
     const Pose2 robot{0.5 * t, 0.0, 0.0};
-    if (k % 2 == 0) odometry_queue.push_back({FromSeconds(t), robot});
+    if (k % 2 == 0) odometry_queue.Push({FromSeconds(t), robot});
     if (k % 10 == 3) {
-      sonar_queue.push_back(FireFakeSonarRing(sonar_walls, settings.sonar_ring, robot, 0.01, rng));
-      sonar_queue.back().stamp = FromSeconds(t);
+      SonarReading reading = FireFakeSonarRing(sonar_walls, settings.sonar_ring, robot, 0.01, rng);
+      reading.stamp = FromSeconds(t);
+      sonar_queue.Push(std::move(reading));
       ++run.readings;
     }
     if (k % 4 == 2) {
@@ -145,7 +161,7 @@ LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t se
       ++run.scans;
     }
     while (!laser_in_flight.empty() && laser_in_flight.front().first <= k) {
-      laser_queue.push_back(std::move(laser_in_flight.front().second));
+      laser_queue.Push(std::move(laser_in_flight.front().second));
       laser_in_flight.erase(laser_in_flight.begin());
     }
     if (!wakes(rng)) continue;

@@ -116,7 +116,7 @@ class StepLoop {
   // Options that a reload may change (step budget, periods); capacities stay.
   void SetStepBudget(Duration budget) { options_.step_budget = budget; }
   // A reload with new atlas parameters: the loop goes on with `atlas` (the old one rebuilt
-  // with the new settings, see live_daemon.cc); odometry and pending scans are kept.
+  // with the new settings, see reload.h); odometry and pending scans are kept.
   void ReplaceAtlas(Atlas* atlas, const MapperSettings& settings) {
     atlas_ = atlas;
     settings_ = settings;

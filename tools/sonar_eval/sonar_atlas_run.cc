@@ -7,6 +7,8 @@
 #include <numbers>
 
 #include "core/localmap/line_model.h"
+#include "tools/monte_carlo/nees_band.h"
+#include "tools/monte_carlo/simulated_base.h"
 #include "tools/render/run_data.h"
 #include "tools/replay/replay_run.h"
 
@@ -20,16 +22,7 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
   o.ring = sonar.ring;
   o.line_map.capacity = capacity;
   o.line_map.extraction.range_sigma = 0.01;
-  o.line_map.odometry.track_width = wheel.track_width_m;
-  o.line_map.odometry.wheel_var_per_m = wheel.wheel_noise_per_m;
-  o.line_map.odometry.xy_var_per_m = 0.0;
-  o.line_map.odometry.xy_var_per_rad = 0.0;
-  o.line_map.odometry.theta_var_per_m = 0.0;
-  o.line_map.odometry.theta_var_per_rad = 0.0;
-  // The simulated base's calibration errors (systematic), as atlas-localmap-eval models them.
-  o.line_map.odometry.wheel_scale_sigma =
-      std::max(std::abs(wheel.left_scale_error), std::abs(wheel.right_scale_error));
-  o.line_map.odometry.track_width_sigma = std::abs(wheel.track_width_error);
+  o.line_map.odometry = mc::SimulatedBaseOdometry(wheel);
   o.model.range_sigma = sonar.range_sigma;
   o.model.range_sigma_per_m = sonar.range_sigma_per_m;
   // model_sigma (walls the wide-beam model does not quite explain: the simulator's discrete
@@ -56,6 +49,13 @@ double PoseNees(const UncertainPose& est, const Pose2& truth) {
                                  .asDiagonal()
                                  .toDenseMatrix();
   return e.dot(cov.ldlt().solve(e));
+}
+
+void AddPairError(const Pose2& truth_delta, const Pose2& estimate_delta, std::vector<double>& trans,
+                  std::vector<double>& rot_deg) {
+  trans.push_back(std::hypot(truth_delta.x - estimate_delta.x, truth_delta.y - estimate_delta.y));
+  rot_deg.push_back(std::abs(WrapAngle(truth_delta.theta - estimate_delta.theta)) * 180.0 /
+                    std::numbers::pi);
 }
 
 Vec2 WallLine(const sim::Wall& wall) {
@@ -177,7 +177,7 @@ AtlasRunReport RunAtlas(Atlas& atlas, const SimRecording& run, bool sonar,
     r.odometry.push_back(Between(odo0, e.odometry));
     r.frame.push_back(d.frame);
     const bool known = d.frame >= 0 && static_cast<size_t>(d.frame) < origin.size();
-    r.nees.push_back(known ? PoseNees(d.pose, Between(*origin[d.frame], truth)) : -1.0);
+    r.nees.push_back(known ? PoseNees(d.pose, Between(*origin[d.frame], truth)) : mc::kNoNees);
   }
   r.closures = replay::CheckClosures(atlas.Graph(), origin, replay::ClosureCheckOptions{});
   return r;

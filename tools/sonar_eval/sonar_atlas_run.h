@@ -48,6 +48,12 @@ AtlasOptions SonarAtlasOptions();
 inline constexpr double kNeesFloorM = 1e-3, kNeesFloorRad = 1e-3;
 double PoseNees(const UncertainPose& estimate, const Pose2& truth);
 
+// The error of one pair of poses some time apart: the distance (m) and the heading difference
+// (degrees) between the true relative pose and the estimated one, appended to `trans` and
+// `rot_deg`.
+void AddPairError(const Pose2& truth_delta, const Pose2& estimate_delta, std::vector<double>& trans,
+                  std::vector<double>& rot_deg);
+
 // Line features against the simulator's walls. Lines are canonical (rho, alpha)
 // (CanonicalizeLine) in a map frame whose true origin is `origin`.
 // The infinite line through a wall, in the coordinates its endpoints are given in.
@@ -91,7 +97,8 @@ struct AtlasRunReport {
   // Per step with a dominant hypothesis.
   std::vector<Pose2> truth, estimate, odometry;  // estimate in its frame; odometry from start
   std::vector<FrameId> frame;
-  std::vector<double> nees;  // of the dominant pose in its frame; < 0 when the origin is unknown
+  std::vector<double>
+      nees;  // of the dominant pose in its frame; mc::kNoNees when the origin is unknown
   int steps = 0, frames = 0, genesis = 0;
   int accepted = 0, ambiguous = 0, rejected = 0;
   // Traversal juveniles (III-E): seeded, matured, deleted (of which killed by w, eq. 12).
