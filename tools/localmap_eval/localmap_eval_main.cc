@@ -40,6 +40,7 @@
 #include "drivers/sim/ray_caster.h"
 #include "drivers/sim/route.h"
 #include "drivers/sim/wheel_odometry_model.h"
+#include "formats/text_rows.h"
 #include "tools/eval/tool_options.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/render/canvas.h"
@@ -683,7 +684,7 @@ int RunReal(const Args& args) {
                  read.error.c_str());
     return 1;
   }
-  const eval::TextFile rel_text = eval::ReadTextFile(rel_path);
+  const formats::TextFile rel_text = formats::ReadTextFile(rel_path);
   if (!rel_text.error.empty()) {
     std::fprintf(stderr, "atlas-localmap-eval real: %s (give --relations FILE)\n",
                  rel_text.error.c_str());

@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "core/localmap/line_model.h"
+#include "replay/replay_run.h"
 #include "tools/render/run_data.h"
-#include "tools/replay/replay_run.h"
 
 namespace atlas::sonar_eval {
 
