@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "core/common/quote_for_message.h"
 #include "core/geometry/covariance.h"
 #include "formats/text_rows.h"
 
@@ -39,7 +40,8 @@ std::string ParseGraphTsv(std::string_view text, const std::string& source, Grap
                  "triangle of a 3x3 covariance; atlas-replay writes positive definite ones: "
                  "re-run it or fix the row)";
         if (!EdgeKindFromName(f[11], &e.kind))
-          return "field 12 is " + Quote(f[11]) + ", not an edge kind (genesis, map-match, refined)";
+          return "field 12 is " + QuoteForMessage(f[11]) +
+                 ", not an edge kind (genesis, map-match, refined)";
         const std::pair<FrameId, FrameId> key{std::min(e.from, e.to), std::max(e.from, e.to)};
         if (const auto it = pairs.find(key); it != pairs.end())
           return "edge " + name + " joins two frames that line " + std::to_string(it->second) +

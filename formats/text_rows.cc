@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/common/parse_number.h"
+#include "core/common/quote_for_message.h"
 
 namespace atlas::formats {
 
@@ -79,15 +80,15 @@ std::string NumberField(std::string_view text, size_t field, double* value) {
   std::string_view digits = text;
   if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
   if (!ParseNumber(digits, value))
-    return "field " + std::to_string(field) + " is " + Quote(text) + ", not a number";
+    return "field " + std::to_string(field) + " is " + QuoteForMessage(text) + ", not a number";
   return "";
 }
 
 std::string FrameField(std::string_view text, size_t field, bool allow_none, FrameId* frame) {
   int64_t v = 0;
   if (!ParseInteger(text, &v) || v < (allow_none ? -1 : 0) || v > 100000000)
-    return "field " + std::to_string(field) + " is " + Quote(text) + ", not a frame id (" +
-           (allow_none ? "-1 or " : "") + "an integer 0..1e8)";
+    return "field " + std::to_string(field) + " is " + QuoteForMessage(text) +
+           ", not a frame id (" + (allow_none ? "-1 or " : "") + "an integer 0..1e8)";
   *frame = static_cast<FrameId>(v);
   return "";
 }
@@ -129,25 +130,6 @@ std::string PoseFields(std::span<const std::string_view> fields, size_t first, P
       return e;
   *pose = Pose2{v[0], v[1], WrapAngle(v[2])};
   return "";
-}
-
-std::string Quote(std::string_view text) {
-  constexpr size_t kMax = 40;
-  std::string out = "'";
-  for (size_t i = 0; i < text.size() && i < kMax; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    }
-  }
-  out += "'";
-  if (text.size() > kMax) out += "...";
-  return out;
 }
 
 void AppendF(std::string* out, const char* format, ...) {

@@ -54,9 +54,6 @@ std::string CoordinateField(std::string_view text, size_t field, bool angle, dou
 // Three fields x y theta within the limits above; theta is wrapped to (-pi, pi].
 std::string PoseFields(std::span<const std::string_view> fields, size_t first, Pose2* pose);
 
-// The text quoted for a message: at most 40 characters, non-printable bytes as \xNN.
-std::string Quote(std::string_view text);
-
 // Appends printf-formatted text to `out` (a row of a file).
 [[gnu::format(printf, 2, 3)]] void AppendF(std::string* out, const char* format, ...);
 

@@ -63,8 +63,6 @@ TEST(TextRows, FieldChecks) {
   EXPECT_NEAR(p.theta, 7.0 - 2 * std::numbers::pi, 1e-12);  // wrapped
   const std::vector<std::string_view> far = {"1e8", "0", "0"};
   EXPECT_EQ(PoseFields(far, 0, &p).rfind("field 1 is 1e+08, out of range for a position", 0), 0u);
-  EXPECT_EQ(Quote(std::string_view("a\tb", 3)), "'a\\x09b'");
-  EXPECT_EQ(Quote(std::string(50, 'x')), "'" + std::string(40, 'x') + "'...");
 }
 
 TEST(TextRows, ReadsPlainAndGzipFilesAndWrites) {

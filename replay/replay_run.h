@@ -26,8 +26,9 @@
 //                   its pose in its own frame and the square roots of its covariance's diagonal)
 // With a refiner given (offline, after the run; tools/replay/replay_refiner.h):
 //   global_refined.tsv  timestamp x y theta   (as global.tsv, frames placed by least squares)
-// Deterministic: the same events and settings give byte-identical files, except step_ns in
-// timing.tsv and the wall-clock figures of the summary.
+// Deterministic: the same events and settings give byte-identical files, except what is
+// measured while stepping (step_ns in timing.tsv, step_cpu.tsv, the summary's time and memory
+// figures); tests/replay/entry_points_identical.sh compares the two entry points.
 
 #include <array>
 #include <cstdint>

@@ -239,7 +239,8 @@ TEST_F(ReplayMitCsail, HypothesesFileListsEveryStepsLiveHypothesesWithTheDominan
 }
 
 TEST(Replay, UnwritableOutputIsAnErrorNotACrash) {
-  const ReplayResult r = RunReplay({}, ReplayOptions{}, "/proc/atlas-replay-cannot-be-here");
+  const ReplayResult r =
+      RunReplay(std::vector<SensorEvent>{}, ReplayOptions{}, "/proc/atlas-replay-cannot-be-here");
   EXPECT_FALSE(r.error.empty());
 }
 
