@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The LCM log tools on bad input (no network: logs are written byte by byte here, atlasd
 # --replay reads a file, atlas-pose-latency is refused before it opens LCM): atlas-lcm-log-summary
-# and atlasd --replay refuse a directory, an empty file, random bytes and a CARMEN log, report a
-# truncated or corrupt log and undecodable events with the byte and a non-zero exit; options are
-# validated (exit 2). Needs ATLASD, LOG_SUMMARY, POSE_LATENCY.
+# refuses a directory, an empty file, random bytes and a CARMEN log; atlasd --replay (which
+# reads CARMEN logs too) refuses the first three; both report a truncated or corrupt log and
+# undecodable events with the byte and a non-zero exit; options are validated (exit 2). Needs
+# ATLASD, LOG_SUMMARY, POSE_LATENCY.
 source "$(dirname "$0")/hil_lib.sh"
 : "${ATLASD:?}" "${LOG_SUMMARY:?}" "${POSE_LATENCY:?}"
 export LCM_DEFAULT_URL=memq://
