@@ -97,12 +97,9 @@ wait "$LOGGER" || true
 
 echo "== drawing the atlas atlasd built"
 "$BIN/atlasd" --config "$OUT/atlasd.toml" --export-atlas "$OUT/atlas"
-"$BIN/atlas-lcm-log-summary" "$OUT/session.lcm" --poses "$OUT/poses.txt" >"$OUT/session.txt"
-# The published poses as atlas-replay's trajectory.tsv: timestamp frame x y theta.
-{
-  echo "# atlasd poses from ATLAS_POSE: timestamp frame x y theta"
-  awk '$1 !~ /^#/ { printf "%s\t%s\t%s\t%s\t%s\n", $1, $5, $2, $3, $4 }' "$OUT/poses.txt"
-} >"$OUT/atlas/trajectory.tsv"
+# The published poses as a replay's trajectory.tsv (docs/formats.md).
+"$BIN/atlas-lcm-log-summary" "$OUT/session.lcm" --trajectory "$OUT/atlas/trajectory.tsv" \
+  >"$OUT/session.txt"
 "$BIN/atlas-render" --atlas "$OUT/atlas" --whole --png "$OUT/atlas.png"
 "$BIN/atlas-render" --run "$OUT/sim" --png "$OUT/run.png"
 echo

@@ -5,7 +5,14 @@
 namespace atlas::eval {
 
 std::string BuildGraphFromEdges(int frame_count, std::span<const EdgeRow> edges, AtlasGraph* out) {
-  AtlasGraph graph(std::max(2, static_cast<int>(edges.size())));
+  // The degree bound is the largest degree among the edges (AtlasGraph reserves it per frame).
+  std::vector<int> degree(static_cast<size_t>(std::max(frame_count, 0)), 0);
+  for (const EdgeRow& e : edges)
+    for (FrameId f : {e.from, e.to})
+      if (f >= 0 && f < frame_count) ++degree[static_cast<size_t>(f)];
+  int max_degree = 1;
+  for (int d : degree) max_degree = std::max(max_degree, d);
+  AtlasGraph graph(max_degree);
   for (int f = 0; f < frame_count; ++f) graph.AddFrame(nullptr);
   for (size_t i = 0; i < edges.size(); ++i) {
     const EdgeRow& e = edges[i];

@@ -35,7 +35,8 @@ struct EdgeRow {
   EdgeKind kind = EdgeKind::kGenesis;
 };
 
-// Builds a graph (frames 0 .. frame_count-1 without maps, unbounded degree) from edge rows.
+// Builds a graph (frames 0 .. frame_count-1 without maps, degree bounded by the largest degree
+// among the edges) from edge rows.
 // Returns an error ("edge <index>: <why>") for an edge naming an unknown frame, a self-loop or a
 // second edge between the same two frames.
 std::string BuildGraphFromEdges(int frame_count, std::span<const EdgeRow> edges, AtlasGraph* out);

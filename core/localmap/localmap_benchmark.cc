@@ -1,55 +1,33 @@
 // Speed of the local map's per-scan work: line extraction from a 361-beam real scan,
 // one EKF update with 10 features, JCBB with 10 features and 10 observations in its worst case.
 #include <benchmark/benchmark.h>
-#include <zlib.h>
 
 #include <Eigen/LU>
-#include <cstdio>
-#include <cstring>
-#include <sstream>
 #include <string>
+#include <variant>
 
 #include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/line_extraction.h"
+#include "drivers/carmen/carmen_log.h"
 
 namespace atlas {
 namespace {
 
-// A real scan: FLASER line 300 of mit-csail.clf.gz from ../shared/datasets, read with zlib;
-// a synthetic 361-beam corridor scan if the file is absent (the label says which).
+// A real scan: the 300th laser scan of mit-csail.clf.gz from ../shared/datasets, read by the
+// CARMEN reader (drivers/carmen); a synthetic 361-beam corridor scan if the file is absent (the
+// label says which).
 LaserScan BenchmarkScan(bool* real) {
   *real = false;
   const std::string path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.clf.gz";
-  if (gzFile f = gzopen(path.c_str(), "rb")) {
-    std::string line;
-    char buf[65536];
-    int seen = 0;
-    while (gzgets(f, buf, sizeof(buf)) != nullptr) {
-      if (std::strncmp(buf, "FLASER 361 ", 11) == 0 && ++seen == 300) {
-        line = buf;
-        break;
-      }
-    }
-    gzclose(f);
-    std::istringstream in(line);
-    std::string word;
-    int n = 0;
-    if (in >> word >> n && n == 361) {
-      LaserScan scan;
-      scan.angle_min = static_cast<float>(-M_PI / 2);
-      scan.angle_increment = static_cast<float>(M_PI / 360);
-      scan.max_range = 80.0f;
-      scan.ranges.resize(n);
-      for (float& r : scan.ranges) {
-        in >> r;
-        if (r >= 80.0f) r = kNoReturn;
-      }
-      if (in) {
-        *real = true;
-        return scan;
-      }
+  const carmen::CarmenReadResult read = carmen::ReadCarmenLog(path, carmen::CarmenLogOptions{});
+  int seen = 0;
+  for (const carmen::CarmenEvent& e : read.log.events) {
+    const auto* scan = std::get_if<LaserScan>(&e.event);
+    if (scan != nullptr && scan->ranges.size() == 361 && ++seen == 300) {
+      *real = true;
+      return *scan;
     }
   }
   FakeWallScanner scanner(CorridorWorld(30.0, 2.4), FakeLaserOptions(), 1);

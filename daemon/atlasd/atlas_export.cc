@@ -1,76 +1,36 @@
 #include "daemon/atlasd/atlas_export.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "daemon/atlasd/atlas_checkpoint.h"
 #include "daemon/atlasd/daemon_setup.h"
+#include "formats/graph_tsv.h"
+#include "formats/replay_dir.h"
+#include "formats/text_rows.h"
 
 namespace atlas {
 namespace {
 
-template <typename... Args>
-void Append(std::string& s, const char* format, Args... args) {
-  char line[512];
-  const int n = std::snprintf(line, sizeof(line), format, args...);
-  if (n > 0) s.append(line, static_cast<size_t>(std::min<int>(n, sizeof(line) - 1)));
-}
-
 std::string WriteText(const std::string& dir, const char* name, const std::string& text) {
-  const std::string path = (std::filesystem::path(dir) / name).string();
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  return out.good() ? "" : "cannot write " + path;
+  return formats::WriteTextFile((std::filesystem::path(dir) / name).string(), text);
 }
 
 }  // namespace
-
-std::string GraphTsvRow(const AtlasEdge& edge) {
-  std::string text;
-  const Pose2& p = edge.b_in_a.mean;
-  const Mat3& c = edge.b_in_a.cov;
-  Append(text, "%d\t%d\t%.6f\t%.6f\t%.6f\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%s\n", edge.a, edge.b,
-         p.x, p.y, p.theta, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2),
-         EdgeKindName(edge.kind));
-  return text;
-}
-
-std::string MapsTsvRows(const AtlasGraph& graph) {
-  std::string text;
-  for (FrameId f = 0; f < graph.FrameCount(); ++f) {
-    const LocalMap* map = graph.Frame(f).map.get();
-    if (map == nullptr) continue;
-    for (const MapLine& l : map->Lines())
-      Append(text, "%d\t%d\t%.6f\t%.6f\t%.4f\t%.4f\t%.4f\t%.4f\t%.9g\t%.9g\t%.9g\n", f, l.id, l.rho,
-             l.alpha, l.endpoint_a.x(), l.endpoint_a.y(), l.endpoint_b.x(), l.endpoint_b.y(),
-             l.cov(0, 0), l.cov(0, 1), l.cov(1, 1));
-  }
-  return text;
-}
-
-std::string PointsTsvRows(const AtlasGraph& graph) {
-  std::string text;
-  for (FrameId f = 0; f < graph.FrameCount(); ++f)
-    for (const Vec2& c : graph.Frame(f).points.Centres())
-      Append(text, "%d\t%.2f\t%.2f\n", f, c.x(), c.y());
-  return text;
-}
 
 std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return "cannot create " + dir + ": " + ec.message();
   const AtlasGraph& graph = atlas.Graph();
-  std::string text = "# atlasd graph: from to x y theta c00 c01 c02 c11 c12 c22 kind\n";
-  for (const AtlasEdge& edge : graph.Edges()) text += GraphTsvRow(edge);
+  std::string text = formats::FormatGraphTsv(
+      graph, "atlasd graph: from to x y theta c00 c01 c02 c11 c12 c22 kind");
   if (std::string e = WriteText(dir, "graph.tsv", text); !e.empty()) return e;
   text = "# atlasd maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
-  text += MapsTsvRows(graph);
+  text += formats::MapsTsvRows(graph);
   if (std::string e = WriteText(dir, "maps.tsv", text); !e.empty()) return e;
   text = "# atlasd points: frame x y (cell centres of the laser points each frame keeps)\n";
-  text += PointsTsvRows(graph);
+  text += formats::PointsTsvRows(graph);
   return WriteText(dir, "points.tsv", text);
 }
 

@@ -29,10 +29,12 @@ options:
   --check-config FILE    check a configuration file and exit: 0 when valid, 78 (EX_CONFIG)
                          with every error (file:line:column: key: message) otherwise
   --replay LOGFILE       offline: run the same loop over the raw channels of an lcm-logger
-                         file (recorded with lcm.republish_raw = true) instead of devices;
-                         the scans and/or sonar readings stepped are those localmap.sensors
-                         names, as live (give the session's configuration file)
-  --out DIR              replay output: DIR/poses.txt (one pose per step) and DIR/summary.txt
+                         file (recorded with lcm.republish_raw = true) or over a CARMEN log
+                         instead of devices; the scans and/or sonar readings stepped are
+                         those localmap.sensors names, as live (give the session's
+                         configuration file)
+  --out DIR              replay output: the files of atlas-replay (DIR/trajectory.tsv,
+                         graph.tsv, timing.tsv, ...; docs/formats.md, "Replay output")
   --export-atlas DIR     write the atlas saved in state.directory as DIR/graph.tsv and
                          DIR/maps.tsv (atlas-replay's formats, for atlas-render --atlas) and exit
   --health-every S       print the health line on stderr every S seconds, 0.001 to 86400

@@ -21,6 +21,9 @@
 #include "daemon/atlasd/fake_step_sink.h"
 #include "daemon/atlasd/input_drain.h"
 #include "daemon/lcm_out/atlas_publisher.h"
+#include "formats/replay_dir.h"
+#include "formats/text_rows.h"
+#include "formats/trajectory_tsv.h"
 
 namespace atlas {
 namespace {
@@ -177,23 +180,28 @@ LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t se
   return run;
 }
 
-struct FileRow {
-  double t, x, y, theta, q;
-  int frame;
+// The replay's trajectory.tsv (the steps with a dominant hypothesis) and the stamps of its
+// timing.tsv (every step).
+struct ReplayRows {
+  std::vector<formats::FramePoseRow> trajectory;
+  std::vector<formats::TimingRecord> timing;
 };
+ReplayRows ReadReplay(const std::string& dir) {
+  ReplayRows out;
+  EXPECT_EQ(formats::ParseTrajectoryTsv(formats::ReadTextFile(dir + "/trajectory.tsv").text,
+                                        "trajectory.tsv", &out.trajectory),
+            "");
+  EXPECT_EQ(formats::ParseTimingRows(formats::ReadTextFile(dir + "/timing.tsv").text, "timing.tsv",
+                                     &out.timing),
+            "");
+  return out;
+}
 
-std::vector<FileRow> ReadPoses(const std::string& path) {
-  std::vector<FileRow> rows;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    FileRow r{};
-    s >> r.t >> r.x >> r.y >> r.theta >> r.frame >> r.q;
-    rows.push_back(r);
-  }
-  return rows;
+std::string FileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 // A new directory under /tmp; empty (errno set) when it cannot be made.
@@ -238,37 +246,34 @@ TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
   EXPECT_NEAR(live.rows.back().pose.pose.mean.y, 0.0, 0.15);
 
   ASSERT_EQ(RunReplay(o, dir + "/session.lcm", dir + "/out"), 0);
-  const std::vector<FileRow> replay = ReadPoses(dir + "/out/poses.txt");
-  ASSERT_EQ(replay.size(), live.rows.size());
-  for (size_t i = 0; i < replay.size(); ++i) {
+  const ReplayRows replay = ReadReplay(dir + "/out");
+  ASSERT_EQ(replay.timing.size(), live.rows.size());
+  size_t row = 0;  // in trajectory.tsv: the steps with a dominant hypothesis
+  for (size_t i = 0; i < live.rows.size(); ++i) {
     const Row& l = live.rows[i];
     SCOPED_TRACE("step " + std::to_string(i));
-    ASSERT_NEAR(replay[i].t, ToSeconds(l.stamp), 1e-6);
-    ASSERT_EQ(replay[i].frame, l.pose.valid ? l.pose.frame : -1);
-    ASSERT_NEAR(replay[i].x, l.pose.pose.mean.x, 1e-6);
-    ASSERT_NEAR(replay[i].y, l.pose.pose.mean.y, 1e-6);
-    ASSERT_NEAR(replay[i].theta, l.pose.pose.mean.theta, 1e-6);
-    ASSERT_NEAR(replay[i].q, l.pose.valid ? l.pose.q : 0.0, 1e-4);
+    ASSERT_NEAR(replay.timing[i].stamp_s, ToSeconds(l.stamp), 1e-6);
+    ASSERT_EQ(replay.timing[i].dominant, l.pose.valid ? l.pose.frame : kNoFrame);
+    if (!l.pose.valid) continue;
+    ASSERT_LT(row, replay.trajectory.size());
+    const formats::FramePoseRow& r = replay.trajectory[row++];
+    ASSERT_NEAR(ToSeconds(r.stamp), ToSeconds(l.stamp), 1e-6);
+    ASSERT_EQ(r.frame, l.pose.frame);
+    ASSERT_NEAR(r.pose.x, l.pose.pose.mean.x, 1e-6);
+    ASSERT_NEAR(r.pose.y, l.pose.pose.mean.y, 1e-6);
+    ASSERT_NEAR(r.pose.theta, l.pose.pose.mean.theta, 1e-6);
   }
-  std::ifstream summary(dir + "/out/summary.txt");
-  std::stringstream text;
-  text << summary.rdbuf();
-  EXPECT_NE(text.str().find("sonar_readings " + std::to_string(live.readings) + "\n"),
+  EXPECT_EQ(row, replay.trajectory.size());
+  const std::string summary = FileText(dir + "/out/summary.json");
+  EXPECT_NE(summary.find("\"sonar_readings\": " + std::to_string(live.readings) + ","),
             std::string::npos)
-      << text.str();
+      << summary;
   std::filesystem::remove_all(dir);
 }
 
-std::string FileText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // A recording cut in its last event (lcm-logger killed) replays up to the cut, exit 1, with the
-// byte of the cut on stderr and "log truncated" in the summary; a corrupt one likewise; a file
-// that is not an LCM log is refused before anything is written.
+// byte of the cut on stderr; a corrupt one likewise; a file that is neither an LCM log nor a
+// CARMEN log is refused before anything is written.
 TEST(Replay, SaysWhereABadLogEnds) {
   const std::string dir = MakeTempDir();
   ASSERT_FALSE(dir.empty()) << std::strerror(errno);
@@ -284,12 +289,11 @@ TEST(Replay, SaysWhereABadLogEnds) {
                      ": the last event, event "),
             std::string::npos)
       << err;
-  EXPECT_NE(FileText(dir + "/cut/summary.txt").find("\nlog truncated\n"), std::string::npos);
-  const std::vector<FileRow> replay = ReadPoses(dir + "/cut/poses.txt");
-  EXPECT_GE(replay.size() + 1, live.rows.size());  // the last event may have been a reading
-  ASSERT_LE(replay.size(), live.rows.size());
-  for (size_t i = 0; i < replay.size(); ++i)
-    ASSERT_NEAR(replay[i].t, ToSeconds(live.rows[i].stamp), 1e-6) << i;
+  const ReplayRows replay = ReadReplay(dir + "/cut");
+  EXPECT_GE(replay.timing.size() + 1, live.rows.size());  // the last event may have been a reading
+  ASSERT_LE(replay.timing.size(), live.rows.size());
+  for (size_t i = 0; i < replay.timing.size(); ++i)
+    ASSERT_NEAR(replay.timing[i].stamp_s, ToSeconds(live.rows[i].stamp), 1e-6) << i;
 
   std::string corrupt = bytes;
   const size_t middle = corrupt.find("ATLAS_RAW_SONAR", bytes.size() / 2) - 28;
@@ -301,8 +305,7 @@ TEST(Replay, SaysWhereABadLogEnds) {
   EXPECT_NE(err.find("corrupt.lcm: corrupt at byte " + std::to_string(middle) + ": event "),
             std::string::npos)
       << err;
-  EXPECT_NE(FileText(dir + "/corrupt/summary.txt").find("\nlog corrupt\n"), std::string::npos);
-  EXPECT_LT(ReadPoses(dir + "/corrupt/poses.txt").size(), live.rows.size());
+  EXPECT_LT(ReadReplay(dir + "/corrupt").timing.size(), live.rows.size());
 
   std::ofstream(dir + "/text.clf") << "# CARMEN Logfile\n";
   for (const std::string& bad : {dir, dir + "/text.clf", dir + "/missing.lcm"}) {

@@ -80,9 +80,6 @@ inline constexpr int kMaxBeams = 100000;
 // Parses one line (without its newline; a trailing '\r' is tolerated).
 ParsedLine ParseLine(std::string_view line);
 
-// `text` quoted for an error message: at most 40 bytes, non-printable bytes as \xNN.
-std::string QuoteForMessage(std::string_view text);
-
 // The FLASER beam geometry CARMEN assumes for `num_beams` (see above).
 double GuessFlaserFov(int num_beams);
 double GuessFlaserAngleIncrement(int num_beams);

@@ -1,19 +1,24 @@
 // atlas-lcm-log-summary: what an lcm-logger file of an atlasd session holds, as key=value
 // lines for the hardware-in-loop test scripts (tests/hil/*.sh). See --help.
 #include <cerrno>
+#include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "atlas/health_t.hpp"
 #include "atlas/pose_t.hpp"
 #include "daemon/lcm_log/lcm_log_reader.h"
+#include "formats/text_rows.h"
+#include "formats/trajectory_tsv.h"
 
 namespace {
 
-constexpr const char* kHelp = R"(usage: atlas-lcm-log-summary LOGFILE [--poses FILE]
+constexpr const char* kHelp =
+    R"(usage: atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE]
        atlas-lcm-log-summary --help
 
 Prints key=value lines about an lcm-logger file recorded from atlasd (default channels):
@@ -26,6 +31,8 @@ Prints key=value lines about an lcm-logger file recorded from atlasd (default ch
   undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH events that did not decode (left out)
   log                       complete, truncated or corrupt
 --poses FILE writes the poses received: "t x y theta frame q" (t: utime in seconds).
+--trajectory FILE writes the poses received with a frame as a replay's trajectory.tsv
+  (docs/formats.md): "timestamp frame x y theta".
 
 Exit 0; 1 when LOGFILE is not an LCM log (nothing printed), or is truncated or corrupt, or holds
 events that do not decode (the lines above are then printed for the events read, and stderr
@@ -40,12 +47,15 @@ int Usage(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string log_path, poses_path;
+  std::string log_path, poses_path, trajectory_path;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;
+    } else if (a == "--trajectory") {
+      if (i + 1 >= argc) return Usage("--trajectory needs a FILE");
+      trajectory_path = argv[++i];
     } else if (a == "--poses") {
       if (i + 1 >= argc) return Usage("--poses needs a FILE");
       poses_path = argv[++i];
@@ -76,6 +86,7 @@ int main(int argc, char** argv) {
   atlas::health_t last{};
   int64_t max_overruns = 0;
   std::map<std::string, std::string> states;
+  std::vector<atlas::formats::FramePoseRow> trajectory;
   atlas::LcmLogEvent e;
   while (log.Next(&e)) {
     ++events[e.channel];
@@ -88,6 +99,9 @@ int main(int argc, char** argv) {
       if (poses)
         std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f\n", p.utime * 1e-6, p.x, p.y, p.theta,
                      p.frame_id, p.q);
+      if (!trajectory_path.empty() && p.frame_id >= 0)
+        trajectory.push_back({atlas::Time(std::chrono::microseconds(p.utime)), p.frame_id,
+                              atlas::Pose2{p.x, p.y, p.theta}, 0});
     } else if (e.channel == "ATLAS_HEALTH") {
       atlas::health_t h{};
       if (!log.Decode(e, &h)) continue;
@@ -111,6 +125,16 @@ int main(int argc, char** argv) {
     if (std::fclose(poses) != 0 || !ok) {  // a full disk shows at the latest here
       std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the poses file %s (%s)\n",
                    poses_path.c_str(), std::strerror(errno));
+      rc = 1;
+    }
+  }
+  if (!trajectory_path.empty()) {
+    const std::string e = atlas::formats::WriteTextFile(
+        trajectory_path,
+        atlas::formats::FormatTrajectoryTsv(
+            trajectory, "atlasd poses from ATLAS_POSE: timestamp frame x y theta"));
+    if (!e.empty()) {
+      std::fprintf(stderr, "atlas-lcm-log-summary: %s\n", e.c_str());
       rc = 1;
     }
   }

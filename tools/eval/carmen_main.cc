@@ -11,10 +11,13 @@
 #include "core/common/parse_number.h"
 #include "drivers/carmen/carmen_log.h"
 #include "drivers/carmen/reference_odometry.h"
+#include "formats/pose_file.h"
 #include "tools/eval/trajectory_files.h"
 
 namespace atlas::eval {
 namespace {
+
+constexpr const char* kPoseColumns = "timestamp x y theta";
 
 constexpr const char* kHelp = R"(Usage: atlas-carmen [options] LOG...
 
@@ -207,8 +210,9 @@ int Main(int argc, char** argv) {
         std::fprintf(stderr, "atlas-carmen: %s has no laser line with a pose\n", path.c_str());
         return 1;
       }
-      if (!WriteOutput(output, FormatTrajectory(
-                                   t, "reference trajectory of " + path + " (line-order clock)"))) {
+      if (!WriteOutput(output, formats::FormatPoseRows(
+                                   t.poses(), "reference trajectory of " + path +
+                                                  " (line-order clock)\n" + kPoseColumns))) {
         return 1;
       }
     } else {
@@ -225,7 +229,8 @@ int Main(int argc, char** argv) {
         std::fprintf(stderr, "atlas-carmen: %s: no scan has odometry around it\n", path.c_str());
         return 1;
       }
-      if (!WriteOutput(output, FormatTrajectory(t, comment))) return 1;
+      if (!WriteOutput(output, formats::FormatPoseRows(t.poses(), comment + "\n" + kPoseColumns)))
+        return 1;
     }
   }
   return status;

@@ -15,6 +15,8 @@
 #include "core/common/parse_number.h"
 #include "core/eval/reference_score.h"
 #include "core/eval/relations_metric.h"
+#include "formats/replay_dir.h"
+#include "formats/text_rows.h"
 #include "tools/eval/trajectory_files.h"
 
 namespace atlas::eval {
@@ -81,56 +83,32 @@ std::string WriteRelationErrors(const std::string& path, const std::vector<Relat
                                 const RelationsScore& score,
                                 std::span<const FrameJoin> joins = {}) {
   if (path.empty()) return "";
-  const std::string text = FormatRelationErrors(relations, score, joins);
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (f == nullptr) return "cannot write " + path + ": " + std::strerror(errno);
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !written) return "cannot write " + path + ": " + std::strerror(errno);
-  return "";
+  return formats::WriteTextFile(path, FormatRelationErrors(relations, score, joins));
 }
 
 // --atlas DIR: relations scored per frame, composed along Dijkstra paths of DIR/graph.tsv.
 int ScoreAtlas(const std::string& dir, const std::string& relations_path, Duration tolerance,
                bool json, const std::string& errors_path) {
-  const std::string trajectory_path = dir + "/trajectory.tsv", graph_path = dir + "/graph.tsv";
-  TextFile tf = ReadTextFile(trajectory_path);
-  if (!tf.error.empty())
-    return Fail(tf.error + " (is " + dir + " an atlas-replay --out directory?)");
-  FramePosesParse trajectory = ParseFrameTrajectory(tf.text, trajectory_path);
-  if (!trajectory.error.empty()) return Fail(trajectory.error);
-  TextFile gf = ReadTextFile(graph_path);
-  if (!gf.error.empty()) return Fail(gf.error);
-  const EdgeRowsParse edges = ParseGraphEdges(gf.text, graph_path);
-  if (!edges.error.empty()) return Fail(edges.error);
-  // frames.tsv (atlas-replay writes it; an atlas exported from atlasd has none) says how many
-  // frames the run made: an edge or a row naming another frame is an error.
-  const std::string frames_path = dir + "/frames.tsv";
-  int64_t frame_count = -1;
-  if (std::error_code ec; std::filesystem::exists(frames_path, ec)) {
-    TextFile ff = ReadTextFile(frames_path);
-    if (!ff.error.empty()) return Fail(ff.error);
-    std::string e;
-    frame_count = ParseFrameCount(ff.text, frames_path, &e);
-    if (!e.empty()) return Fail(e);
-  }
-  if (std::string e = CheckFramesExist(trajectory, trajectory_path, edges, graph_path, frame_count,
-                                       frames_path);
+  // trajectory.tsv and graph.tsv, checked against the run's other files (formats/replay_dir.h).
+  formats::ReplayOutput run;
+  if (std::string e = formats::ReadReplayOutput(dir, formats::ReplayFilesWanted{}, &run);
       !e.empty())
     return Fail(e);
-  int frames = static_cast<int>(std::max<int64_t>(frame_count, edges.frame_count));
-  for (const FramePose& r : trajectory.rows) frames = std::max(frames, r.frame + 1);
+  const std::string graph_path = dir + "/graph.tsv";
   AtlasGraph graph;
-  if (std::string e = BuildGraphFromEdges(frames, edges.rows, &graph); !e.empty())
+  if (std::string e = BuildGraphFromEdges(run.frame_count, run.graph.edges, &graph); !e.empty())
     return Fail(graph_path + ": " + e);
-  TextFile rf = ReadTextFile(relations_path);
+  std::vector<FramePose> rows;
+  rows.reserve(run.trajectory.size());
+  for (const formats::FramePoseRow& r : run.trajectory) rows.push_back({r.stamp, r.frame, r.pose});
+  formats::TextFile rf = formats::ReadTextFile(relations_path);
   if (!rf.error.empty()) return Fail(rf.error);
   const RelationsParse relations = ParseRelations(rf.text, relations_path);
   if (!relations.error.empty()) return Fail(relations.error);
 
-  const size_t poses = trajectory.rows.size();
+  const size_t poses = rows.size();
   // The relations split by composition (same frame or not) and by span; each part scored with
   // a lookup of its own.
-  std::vector<FramePose> rows = trajectory.rows;
   std::vector<Relation> part[4];  // same frame, cross frame, span < 1 s, span >= 1 s
   {
     DijkstraComposedPoses classify(rows, graph, tolerance);
@@ -149,7 +127,7 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
   }
   static constexpr const char* kPartName[4] = {"same_frame", "cross_frame", "span_under_1s",
                                                "span_1s_or_more"};
-  DijkstraComposedPoses lookup(std::move(trajectory.rows), graph, tolerance);
+  DijkstraComposedPoses lookup(std::move(rows), graph, tolerance);
   // How each relation's poses are joined, by relation (ScoreRelations asks for each relation
   // once, in order).
   std::vector<FrameJoin> join_of(relations.relations.size(), FrameJoin::kSameFrame);
@@ -169,12 +147,13 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
         "\"matched\": %lld, \"same_frame\": %lld, \"cross_frame\": %lld, \"neighbours\": %lld, "
         "\"through_map_match\": %lld, \"chain\": %lld, \"unconnected\": %lld, "
         "\"unmatched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s, \"parts\": {",
-        JsonString(dir).c_str(), JsonString(relations_path).c_str(), poses, frames,
-        edges.rows.size(), static_cast<long long>(s.matched), static_cast<long long>(c.same_frame),
-        static_cast<long long>(c.cross_frame), static_cast<long long>(c.neighbours),
-        static_cast<long long>(c.through_map_match), static_cast<long long>(c.chain),
-        static_cast<long long>(c.unconnected), static_cast<long long>(c.unmatched),
-        StatsJson(s.translation_m).c_str(), StatsJson(s.rotation_deg).c_str());
+        JsonString(dir).c_str(), JsonString(relations_path).c_str(), poses, run.frame_count,
+        run.graph.edges.size(), static_cast<long long>(s.matched),
+        static_cast<long long>(c.same_frame), static_cast<long long>(c.cross_frame),
+        static_cast<long long>(c.neighbours), static_cast<long long>(c.through_map_match),
+        static_cast<long long>(c.chain), static_cast<long long>(c.unconnected),
+        static_cast<long long>(c.unmatched), StatsJson(s.translation_m).c_str(),
+        StatsJson(s.rotation_deg).c_str());
     for (int k = 0; k < 4; ++k)
       std::printf("%s\"%s\": {\"matched\": %lld, \"translation_m\": %s, \"rotation_deg\": %s}",
                   k > 0 ? ", " : "", kPartName[k], static_cast<long long>(part_score[k].matched),
@@ -183,7 +162,7 @@ int ScoreAtlas(const std::string& dir, const std::string& relations_path, Durati
     std::printf("}}\n");
   } else {
     std::printf("estimate:   %s (%zu poses in %d frames, %zu edges)\nrelations:  %s\n", dir.c_str(),
-                poses, frames, edges.rows.size(), relations_path.c_str());
+                poses, run.frame_count, run.graph.edges.size(), relations_path.c_str());
     std::printf(
         "matched %lld of %lld relations: %lld same-frame, %lld cross-frame (Dijkstra-composed); "
         "left out: %lld unconnected frames, %lld stamps without a pose\n",
@@ -293,7 +272,7 @@ int Main(int argc, char** argv) {
     estimate = OdometryAtScans(r.log.events);
     estimate_name = "dead reckoning of " + log_path;
   } else {
-    TextFile f = ReadTextFile(trajectory_path);
+    formats::TextFile f = formats::ReadTextFile(trajectory_path);
     if (!f.error.empty()) return Fail(f.error);
     TrajectoryParse p = ParseTrajectory(f.text, trajectory_path);
     if (!p.error.empty()) return Fail(p.error);
@@ -302,7 +281,7 @@ int Main(int argc, char** argv) {
   }
 
   if (!relations_path.empty()) {
-    TextFile f = ReadTextFile(relations_path);
+    formats::TextFile f = formats::ReadTextFile(relations_path);
     if (!f.error.empty()) return Fail(f.error);
     RelationsParse p = ParseRelations(f.text, relations_path);
     if (!p.error.empty()) return Fail(p.error);
@@ -333,7 +312,7 @@ int Main(int argc, char** argv) {
                                "same clock (the log's ipc timestamps)?");
   }
 
-  TextFile f = ReadTextFile(reference_path);
+  formats::TextFile f = formats::ReadTextFile(reference_path);
   if (!f.error.empty()) return Fail(f.error);
   TrajectoryParse p = ParseTrajectory(f.text, reference_path);
   if (!p.error.empty()) return Fail(p.error);

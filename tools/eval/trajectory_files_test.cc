@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <numbers>
 
+#include "formats/text_rows.h"
+
 namespace atlas::eval {
 namespace {
 
@@ -27,7 +29,7 @@ TEST(TrajectoryFilesTest, RejectsBadRowsWithLineNumbers) {
   EXPECT_EQ(ParseTrajectory("1 2 3 4\n1 2 x 4\n", "t.tsv").error,
             "t.tsv:2: field 3 is 'x', not a number");
   EXPECT_EQ(ParseTrajectory("# c\n1 2 3\n", "t.tsv").error,
-            "t.tsv:2: expected 4 numbers (timestamp x y theta), found 3");
+            "t.tsv:2: expected 4 fields (timestamp x y theta), found 3");
   EXPECT_EQ(ParseTrajectory("1 2 3 nan\n", "t.tsv").error,
             "t.tsv:1: field 4 is 'nan', not a number");
   EXPECT_EQ(ParseTrajectory("# only a comment\n", "t.tsv").error, "t.tsv: no poses");
@@ -50,46 +52,6 @@ TEST(TrajectoryFilesTest, RejectsOutOfRangeValuesAndRepeatedStamps) {
             "rows)");
   EXPECT_EQ(ParseRelations("1 2 1e308 0 0 0 0 0\n", "r").error.rfind("r:1: field 3 is ", 0), 0u);
   EXPECT_EQ(ParseRelations("1 2 0 0 0 0 0 1e6\n", "r").error.rfind("r:1: field 8 is ", 0), 0u);
-  EXPECT_EQ(ParseFrameTrajectory("1 0 0 0 0\n1 1 0 0 0\n", "tr").error.rfind("tr:2: timestamp", 0),
-            0u);
-}
-
-TEST(TrajectoryFilesTest, GraphEdgesAreCheckedWithLineNumbers) {
-  const std::string ok = "0 1 1 0 0 0.01 0 0 0.01 0 0.001 genesis\n";
-  EdgeRowsParse e = ParseGraphEdges("# h\n" + ok, "g.tsv");
-  ASSERT_EQ(e.error, "");
-  ASSERT_EQ(e.lines.size(), 1u);
-  EXPECT_EQ(e.lines[0], 2u);
-  for (const char* cov : {"0 0 0 0 0 0", "-1 0 0 -1 0 -1", "1 1 1 1 1 1"}) {
-    e = ParseGraphEdges(ok + "1 2 1 0 0 " + cov + " genesis\n", "g.tsv");
-    EXPECT_EQ(e.error.rfind("g.tsv:2: covariance of edge 1-2 is not positive definite", 0), 0u)
-        << cov << ": " << e.error;
-  }
-  EXPECT_EQ(ParseGraphEdges(ok + "1 0 1 0 0 0.01 0 0 0.01 0 0.001 map-match\n", "g.tsv").error,
-            "g.tsv:2: edge 1-0 joins two frames that line 1 already joins");
-  EXPECT_EQ(ParseGraphEdges("2 2 1 0 0 0.01 0 0 0.01 0 0.001 genesis\n", "g.tsv").error,
-            "g.tsv:1: edge 2-2 joins a frame to itself");
-
-  // Against frames.tsv: an edge or a row naming a frame the run did not make.
-  std::string error;
-  EXPECT_EQ(ParseFrameCount("# h\n0 1 1.0 -1\n1 5 2.0 0\n", "f.tsv", &error), 2);
-  EXPECT_EQ(error, "");
-  const FramePosesParse traj = ParseFrameTrajectory("1 0 0 0 0\n2 1 0 0 0\n", "t.tsv");
-  ASSERT_EQ(traj.error, "");
-  e = ParseGraphEdges(ok + "1 7 1 0 0 0.01 0 0 0.01 0 0.001 map-match\n", "g.tsv");
-  ASSERT_EQ(e.error, "");
-  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", e, "g.tsv", 2, "f.tsv"),
-            "g.tsv:2: edge 1-7 names frame 7, but f.tsv lists 2 frames; the files are not from "
-            "one run, or the row is damaged");
-  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", ParseGraphEdges(ok, "g.tsv"), "g.tsv", 2, "f.tsv"), "");
-  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", ParseGraphEdges("# h\n", "g.tsv"), "g.tsv", 1, "f.tsv")
-                .rfind("t.tsv:2: the row names frame 1", 0),
-            0u);
-  // No frames.tsv: no count to check against; an empty graph still may not hold two frames.
-  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", e, "g.tsv", -1, ""), "");
-  EXPECT_EQ(CheckFramesExist(traj, "t.tsv", ParseGraphEdges("# h\n", "g.tsv"), "g.tsv", -1, "")
-                .rfind("g.tsv: no edges, but the atlas has 2 frames", 0),
-            0u);
 }
 
 TEST(TrajectoryFilesTest, ParsesRelations) {
@@ -101,18 +63,6 @@ TEST(TrajectoryFilesTest, ParsesRelations) {
   EXPECT_DOUBLE_EQ(p.relations[0].delta.x, 0.31293);
   EXPECT_DOUBLE_EQ(p.relations[0].delta.y, 0.02935);
   EXPECT_DOUBLE_EQ(p.relations[0].delta.theta, 0.24198);  // yaw, the 8th field
-}
-
-TEST(TrajectoryFilesTest, FormatRoundTrips) {
-  const TimedTrajectory t({{FromSeconds(1134864629.895182), {1.25, -2.5, 0.75}},
-                           {FromSeconds(1134864630.105179), {1.5, -2.25, -3.0}}});
-  const TrajectoryParse p = ParseTrajectory(FormatTrajectory(t, "test"), "x");
-  ASSERT_EQ(p.error, "");
-  ASSERT_EQ(p.trajectory.size(), 2u);
-  for (size_t i = 0; i < 2; ++i) {
-    EXPECT_LT(std::abs(ToSeconds(p.trajectory.poses()[i].stamp - t.poses()[i].stamp)), 1e-6);
-    EXPECT_DOUBLE_EQ(p.trajectory.poses()[i].pose.y, t.poses()[i].pose.y);
-  }
 }
 
 TEST(TrajectoryFilesTest, RelationErrorsOnePerMatchedRelationInOrder) {
@@ -172,7 +122,7 @@ TEST(TrajectoryFilesTest, MitCsailDeadReckoningMatchesThePublishedScore) {
   ASSERT_TRUE(log.ok()) << log.error;
   const TimedTrajectory dr = OdometryAtScans(log.log.events);
   EXPECT_EQ(dr.size(), 1988u);
-  const TextFile f = ReadTextFile(kMitRelations);
+  const formats::TextFile f = formats::ReadTextFile(kMitRelations);
   ASSERT_EQ(f.error, "");
   const RelationsParse rel = ParseRelations(f.text, kMitRelations);
   ASSERT_EQ(rel.error, "");
@@ -183,11 +133,6 @@ TEST(TrajectoryFilesTest, MitCsailDeadReckoningMatchesThePublishedScore) {
   EXPECT_NEAR(s.translation_m.stddev, 5.29, 0.01);
   EXPECT_NEAR(s.rotation_deg.mean, 5.07, 0.01);
   EXPECT_NEAR(s.rotation_deg.stddev, 8.25, 0.015);
-}
-
-TEST(TrajectoryFilesTest, ReadTextFileReportsMissingFile) {
-  const TextFile f = ReadTextFile("/nonexistent/x.tsv");
-  EXPECT_NE(f.error.find("/nonexistent/x.tsv: cannot open"), std::string::npos) << f.error;
 }
 
 }  // namespace

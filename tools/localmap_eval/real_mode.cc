@@ -15,6 +15,7 @@
 #include "core/scanmatch/scan_matcher.h"
 #include "daemon/atlasd/odometry_track.h"
 #include "drivers/carmen/carmen_log.h"
+#include "formats/text_rows.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/localmap_eval/filter_overrides.h"
 #include "tools/render/canvas.h"
@@ -82,7 +83,7 @@ int RunRealMode(const eval::ToolOptions& args) {
                  read.error.c_str());
     return 1;
   }
-  const eval::TextFile rel_text = eval::ReadTextFile(rel_path);
+  const formats::TextFile rel_text = formats::ReadTextFile(rel_path);
   if (!rel_text.error.empty()) {
     std::fprintf(stderr, "atlas-localmap-eval real: %s (give --relations FILE)\n",
                  rel_text.error.c_str());

@@ -5,8 +5,10 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/eval/atlas_relations.h"
+#include "formats/replay_dir.h"
+#include "formats/text_rows.h"
 #include "tools/refine/global_refinement.h"
-#include "tools/replay/replay_files.h"
 
 namespace atlas::refine {
 namespace {
@@ -68,19 +70,19 @@ int Main(int argc, char** argv) {
   if (dir.empty()) return Usage("no DIR given (an atlas-replay output directory)");
   if (out.empty()) out = dir + "/global_refined.tsv";
 
-  replay::ReplayOutput run;
-  if (std::string e = replay::ReadReplayOutput(dir, replay::ReplayFilesWanted{}, &run);
+  formats::ReplayOutput run;
+  if (std::string e = formats::ReadReplayOutput(dir, formats::ReplayFilesWanted{}, &run);
       !e.empty()) {
     std::fprintf(stderr, "atlas-refine: %s\n", e.c_str());
     return 1;
   }
-  replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
-  if (!g.error.empty()) {
-    std::fprintf(stderr, "atlas-refine: %s/graph.tsv%s: %s\n", dir.c_str(), g.where.c_str(),
-                 g.error.c_str());
+  AtlasGraph graph;
+  if (std::string e = eval::BuildGraphFromEdges(run.frame_count, run.graph.edges, &graph);
+      !e.empty()) {
+    std::fprintf(stderr, "atlas-refine: %s/graph.tsv: %s\n", dir.c_str(), e.c_str());
     return 1;
   }
-  const RefineResult r = RefineGlobal(g.graph, options);
+  const RefineResult r = RefineGlobal(graph, options);
   std::printf(
       "atlas-refine %s: %s; %d frames placed, %d constraints, cost %.6g -> %.6g, %d "
       "iterations\n",
@@ -92,15 +94,13 @@ int Main(int argc, char** argv) {
     return 1;
   }
   int rows = 0;
-  const std::string text = replay::FormatGlobalTrajectory(
+  const std::string text = formats::FormatGlobalTrajectory(
       run.trajectory, r.refined,
       "atlas-refine global_refined: timestamp x y theta (global least-squares arrangement of "
       "the frames, frame 0 fixed)",
       &rows);
-  std::FILE* f = std::fopen(out.c_str(), "w");
-  if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size() ||
-      std::fclose(f) != 0) {
-    std::perror(("atlas-refine: cannot write " + out).c_str());
+  if (std::string e = formats::WriteTextFile(out, text); !e.empty()) {
+    std::fprintf(stderr, "atlas-refine: %s\n", e.c_str());
     return 1;
   }
   std::printf("wrote %s (%d rows)\n", out.c_str(), rows);

@@ -38,7 +38,7 @@ std::string Fmt(const char* fmt, auto... args) {
 
 }  // namespace
 
-std::string LayoutAtlas(const replay::ReplayOutput& run, const AtlasGraph& graph,
+std::string LayoutAtlas(const formats::ReplayOutput& run, const AtlasGraph& graph,
                         const AtlasDrawOptions& options,
                         const std::vector<std::optional<Pose2>>* refined_frames,
                         AtlasLayout* layout, int* height_px, ViewTransform* view) {
@@ -66,7 +66,7 @@ std::string LayoutAtlas(const replay::ReplayOutput& run, const AtlasGraph& graph
     }
   }
   std::vector<std::vector<const MapLine*>> lines(static_cast<size_t>(n));
-  for (const replay::FrameLine& l : run.lines)
+  for (const formats::FrameLine& l : run.lines)
     if (l.frame >= 0 && l.frame < n) lines[static_cast<size_t>(l.frame)].push_back(&l.line);
   Box box;
   for (int f = 0; f < n; ++f) {
@@ -80,7 +80,7 @@ std::string LayoutAtlas(const replay::ReplayOutput& run, const AtlasGraph& graph
     }
   }
   if (options.trajectory && options.source == 0) {
-    for (const replay::StampedPose& s : options.refined ? run.refined : run.global)
+    for (const eval::TimedPose& s : options.refined ? run.refined : run.global)
       box.Extend(Vec2(s.pose.x, s.pose.y));
   }
   if (box.empty()) box.Extend(Vec2::Zero());
@@ -97,7 +97,7 @@ std::string LayoutAtlas(const replay::ReplayOutput& run, const AtlasGraph& graph
   return "";
 }
 
-void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const AtlasGraph& graph,
+void DrawAtlasProjection(Canvas& canvas, const formats::ReplayOutput& run, const AtlasGraph& graph,
                          const AtlasLayout& layout, const AtlasDrawOptions& options) {
   const int n = graph.FrameCount();
   const double px_per_m = canvas.view().pixels_per_metre();
@@ -112,7 +112,7 @@ void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const 
     const Pose2 to_source = src ? src->mean : Pose2{};
     if (src || options.source == 0) {
       line.reserve(rows.size());
-      for (const replay::StampedPose& s : rows) {
+      for (const eval::TimedPose& s : rows) {
         const Pose2 p = Compose(to_source, s.pose);
         line.emplace_back(p.x, p.y);
       }
@@ -143,7 +143,7 @@ void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const 
   // The laser points every placed frame keeps for map-matching (points.tsv), under its lines.
   std::vector<Vec2> points;
   points.reserve(run.points.size());
-  for (const replay::FramePointRow& r : run.points) {
+  for (const formats::FramePointRow& r : run.points) {
     if (r.frame < 0 || r.frame >= n || !pose_of(r.frame)) continue;
     points.push_back(pose_of(r.frame)->mean.TransformPoint(r.p));
   }
@@ -151,7 +151,7 @@ void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const 
   // Lines of every placed frame.
   std::vector<std::pair<Vec2, Vec2>> segments;
   segments.reserve(run.lines.size());
-  for (const replay::FrameLine& l : run.lines) {
+  for (const formats::FrameLine& l : run.lines) {
     if (l.frame < 0 || l.frame >= n || !pose_of(l.frame)) continue;
     const Pose2& p = pose_of(l.frame)->mean;
     segments.emplace_back(p.TransformPoint(l.line.endpoint_a), p.TransformPoint(l.line.endpoint_b));
@@ -249,7 +249,7 @@ void Axes(Canvas& canvas, const Panel& p, const std::string& xlabel, const std::
 
 }  // namespace
 
-void DrawTimeline(Canvas& canvas, const std::vector<replay::TimingRecord>& timing,
+void DrawTimeline(Canvas& canvas, const std::vector<formats::TimingRecord>& timing,
                   const TimelineOptions& options) {
   const double W = canvas.width_px(), H = canvas.height_px();
   canvas.FillRectPx(0, 0, W, H, Color{1, 1, 1});
@@ -259,7 +259,7 @@ void DrawTimeline(Canvas& canvas, const std::vector<replay::TimingRecord>& timin
   std::vector<double> xs, ms;
   xs.reserve(timing.size());
   ms.reserve(timing.size());
-  for (const replay::TimingRecord& r : timing) {
+  for (const formats::TimingRecord& r : timing) {
     xs.push_back(by_time ? (r.stamp_s - timing.front().stamp_s) / 60.0 : r.frames);
     ms.push_back(static_cast<double>(r.step_ns) * 1e-6);
   }
@@ -303,7 +303,7 @@ void DrawTimeline(Canvas& canvas, const std::vector<replay::TimingRecord>& timin
                  {Fmt("budget %.0f ms", options.budget_ms), Color{0.1, 0.6, 0.2}}});
   if (!by_time) return;
   int max_id = 1;
-  for (const replay::TimingRecord& r : timing) max_id = std::max({max_id, r.dominant, r.frames});
+  for (const formats::TimingRecord& r : timing) max_id = std::max({max_id, r.dominant, r.frames});
   const double top2 = top1 + h1 + 70;
   const Panel p2{left,
                  top2,

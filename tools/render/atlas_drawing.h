@@ -1,5 +1,5 @@
 #pragma once
-// Pictures of an atlas (atlas-replay output, tools/replay/replay_files.h), as in the paper:
+// Pictures of an atlas (replay output, formats/replay_dir.h), as in the paper:
 // - DrawAtlasProjection: the Dijkstra projection (Section III-A) from a chosen source frame:
 //   every reached frame placed at its projected pose with its map's lines, its origin, the
 //   n-sigma ellipse of its projected position covariance ("the accumulated projection error",
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "formats/replay_dir.h"
 #include "tools/render/canvas.h"
-#include "tools/replay/replay_files.h"
 
 namespace atlas::draw {
 
@@ -39,12 +39,12 @@ struct AtlasLayout {
 
 // Places the frames of `run` (projection from options.source, or the refined arrangement from
 // `refined_frames`); returns "" or what is wrong (e.g. the source is not a frame).
-std::string LayoutAtlas(const replay::ReplayOutput& run, const AtlasGraph& graph,
+std::string LayoutAtlas(const formats::ReplayOutput& run, const AtlasGraph& graph,
                         const AtlasDrawOptions& options,
                         const std::vector<std::optional<Pose2>>* refined_frames,
                         AtlasLayout* layout, int* height_px, ViewTransform* view);
 
-void DrawAtlasProjection(Canvas& canvas, const replay::ReplayOutput& run, const AtlasGraph& graph,
+void DrawAtlasProjection(Canvas& canvas, const formats::ReplayOutput& run, const AtlasGraph& graph,
                          const AtlasLayout& layout, const AtlasDrawOptions& options);
 
 enum class TimelineAxis { kTime, kFrames };
@@ -58,7 +58,7 @@ struct TimelineOptions {
 };
 // Two panels: step time (ms; points, and a running median) and, against time, the dominant
 // frame id with the frame count (Fig. 7); against the frame count, step time only.
-void DrawTimeline(Canvas& canvas, const std::vector<replay::TimingRecord>& timing,
+void DrawTimeline(Canvas& canvas, const std::vector<formats::TimingRecord>& timing,
                   const TimelineOptions& options);
 
 }  // namespace atlas::draw

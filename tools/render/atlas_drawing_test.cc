@@ -12,11 +12,11 @@ namespace {
 // Three frames in a row, 10 m apart, each edge with 0.1 m^2 position variance; one line per
 // frame. From frame 0 the projection reaches all three, frame 2 with twice the covariance.
 struct Fixture {
-  replay::ReplayOutput run;
+  formats::ReplayOutput run;
   AtlasGraph graph{4};
   Fixture() {
     for (int f = 0; f < 3; ++f) {
-      replay::FrameLine l;
+      formats::FrameLine l;
       l.frame = f;
       l.line.endpoint_a = Vec2(0, 1);
       l.line.endpoint_b = Vec2(5, 1);
@@ -72,7 +72,7 @@ TEST(AtlasDrawing, ProjectionAndTimelinePicturesAreWritten) {
   ASSERT_EQ(canvas->Finish(), "");
   EXPECT_GT(std::filesystem::file_size(projection), 1000u);
 
-  std::vector<replay::TimingRecord> timing;
+  std::vector<formats::TimingRecord> timing;
   for (int i = 0; i < 500; ++i)
     timing.push_back({i + 1, 0.1 * i, 1 + i / 100, 2, i / 100, 50000 + 100 * (i % 7)});
   TimelineOptions t;

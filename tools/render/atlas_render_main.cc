@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/eval/atlas_relations.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/render/atlas_drawing.h"
 #include "tools/render/canvas.h"
@@ -107,14 +108,14 @@ int RenderAtlas(AtlasRequest req) {
   using namespace atlas::draw;
   const bool timeline =
       req.picture == AtlasPicture::kTimeline || req.picture == AtlasPicture::kTimelineFrames;
-  replay::ReplayFilesWanted wanted;
+  formats::ReplayFilesWanted wanted;
   wanted.timing = timeline;
   wanted.trajectory = !timeline;
   wanted.graph = !timeline;
   wanted.maps = !timeline;
   wanted.step_cpu = timeline && req.cpu;
-  replay::ReplayOutput run;
-  if (const std::string e = replay::ReadReplayOutput(req.dir, wanted, &run); !e.empty())
+  formats::ReplayOutput run;
+  if (const std::string e = formats::ReadReplayOutput(req.dir, wanted, &run); !e.empty())
     return Fail(e);
   struct ReleaseAtExit {
     ~ReleaseAtExit() { ReleaseDrawingCaches(); }
@@ -128,7 +129,7 @@ int RenderAtlas(AtlasRequest req) {
   }
   if (timeline) {
     if (req.cpu) {
-      for (replay::TimingRecord& r : run.timing)
+      for (formats::TimingRecord& r : run.timing)
         if (r.step >= 1 && r.step <= static_cast<int64_t>(run.step_cpu_ns.size()))
           r.step_ns = run.step_cpu_ns[static_cast<size_t>(r.step - 1)];
     }
@@ -150,15 +151,17 @@ int RenderAtlas(AtlasRequest req) {
     return WriteCanvases(req, t.width_px, t.height_px, view,
                          [&](Canvas& c) { DrawTimeline(c, run.timing, t); });
   }
-  replay::GraphFromEdges g = replay::BuildGraph(run.edges, run.frame_count);
-  if (!g.error.empty()) return Fail(req.dir + "/graph.tsv" + g.where + ": " + g.error);
+  AtlasGraph graph;
+  if (std::string e = eval::BuildGraphFromEdges(run.frame_count, run.graph.edges, &graph);
+      !e.empty())
+    return Fail(req.dir + "/graph.tsv: " + e);
   // Without global.tsv (an atlas exported from atlasd's store, with the poses it published:
   // scripts/demo.sh) the trajectory is placed as atlas-replay places it there.
   if (req.draw.trajectory && run.global.empty())
-    run.global = replay::PlaceTrajectory(run.trajectory, replay::FramePosesFromFrameZero(g.graph));
+    run.global = formats::PlaceTrajectory(run.trajectory, formats::FramePosesFromFrameZero(graph));
   std::vector<std::optional<Pose2>> refined;
   if (req.draw.refined) {
-    const refine::RefineResult r = refine::RefineGlobal(g.graph, refine::RefineOptions{});
+    const refine::RefineResult r = refine::RefineGlobal(graph, refine::RefineOptions{});
     if (r.status == refine::RefineStatus::kFailed || r.status == refine::RefineStatus::kNoFrames)
       return Fail("global refinement: " + std::string(refine::ToString(r.status)) + " " +
                   r.message);
@@ -169,18 +172,18 @@ int RenderAtlas(AtlasRequest req) {
                    "and %d frames not connected to frame 0\n",
                    r.skipped_edges, r.unreached);
     if (req.draw.trajectory && run.refined.empty())
-      run.refined = replay::PlaceTrajectory(run.trajectory, refined);
+      run.refined = formats::PlaceTrajectory(run.trajectory, refined);
   }
   req.draw.title = req.title;
   AtlasLayout layout;
   int height = 0;
   ViewTransform view;
-  if (const std::string e = LayoutAtlas(
-          run, g.graph, req.draw, req.draw.refined ? &refined : nullptr, &layout, &height, &view);
+  if (const std::string e = LayoutAtlas(run, graph, req.draw, req.draw.refined ? &refined : nullptr,
+                                        &layout, &height, &view);
       !e.empty())
     return Usage("--projection: " + e);
   return WriteCanvases(req, req.draw.width_px, height, view,
-                       [&](Canvas& c) { DrawAtlasProjection(c, run, g.graph, layout, req.draw); });
+                       [&](Canvas& c) { DrawAtlasProjection(c, run, graph, layout, req.draw); });
 }
 
 }  // namespace

@@ -74,21 +74,6 @@ TEST(Canvas, BadPathIsAnErrorNotACrash) {
   EXPECT_FALSE(ImageFormatOf("a.jpg", &f));
 }
 
-TEST(RunData, TruthRows) {
-  bool bad = false;
-  auto r = ParseTruthRow("1.5\t2\t-3\t0.25", &bad);
-  ASSERT_TRUE(r);
-  EXPECT_FALSE(bad);
-  EXPECT_EQ(r->stamp, FromSeconds(1.5));
-  EXPECT_EQ(r->pose.y, -3.0);
-  EXPECT_FALSE(ParseTruthRow("# timestamp x y theta", &bad));
-  EXPECT_FALSE(bad);
-  EXPECT_FALSE(ParseTruthRow("1 2 3", &bad));
-  EXPECT_TRUE(bad);
-  EXPECT_FALSE(ParseTruthRow("1 2 3 4 5", &bad));
-  EXPECT_TRUE(bad);
-}
-
 // A short simulated run written as atlas-sim does, read back and drawn.
 TEST(RunData, ReadsAndDrawsASimulatedRun) {
   const auto dir = TempDir("run");

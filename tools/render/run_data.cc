@@ -1,43 +1,15 @@
 #include "tools/render/run_data.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 
 #include "drivers/carmen/carmen_line.h"
 #include "drivers/sim/simulation.h"
+#include "formats/pose_file.h"
+#include "formats/text_rows.h"
 
 namespace atlas::draw {
-namespace {
-
-bool ParseDouble(std::string_view* s, double* v) {
-  while (!s->empty() && (s->front() == ' ' || s->front() == '\t')) s->remove_prefix(1);
-  const auto r = std::from_chars(s->data(), s->data() + s->size(), *v);
-  if (r.ec != std::errc() || !std::isfinite(*v)) return false;
-  s->remove_prefix(r.ptr - s->data());
-  return true;
-}
-
-}  // namespace
-
-std::optional<TruthSample> ParseTruthRow(std::string_view line, bool* malformed) {
-  *malformed = false;
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
-  const size_t first = line.find_first_not_of(" \t");
-  if (first == std::string_view::npos || line[first] == '#') return std::nullopt;
-  double v[4];
-  for (double& x : v)
-    if (!ParseDouble(&line, &x)) {
-      *malformed = true;
-      return std::nullopt;
-    }
-  if (line.find_first_not_of(" \t") != std::string_view::npos) {
-    *malformed = true;
-    return std::nullopt;
-  }
-  return TruthSample{FromSeconds(v[0]), Pose2{v[1], v[2], WrapAngle(v[3])}};
-}
 
 Pose2 InterpolateTruth(const std::vector<TruthSample>& truth, Time stamp) {
   auto it = std::lower_bound(truth.begin(), truth.end(), stamp,
@@ -74,23 +46,19 @@ std::string ReadRun(const std::string& dir, const RunReadOptions& options, RunDa
     if (!parsed.ok()) return parsed.error;
     run->world = std::move(parsed.world);
   }
-  std::string line;
   {
     const std::string path = dir + "/truth.tsv";
-    std::ifstream in(path);
-    if (!in) return "cannot open " + path + " (is " + dir + " an atlas-sim output directory?)";
-    long n = 0;
-    while (in && std::getline(in, line)) {
-      ++n;
-      bool malformed = false;
-      const auto row = ParseTruthRow(line, &malformed);
-      if (malformed)
-        return path + ":" + std::to_string(n) + ": expected 'timestamp x y theta' (4 numbers)";
-      if (row) run->truth.push_back(*row);
-    }
-    if (in.bad()) return "read error in " + path;
-    if (run->truth.empty()) return path + ": no rows (atlas-sim writes one per odometry step)";
+    const formats::TextFile text = formats::ReadTextFile(path);
+    if (!text.error.empty())
+      return text.error + (text.missing ? " (is " + dir + " an atlas-sim output directory?)" : "");
+    formats::PoseRows rows = formats::ParsePoseRows(text.text, path);
+    if (!rows.error.empty()) return rows.error;
+    if (rows.poses.empty()) return path + ": no rows (atlas-sim writes one per odometry step)";
+    std::stable_sort(rows.poses.begin(), rows.poses.end(),
+                     [](const auto& a, const auto& b) { return a.stamp < b.stamp; });
+    for (const eval::TimedPose& p : rows.poses) run->truth.push_back({p.stamp, p.pose});
   }
+  std::string line;
   const std::string log_path = dir + "/run.clf";
   std::ifstream in(log_path);
   if (!in) return "cannot open " + log_path;

@@ -37,13 +37,9 @@ struct RunReadOptions {
   long max_scans = 500;
 };
 
-// Reads DIR/world.txt, DIR/truth.tsv and DIR/run.clf. Returns "" or what is wrong (file, line).
-// A missing truth.tsv is allowed (scans are then placed by odometry); the others are required.
+// Reads DIR/world.txt, DIR/truth.tsv (a pose file, formats/pose_file.h) and DIR/run.clf.
+// Returns "" or what is wrong (file, line). All three are required; truth.tsv must hold rows.
 std::string ReadRun(const std::string& dir, const RunReadOptions& options, RunData* run);
-
-// One "timestamp x y theta" row of truth.tsv; nullopt for comments, blank or malformed rows
-// (*malformed tells which).
-std::optional<TruthSample> ParseTruthRow(std::string_view line, bool* malformed);
 
 // The pose of `truth` interpolated at `stamp` (clamped to the ends); truth must be non-empty
 // and time-ordered.

@@ -22,7 +22,7 @@ std::string Format(const char* fmt, auto... args) {
 
 }  // namespace
 
-HeadingCorrections MeasureHeadingCorrections(const std::vector<StampedFramePose>& trajectory,
+HeadingCorrections MeasureHeadingCorrections(const std::vector<formats::FramePoseRow>& trajectory,
                                              const std::vector<OdometrySample>& odometry,
                                              Duration offset) {
   HeadingCorrections out;
@@ -30,12 +30,12 @@ HeadingCorrections MeasureHeadingCorrections(const std::vector<StampedFramePose>
   for (const OdometrySample& s : odometry) track.Add(s);
   double sum_abs = 0.0, sum_sq = 0.0;
   for (size_t k = 1; k < trajectory.size(); ++k) {
-    const StampedFramePose& a = trajectory[k - 1];
-    const StampedFramePose& b = trajectory[k];
+    const formats::FramePoseRow& a = trajectory[k - 1];
+    const formats::FramePoseRow& b = trajectory[k];
     if (a.frame != b.frame) continue;
     Pose2 odo_a, odo_b;
-    if (track.PoseAt(FromSeconds(a.stamp_s) + offset, &odo_a) != OdometryLookup::kInterpolated ||
-        track.PoseAt(FromSeconds(b.stamp_s) + offset, &odo_b) != OdometryLookup::kInterpolated) {
+    if (track.PoseAt(a.stamp + offset, &odo_a) != OdometryLookup::kInterpolated ||
+        track.PoseAt(b.stamp + offset, &odo_b) != OdometryLookup::kInterpolated) {
       ++out.skipped;
       continue;
     }

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/replay/replay_run.h"
+#include "replay/replay_run.h"
 
 namespace atlas::replay {
 
@@ -40,7 +40,7 @@ struct HeadingCorrections {
 
 // `trajectory` in stepping order (trajectory.tsv rows); `odometry` in stamp order (samples out
 // of order are ignored, as by the step loop's OdometryTrack).
-HeadingCorrections MeasureHeadingCorrections(const std::vector<StampedFramePose>& trajectory,
+HeadingCorrections MeasureHeadingCorrections(const std::vector<formats::FramePoseRow>& trajectory,
                                              const std::vector<OdometrySample>& odometry,
                                              Duration offset);
 

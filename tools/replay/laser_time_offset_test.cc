@@ -15,8 +15,8 @@ namespace {
 
 Duration Seconds(double s) { return FromSeconds(s).time_since_epoch(); }
 
-StampedFramePose Row(double t, FrameId frame, double theta) {
-  return StampedFramePose{t, frame, Pose2{0.0, 0.0, theta}};
+formats::FramePoseRow Row(double t, FrameId frame, double theta) {
+  return formats::FramePoseRow{FromSeconds(t), frame, Pose2{0.0, 0.0, theta}, 0};
 }
 
 // Straight odometry (heading 0): the corrections are the atlas's own heading changes.
@@ -25,8 +25,8 @@ TEST(MeasureHeadingCorrections, MeanAndRmsOfHandMadeCorrections) {
                                                 {FromSeconds(1.0), Pose2{1, 0, 0}}};
   // Changes +0.1 and -0.3 in frame 0; the pair across frames 0 -> 1 is not scored; one pair in
   // frame 1 changes by 0 but lies after the odometry (skipped).
-  const std::vector<StampedFramePose> traj = {Row(0.2, 0, 0.0), Row(0.4, 0, 0.1), Row(0.6, 0, -0.2),
-                                              Row(0.8, 1, 2.0), Row(1.2, 1, 2.0)};
+  const std::vector<formats::FramePoseRow> traj = {
+      Row(0.2, 0, 0.0), Row(0.4, 0, 0.1), Row(0.6, 0, -0.2), Row(0.8, 1, 2.0), Row(1.2, 1, 2.0)};
   const HeadingCorrections c = MeasureHeadingCorrections(traj, odometry, Duration::zero());
   EXPECT_EQ(c.pairs, 2);
   EXPECT_EQ(c.skipped, 1);
@@ -43,7 +43,7 @@ TEST(MeasureHeadingCorrections, ZeroAtTheTrueOffsetAndTheMisfitElsewhere) {
   std::vector<OdometrySample> odometry;
   for (int k = 0; k <= 40; ++k)
     odometry.push_back({FromSeconds(0.1 * k), Pose2{0.0, 0.0, WrapAngle(std::sin(0.1 * k))}});
-  std::vector<StampedFramePose> traj;
+  std::vector<formats::FramePoseRow> traj;
   for (int k = 1; k <= 19; ++k) {
     const double taken = 0.2 * k;
     traj.push_back(Row(taken + 0.1, 0, WrapAngle(std::sin(taken) + 3.0)));

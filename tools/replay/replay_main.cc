@@ -14,8 +14,10 @@
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
 #include "drivers/carmen/reference_odometry.h"
+#include "replay/replay_run.h"
+#include "replay/replay_source.h"
 #include "tools/replay/laser_time_offset.h"
-#include "tools/replay/replay_run.h"
+#include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {
 namespace {
@@ -24,10 +26,12 @@ constexpr const char* kHelp = R"(Usage: atlas-replay [options] LOG
        atlas-replay [options] SIMDIR
        atlas-replay --sweep-laser-time-offset FROM:TO:STEP [options] LOG|SIMDIR
 
-Runs a CARMEN log (plain or gzip; ODOM and laser lines) through the Atlas as fast as it can,
-with atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped).
+Runs a CARMEN log (plain or gzip; ODOM and laser lines), or an lcm-logger file with atlasd's
+raw channels (lcm.channels.raw_*, from --config), through the Atlas as fast as it can, with
+atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped). `atlasd
+--replay LOG --out DIR --config FILE` is the same replay: it writes the same files.
 SIMDIR, an atlas-sim output directory, stands for SIMDIR/run.clf (its truth is not used).
-Writes into --out DIR (docs/formats.md, "atlas-replay output"):
+Writes into --out DIR (docs/formats.md, "Replay output"):
   trajectory.tsv   timestamp frame x y theta   (dominant hypothesis's pose in its own frame)
   graph.tsv        from to x y theta c00 c01 c02 c11 c12 c22 kind   (one row per edge)
   timing.tsv       step timestamp frames hypotheses dominant step_ns
@@ -126,6 +130,7 @@ int Main(int argc, char** argv) {
   uint64_t seed = 1;
   bool quiet = false, corrected = false, sweep = false;
   OffsetRange sweep_range;
+  LcmChannels channels;  // of an lcm-logger file: the configuration's raw channels
   // --config first, so that the other options override what it sets.
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) != "--config") continue;
@@ -138,6 +143,7 @@ int Main(int argc, char** argv) {
     }
     options.mapper = ToMapperSettings(config.options);
     options.loop = ToStepLoopOptions(config.options);
+    channels = config.options.lcm.channels;
   }
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -182,7 +188,7 @@ int Main(int argc, char** argv) {
         return Usage("--sweep-laser-time-offset: " + error);
       sweep = true;
     } else if (a == "--refine") {
-      options.refine = true;
+      options.refine = MakeRefiner(refine::RefineOptions{});
     } else if (a == "--hypotheses") {
       options.hypotheses = true;
     } else if (a == "--corrected") {
@@ -227,12 +233,14 @@ int Main(int argc, char** argv) {
   if (stat(log_path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) log_path += "/run.clf";
 
   if (!quiet) std::fprintf(stderr, "atlas-replay: reading %s\n", log_path.c_str());
-  carmen::CarmenReadResult read = carmen::ReadCarmenLog(log_path, log_options);
-  if (!read.ok()) {
-    std::fprintf(stderr, "atlas-replay: %s\n", read.error.c_str());
+  const ReplaySource source = ReadReplaySource(log_path, log_options, RawChannels(channels));
+  if (!source.error.empty()) {
+    std::fprintf(stderr, "atlas-replay: %s\n", source.error.c_str());
     return 1;
   }
-  if (read.log.laser_events == 0) {
+  if (source.lcm && (corrected || sweep))
+    return Usage("--corrected and --sweep-laser-time-offset need a CARMEN log");
+  if (!source.lcm && source.carmen.laser_events == 0) {
     std::fprintf(stderr, "atlas-replay: %s has no laser scans; nothing to replay\n",
                  log_path.c_str());
     return 1;
@@ -249,17 +257,19 @@ int Main(int argc, char** argv) {
   std::vector<TruthSample> reference;
   std::vector<carmen::CarmenEvent> synthesized;
   if (corrected) {
-    if (read.log.reference.empty()) {
+    if (source.carmen.reference.empty()) {
       std::fprintf(stderr, "atlas-replay: %s has no poses to use as the reference (--corrected)\n",
                    log_path.c_str());
       return 1;
     }
-    reference = ReferenceAtScans(read.log);
-    synthesized = carmen::EventsWithSynthesizedOdometry(read.log, noise, seed);
+    reference = ReferenceAtScans(source.carmen);
+    synthesized = carmen::EventsWithSynthesizedOdometry(source.carmen, noise, seed);
   }
-  const std::vector<carmen::CarmenEvent>& events = corrected ? synthesized : read.log.events;
-  if (sweep) return Sweep(events, options, sweep_range, out_dir, quiet, log_path);
-  ReplayResult r = RunReplay(events, options, out_dir, progress, 1000, reference);
+  if (sweep)
+    return Sweep(corrected ? synthesized : source.carmen.events, options, sweep_range, out_dir,
+                 quiet, log_path);
+  ReplayResult r = corrected ? RunReplay(synthesized, options, out_dir, progress, 1000, reference)
+                             : RunReplay(source.events, options, out_dir, progress, 1000);
   if (!quiet && tty) std::fputc('\n', stderr);
   if (!r.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", r.error.c_str());
@@ -267,7 +277,7 @@ int Main(int argc, char** argv) {
   }
   std::printf("atlas-replay %s -> %s\n%s", log_path.c_str(), out_dir.c_str(),
               SummaryText(r.summary).c_str());
-  return 0;
+  return ReplayVerdict(log_path, source, r, "atlas-replay");
 }
 
 }  // namespace

@@ -7,10 +7,10 @@
 #include <numbers>
 
 #include "core/localmap/line_model.h"
+#include "replay/replay_run.h"
 #include "tools/monte_carlo/nees_band.h"
 #include "tools/monte_carlo/simulated_base.h"
 #include "tools/render/run_data.h"
-#include "tools/replay/replay_run.h"
 
 namespace atlas::sonar_eval {
 

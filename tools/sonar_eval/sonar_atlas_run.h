@@ -24,7 +24,7 @@
 #include "core/sonar/sonar_options.h"
 #include "drivers/sim/simulation.h"
 #include "drivers/sim/wheel_odometry_model.h"
-#include "tools/replay/closure_check.h"
+#include "replay/closure_check.h"
 
 namespace atlas::sonar_eval {
 

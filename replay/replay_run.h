@@ -1,7 +1,9 @@
 #pragma once
-// atlas-replay's run: the events of a CARMEN log through the same StepLoop as atlasd (odometry
-// interpolated to each scan's stamp, daemon/atlasd/step_loop.h), every scan stepped at once,
-// and the output files of docs/formats.md ("atlas-replay output"):
+// The one replay run of `atlas-replay` and `atlasd --replay`: the events of a log (a CARMEN log
+// or an lcm-logger file, replay_source.h) through the same StepLoop as atlasd's live loop
+// (odometry interpolated to each scan's stamp, daemon/atlasd/step_loop.h), every scan or sonar
+// reading the maps use (MapperSettings::sensors) stepped at once, and the output files of
+// docs/formats.md ("Replay output"):
 //   trajectory.tsv  timestamp frame x y theta            (dominant pose in its own frame)
 //   graph.tsv       from to x y theta c00 c01 c02 c11 c12 c22 kind   (per edge, end of run)
 //   timing.tsv      step timestamp frames hypotheses dominant step_ns
@@ -22,39 +24,30 @@
 //   hypotheses.tsv  step timestamp id frame state dominant steps q observations matched
 //                   bootstrapped x y theta sx sy stheta   (every live hypothesis after each step:
 //                   its pose in its own frame and the square roots of its covariance's diagonal)
-// With refinement asked for (offline, after the run; tools/refine/global_refinement.h):
+// With a refiner given (offline, after the run; tools/replay/replay_refiner.h):
 //   global_refined.tsv  timestamp x y theta   (as global.tsv, frames placed by least squares)
-// Deterministic: the same events and settings give byte-identical files, except step_ns in
-// timing.tsv and the wall-clock figures of the summary.
+// Deterministic: the same events and settings give byte-identical files, except what is
+// measured while stepping (step_ns in timing.tsv, step_cpu.tsv, the summary's time and memory
+// figures); tests/replay/entry_points_identical.sh compares the two entry points.
 
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "daemon/atlasd/atlas_factory.h"
 #include "daemon/atlasd/step_loop.h"
 #include "drivers/carmen/carmen_log.h"
-#include "tools/refine/global_refinement.h"
-#include "tools/replay/closure_check.h"
-#include "tools/replay/replay_files.h"
+#include "formats/trajectory_tsv.h"
+#include "replay/closure_check.h"
 
 namespace atlas::replay {
 
-struct ReplayOptions {
-  MapperSettings mapper;
-  StepLoopOptions loop;
-  int64_t max_scans = 0;    // 0: all
-  bool refine = false;      // write global_refined.tsv
-  bool hypotheses = false;  // write hypotheses.tsv
-  refine::RefineOptions refine_options;
-  ClosureCheckOptions closures;
-  std::string Validate() const;  // empty when valid
-};
-
 struct ReplaySummary {
-  int64_t scans = 0;  // stepped
+  int64_t scans = 0;           // stepped
+  int64_t sonar_readings = 0;  // stepped (an LCM log recorded with the sonar)
   int64_t odometry_samples = 0;
   int64_t scans_without_odometry = 0;
   // Scan matching (scan_match.enabled): increments matched, and scans that fell back to the
@@ -104,16 +97,38 @@ struct ReplaySummary {
   double refine_initial_cost = 0.0, refine_final_cost = 0.0, refine_seconds = 0.0;
 };
 
+struct ReplaySummary;
+// Global refinement of the finished atlas: each frame's pose in frame 0 (nullopt for frames it
+// does not place); fills the summary's refine_* figures.
+using Refiner = std::function<std::vector<std::optional<Pose2>>(const AtlasGraph& graph,
+                                                                ReplaySummary* summary)>;
+
+struct ReplayOptions {
+  MapperSettings mapper;
+  StepLoopOptions loop;
+  int64_t max_scans = 0;    // 0: all
+  Refiner refine;           // set: write global_refined.tsv
+  bool hypotheses = false;  // write hypotheses.tsv
+  ClosureCheckOptions closures;
+  std::string Validate() const;  // empty when valid
+};
+
 struct ReplayResult {
   std::string error;  // empty on success: "<what>: <why>"
   ReplaySummary summary;
-  std::vector<StampedFramePose> trajectory;  // the rows of trajectory.tsv
+  std::vector<formats::FramePoseRow> trajectory;  // the rows of trajectory.tsv
 };
 
-// Steps every scan of `events` (time-ordered) and writes the files into `out_dir` (created if
-// missing). `progress`, when set, is called about every `progress_every` scans with the number
-// stepped so far. `reference` (optional, sorted by stamp) holds reference poses; those within
-// 1 ms of a scan's stamp are that scan's reference.
+// Steps every scan (and sonar reading) of `events` (in log order) that the maps use and writes
+// the files into `out_dir` (created if missing). `progress`, when set, is called about every
+// `progress_every` scans with the number stepped so far. `reference` (optional, sorted by
+// stamp) holds reference poses; those within 1 ms of a scan's stamp are that scan's reference.
+ReplayResult RunReplay(const std::vector<SensorEvent>& events, const ReplayOptions& options,
+                       const std::string& out_dir,
+                       const std::function<void(int64_t done, int64_t total)>& progress = {},
+                       int64_t progress_every = 1000,
+                       const std::vector<TruthSample>& reference = {});
+// The same for the events of a CARMEN log.
 ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& options,
                        const std::string& out_dir,
                        const std::function<void(int64_t done, int64_t total)>& progress = {},
@@ -131,7 +146,7 @@ int64_t ThreadCpuNs();
 // Creates `dir` unless it exists; returns an error message ("cannot create DIR: why") or "".
 std::string CreateOutputDir(const std::string& dir);
 
-// Writes `text` to dir/name; returns an error message ("cannot write PATH: why") or "".
+// Writes `text` to dir/name (formats::WriteTextFile); "" or "cannot write PATH: why".
 std::string WriteOutputFile(const std::string& dir, const char* name, const std::string& text);
 
 std::string SummaryJson(const ReplaySummary& s);

@@ -1,26 +1,14 @@
-#include "tools/replay/replay_files.h"
+#include "formats/replay_dir.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-namespace atlas::replay {
+namespace atlas::formats {
 namespace {
 
-TEST(ReplayFiles, ParsesWhatReplayWrites) {
-  std::vector<EdgeRecord> edges;
-  ASSERT_EQ(ParseEdgeRows("# header\n0\t1\t1.0\t2.0\t0.5\t1e-4\t0\t0\t2e-4\t0\t3e-6\tgenesis\n"
-                          "1 2 0 0 0 1 0 0 1 0 1 map-match\n",
-                          "graph.tsv", &edges),
-            "");
-  ASSERT_EQ(edges.size(), 2u);
-  EXPECT_EQ(edges[0].b, 1);
-  EXPECT_DOUBLE_EQ(edges[0].b_in_a.mean.y, 2.0);
-  EXPECT_DOUBLE_EQ(edges[0].b_in_a.cov(1, 1), 2e-4);
-  EXPECT_DOUBLE_EQ(edges[0].b_in_a.cov(2, 2), 3e-6);
-  EXPECT_EQ(edges[1].kind, "map-match");
-
+TEST(ReplayDir, ParsesWhatReplayWrites) {
   std::vector<FrameLine> lines;
   ASSERT_EQ(ParseMapRows("3\t7\t2.5\t0.1\t1\t2\t3\t4\t1e-4\t1e-6\t1e-5\n", "maps.tsv", &lines), "");
   ASSERT_EQ(lines.size(), 1u);
@@ -35,7 +23,7 @@ TEST(ReplayFiles, ParsesWhatReplayWrites) {
   EXPECT_EQ(points[0].frame, 2);
   EXPECT_DOUBLE_EQ(points[0].p.x(), -0.05);
   EXPECT_EQ(ParsePointRows("2\t0.1\n", "points.tsv", &points),
-            "points.tsv:1: expected 3 fields, found 2");
+            "points.tsv:1: expected 3 fields (frame x y), found 2");
   EXPECT_NE(ParsePointRows("-4\t0.1\t0.2\n", "points.tsv", &points), "");
 
   std::vector<FrameRecord> frames;
@@ -44,39 +32,10 @@ TEST(ReplayFiles, ParsesWhatReplayWrites) {
   EXPECT_EQ(frames[1].step, 40);
 }
 
-TEST(ReplayFiles, BadLinesNameFileAndLine) {
-  std::vector<EdgeRecord> edges;
-  EXPECT_EQ(ParseEdgeRows("# h\n0 1 1 2\n", "g.tsv", &edges),
-            "g.tsv:2: expected 12 fields, found 4");
-  EXPECT_NE(ParseEdgeRows("0 1 1 2 0 nan 0 0 1 0 1 genesis\n", "g.tsv", &edges).find("g.tsv:1:"),
-            std::string::npos);
-  EXPECT_NE(ParseEdgeRows("0 1 1 2 0 1 0 0 1 0 1 teleport\n", "g.tsv", &edges).find("edge kind"),
-            std::string::npos);
-  std::vector<StampedFramePose> traj;
-  EXPECT_NE(ParseTrajectoryRows("1.0 -3 0 0 0\n", "t.tsv", &traj), "");
-}
-
-TEST(ReplayFiles, EdgeCovarianceMustBePositiveDefinite) {
-  std::vector<EdgeRecord> edges;
-  for (const char* cov : {"0 0 0 0 0 0", "-1 0 0 -1 0 -1", "1 1 1 1 1 1", "1 2 0 1 0 1"}) {
-    const std::string row = std::string("# h\n0 1 1 2 0 ") + cov + " genesis\n";
-    const std::string e = ParseEdgeRows(row, "g.tsv", &edges);
-    EXPECT_EQ(e.rfind("g.tsv:2: covariance of edge 0-1 is not positive definite", 0), 0u)
-        << cov << ": " << e;
-  }
-  EXPECT_TRUE(edges.empty());
-  EXPECT_NE(ParseEdgeRows("0 1 1e308 2 0 1 0 0 1 0 1 genesis\n", "g.tsv", &edges)
-                .find("g.tsv:1: field 3 (position) is out of range"),
-            std::string::npos);
-  std::vector<StampedFramePose> traj;
-  EXPECT_NE(ParseTrajectoryRows("1e300 0 0 0 0\n", "t.tsv", &traj).find("t.tsv:1: field 1"),
-            std::string::npos);
-}
-
 // The files of one directory must agree, and a file a picture needs must hold rows.
-TEST(ReplayFiles, ReadReplayOutputChecksTheFilesAgree) {
+TEST(ReplayDir, ReadReplayOutputChecksTheFilesAgree) {
   const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "replay_files_agree_test";
+      std::filesystem::path(::testing::TempDir()) / "replay_dir_agree_test";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto write = [&](const char* name, const std::string& text) {
@@ -89,7 +48,7 @@ TEST(ReplayFiles, ReadReplayOutputChecksTheFilesAgree) {
   ReplayOutput run;
   ASSERT_EQ(ReadReplayOutput(dir.string(), ReplayFilesWanted{}, &run), "");
   EXPECT_EQ(run.frame_count, 2);
-  EXPECT_EQ(run.edges[0].line, 2);
+  EXPECT_EQ(run.graph.lines[0], 2);
 
   // An edge to a frame the run does not have.
   write("graph.tsv", "# h\n" + edge + "1 9 1 0 0 0.01 0 0 0.01 0 0.001 map-match\n");
@@ -123,24 +82,10 @@ TEST(ReplayFiles, ReadReplayOutputChecksTheFilesAgree) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(ReplayFiles, GraphAndGlobalTrajectory) {
-  std::vector<EdgeRecord> edges(1);
-  edges[0].a = 0;
-  edges[0].b = 1;
-  edges[0].b_in_a.mean = Pose2{1, 0, M_PI / 2};
-  edges[0].kind = "genesis";
-  GraphFromEdges g = BuildGraph(edges, 3);
-  ASSERT_EQ(g.error, "");
-  EXPECT_EQ(g.graph.FrameCount(), 3);
-  EXPECT_EQ(g.graph.EdgeCount(), 1);
-  edges.push_back(edges[0]);
-  edges[1].line = 7;
-  EXPECT_NE(BuildGraph(edges, 3).error, "");  // a repeated pair
-  EXPECT_EQ(BuildGraph(edges, 3).where, ":7");
-  EXPECT_NE(BuildGraph(edges, 1).error, "");  // frame out of range
-
-  const std::vector<StampedFramePose> traj = {
-      {1.0, 0, Pose2{0.5, 0, 0}}, {2.0, 1, Pose2{1, 0, 0}}, {3.0, 2, Pose2{0, 0, 0}}};
+TEST(ReplayDir, GlobalTrajectory) {
+  const std::vector<FramePoseRow> traj = {{FromSeconds(1.0), 0, Pose2{0.5, 0, 0}, 0},
+                                          {FromSeconds(2.0), 1, Pose2{1, 0, 0}, 0},
+                                          {FromSeconds(3.0), 2, Pose2{0, 0, 0}, 0}};
   const std::vector<std::optional<Pose2>> frames = {Pose2{}, Pose2{1, 0, M_PI / 2}, std::nullopt};
   int rows = 0;
   const std::string text = FormatGlobalTrajectory(traj, frames, "c", &rows);
@@ -151,4 +96,4 @@ TEST(ReplayFiles, GraphAndGlobalTrajectory) {
 }
 
 }  // namespace
-}  // namespace atlas::replay
+}  // namespace atlas::formats

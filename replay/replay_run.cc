@@ -1,4 +1,4 @@
-#include "tools/replay/replay_run.h"
+#include "replay/replay_run.h"
 
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -12,8 +12,9 @@
 #include <cstring>
 #include <memory>
 
-#include "daemon/atlasd/atlas_export.h"
-#include "tools/replay/replay_files.h"
+#include "formats/graph_tsv.h"
+#include "formats/replay_dir.h"
+#include "formats/text_rows.h"
 
 namespace atlas::replay {
 namespace {
@@ -45,7 +46,7 @@ class RecordingSink final : public StepSink {
  public:
   void OnPose(Time stamp, const DominantOutput& d, PoseSource source) override {
     if (source != PoseSource::kScan || !d.valid) return;
-    trajectory.push_back({ToSeconds(stamp), d.frame, d.pose.mean});
+    trajectory.push_back({stamp, d.frame, d.pose.mean, 0});
   }
   void OnStep(Time stamp, const Atlas& atlas) override {
     const StepStats& s = atlas.LastStats();
@@ -76,7 +77,7 @@ class RecordingSink final : public StepSink {
   }
   bool record_hypotheses = false;         // hypotheses.tsv asked for
   std::vector<HypothesisRow> hypotheses;  // its rows, formatted after the run
-  std::vector<StampedFramePose> trajectory;
+  std::vector<formats::FramePoseRow> trajectory;
   std::vector<TimingRow> timing;
   int64_t match_accepted = 0, match_rejected = 0, match_ambiguous = 0, match_by_points = 0;
   int64_t rejected_input = 0;
@@ -85,18 +86,7 @@ class RecordingSink final : public StepSink {
   int64_t refine_rejected = 0, contradicting = 0;
 };
 
-struct OutFile {
-  FILE* f = nullptr;
-  ~OutFile() {
-    if (f != nullptr) std::fclose(f);
-  }
-};
-
-void Append(std::string& s, const char* fmt, auto... args) {
-  char buf[512];
-  const int n = std::snprintf(buf, sizeof buf, fmt, args...);
-  s.append(buf, static_cast<size_t>(std::clamp(n, 0, static_cast<int>(sizeof buf) - 1)));
-}
+void Append(std::string& s, const char* fmt, auto... args) { formats::AppendF(&s, fmt, args...); }
 
 // Resident set size now (kB), from /proc/self/statm; 0 where unavailable.
 int64_t CurrentRssKb() {
@@ -143,16 +133,7 @@ std::string CreateOutputDir(const std::string& dir) {
 }
 
 std::string WriteOutputFile(const std::string& dir, const char* name, const std::string& text) {
-  const std::string path = dir + "/" + name;
-  OutFile out;
-  out.f = std::fopen(path.c_str(), "w");
-  if (out.f == nullptr) return "cannot write " + path + ": " + std::strerror(errno);
-  if (std::fwrite(text.data(), 1, text.size(), out.f) != text.size())
-    return "cannot write " + path + ": " + std::strerror(errno);
-  const int rc = std::fclose(out.f);
-  out.f = nullptr;
-  if (rc != 0) return "cannot write " + path + ": " + std::strerror(errno);
-  return "";
+  return formats::WriteTextFile(dir + "/" + name, text);
 }
 
 std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log) {
@@ -167,13 +148,22 @@ std::vector<TruthSample> ReferenceAtScans(const carmen::CarmenLog& log) {
 std::string ReplayOptions::Validate() const {
   if (std::string e = ValidateMapperSettings(mapper); !e.empty()) return "mapper: " + e;
   if (std::string e = loop.Validate(); !e.empty()) return "step loop: " + e;
-  if (std::string e = refine_options.Validate(); !e.empty()) return "refinement: " + e;
   if (std::string e = closures.Validate(); !e.empty()) return "closure check: " + e;
   if (max_scans < 0) return "max_scans must be >= 0";
   return "";
 }
 
 ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& options,
+                       const std::string& out_dir,
+                       const std::function<void(int64_t, int64_t)>& progress,
+                       int64_t progress_every, const std::vector<TruthSample>& reference) {
+  std::vector<SensorEvent> sensor_events;
+  sensor_events.reserve(events.size());
+  for (const carmen::CarmenEvent& e : events) sensor_events.push_back(e.event);
+  return RunReplay(sensor_events, options, out_dir, progress, progress_every, reference);
+}
+
+ReplayResult RunReplay(const std::vector<SensorEvent>& events, const ReplayOptions& options,
                        const std::string& out_dir,
                        const std::function<void(int64_t, int64_t)>& progress,
                        int64_t progress_every, const std::vector<TruthSample>& reference) {
@@ -186,9 +176,12 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     result.error = e;
     return result;
   }
+  // The items the maps use (live, atlasd steps these and no others).
+  const bool use_scans = options.mapper.sensors != RangeSensors::kSonar;
+  const bool use_sonar = options.mapper.sensors != RangeSensors::kLaser;
   int64_t total_scans = 0;
-  for (const carmen::CarmenEvent& e : events)
-    if (std::holds_alternative<LaserScan>(e.event)) ++total_scans;
+  for (const SensorEvent& e : events)
+    if (use_scans && std::holds_alternative<LaserScan>(e)) ++total_scans;
   if (options.max_scans > 0) total_scans = std::min(total_scans, options.max_scans);
 
   std::unique_ptr<Atlas> atlas = MakeAtlas(options.mapper);
@@ -204,18 +197,29 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   step_cpu_ns.reserve(static_cast<size_t>(total_scans));
   Time first_scan{}, last_scan{};
   sum.rss_kb_before_steps = CurrentRssKb();
-  for (const carmen::CarmenEvent& e : events) {
-    if (sum.scans >= total_scans) break;
-    if (const auto* o = std::get_if<OdometrySample>(&e.event)) {
+  for (const SensorEvent& e : events) {
+    // Scans only: stop after the last one (the odometry after it moves nothing).
+    if (!use_sonar ? sum.scans >= total_scans
+                   : options.max_scans > 0 && sum.scans >= options.max_scans)
+      break;
+    if (const auto* o = std::get_if<OdometrySample>(&e)) {
       loop.AddOdometry(*o);
       ++sum.odometry_samples;
       continue;
     }
-    const auto* scan = std::get_if<LaserScan>(&e.event);
-    if (scan == nullptr) continue;
-    if (sum.scans == 0) first_scan = scan->stamp;
-    last_scan = scan->stamp;
-    loop.AddScan(LaserScan(*scan));
+    const auto* scan = std::get_if<LaserScan>(&e);
+    const auto* sonar = std::get_if<SonarReading>(&e);
+    if (scan != nullptr && use_scans) {
+      if (sum.scans == 0) first_scan = scan->stamp;
+      last_scan = scan->stamp;
+      loop.AddScan(LaserScan(*scan));
+      ++sum.scans;
+    } else if (sonar != nullptr && use_sonar) {
+      loop.AddSonar(SonarReading(*sonar));
+      ++sum.sonar_readings;
+    } else {
+      continue;
+    }
     const size_t rows_before = sink.timing.size();
     const int64_t c0 = ThreadCpuNs();
     const auto t0 = std::chrono::steady_clock::now();
@@ -225,8 +229,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     const int64_t ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
     if (sink.timing.size() > rows_before) sink.timing.back().step_ns = ns;
     step_ns.push_back(ns);
-    ++sum.scans;
-    if (progress && progress_every > 0 && sum.scans % progress_every == 0)
+    if (scan != nullptr && progress && progress_every > 0 && sum.scans % progress_every == 0)
       progress(sum.scans, total_scans);
   }
   sum.rss_kb_after_steps = CurrentRssKb();
@@ -263,10 +266,8 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   sum.frames = graph.FrameCount();
   sum.edges = graph.EdgeCount();
 
-  std::string text = "# atlas-replay trajectory: timestamp frame x y theta\n";
-  for (const StampedFramePose& r : sink.trajectory)
-    Append(text, "%.6f\t%d\t%.6f\t%.6f\t%.6f\n", r.stamp_s, r.frame, r.pose.x, r.pose.y,
-           r.pose.theta);
+  std::string text = formats::FormatTrajectoryTsv(
+      sink.trajectory, "atlas-replay trajectory: timestamp frame x y theta");
   if (std::string e = WriteOutputFile(out_dir, "trajectory.tsv", text); !e.empty()) {
     result.error = e;
     return result;
@@ -286,7 +287,7 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
         break;
     }
     if (edge.origin == EdgeKind::kMapMatch) ++sum.map_match_origin_edges;
-    text += GraphTsvRow(edge);
+    text += formats::GraphTsvRow(edge);
   }
   if (std::string e = WriteOutputFile(out_dir, "graph.tsv", text); !e.empty()) {
     result.error = e;
@@ -330,10 +331,11 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
     return result;
   }
 
-  text = FormatGlobalTrajectory(sink.trajectory, FramePosesFromFrameZero(graph),
-                                "atlas-replay global: timestamp x y theta (Dijkstra projection "
-                                "from frame 0)",
-                                &sum.global_rows);
+  text = formats::FormatGlobalTrajectory(
+      sink.trajectory, formats::FramePosesFromFrameZero(graph),
+      "atlas-replay global: timestamp x y theta (Dijkstra projection "
+      "from frame 0)",
+      &sum.global_rows);
   if (std::string e = WriteOutputFile(out_dir, "global.tsv", text); !e.empty()) {
     result.error = e;
     return result;
@@ -368,13 +370,13 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   }
 
   text = "# atlas-replay maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
-  text += MapsTsvRows(graph);
+  text += formats::MapsTsvRows(graph);
   if (std::string e = WriteOutputFile(out_dir, "maps.tsv", text); !e.empty()) {
     result.error = e;
     return result;
   }
   text = "# atlas-replay points: frame x y (cell centres of the laser points each frame keeps)\n";
-  text += PointsTsvRows(graph);
+  text += formats::PointsTsvRows(graph);
   if (std::string e = WriteOutputFile(out_dir, "points.tsv", text); !e.empty()) {
     result.error = e;
     return result;
@@ -405,22 +407,12 @@ ReplayResult RunReplay(const std::vector<carmen::CarmenEvent>& events, const Rep
   }
 
   if (options.refine) {
-    const auto r0 = std::chrono::steady_clock::now();
-    const refine::RefineResult refined = refine::RefineGlobal(graph, options.refine_options);
-    sum.refine_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
-    sum.refine_status = refine::ToString(refined.status);
-    sum.refined_frames = refined.frames;
-    sum.refine_constraints = refined.edges;
-    sum.refine_initial_cost = refined.initial_cost;
-    sum.refine_final_cost = refined.final_cost;
-    sum.refine_iterations = refined.iterations;
-    sum.refine_unreached_frames = refined.unreached;
-    sum.refine_skipped_edges = refined.skipped_edges;
-    text = FormatGlobalTrajectory(sink.trajectory, refined.refined,
-                                  "atlas-replay global_refined: timestamp x y theta (global "
-                                  "least-squares arrangement of the frames, frame 0 fixed)",
-                                  &sum.refined_rows);
+    const std::vector<std::optional<Pose2>> refined = options.refine(graph, &sum);
+    text = formats::FormatGlobalTrajectory(sink.trajectory, refined,
+                                           "atlas-replay global_refined: timestamp x y theta "
+                                           "(global least-squares arrangement of the frames, "
+                                           "frame 0 fixed)",
+                                           &sum.refined_rows);
     if (std::string e = WriteOutputFile(out_dir, "global_refined.tsv", text); !e.empty()) {
       result.error = e;
       return result;
@@ -441,6 +433,8 @@ std::string SummaryJson(const ReplaySummary& s) {
   Append(t, "\"scans\": %lld, \"odometry_samples\": %lld, \"scans_without_odometry\": %lld, ",
          static_cast<long long>(s.scans), static_cast<long long>(s.odometry_samples),
          static_cast<long long>(s.scans_without_odometry));
+  if (s.sonar_readings > 0)
+    Append(t, "\"sonar_readings\": %lld, ", static_cast<long long>(s.sonar_readings));
   Append(t, "\"scan_matches\": %lld, \"scan_match_fallbacks\": %lld, ",
          static_cast<long long>(s.scan_matches), static_cast<long long>(s.scan_match_fallbacks));
   Append(t, "\"frames\": %d, \"edges\": %d, \"genesis_edges\": %d, \"map_match_edges\": %d, ",
@@ -502,6 +496,8 @@ std::string SummaryText(const ReplaySummary& s) {
   Append(t, "scans stepped        %lld (odometry samples %lld, scans without odometry %lld)\n",
          static_cast<long long>(s.scans), static_cast<long long>(s.odometry_samples),
          static_cast<long long>(s.scans_without_odometry));
+  if (s.sonar_readings > 0)
+    Append(t, "sonar readings       %lld stepped\n", static_cast<long long>(s.sonar_readings));
   if (s.scan_matches + s.scan_match_fallbacks > 0)
     Append(t, "scan matching        %lld increments matched, %lld fell back to the odometry\n",
            static_cast<long long>(s.scan_matches), static_cast<long long>(s.scan_match_fallbacks));

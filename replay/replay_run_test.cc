@@ -1,4 +1,4 @@
-#include "tools/replay/replay_run.h"
+#include "replay/replay_run.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {
 namespace {
@@ -70,11 +72,11 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   ASSERT_FALSE(a.empty());
   ASSERT_FALSE(b.empty());
   int64_t progress_calls = 0;
-  options.refine = true;
+  options.refine = MakeRefiner(refine::RefineOptions{});
   const ReplayResult ra = RunReplay(
       read_.log.events, options, a, [&](int64_t, int64_t) { ++progress_calls; }, 100);
   ASSERT_TRUE(ra.error.empty()) << ra.error;
-  options.refine = false;
+  options.refine = nullptr;
   const ReplayResult rb = RunReplay(read_.log.events, options, b);
   ASSERT_TRUE(rb.error.empty()) << rb.error;
   EXPECT_EQ(progress_calls, 3);
@@ -151,7 +153,7 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   EXPECT_LE(sa.refine_constraints + sa.refine_skipped_edges, sa.edges);
   EXPECT_GT(sa.refine_constraints, 0);
   EXPECT_GE(sa.refine_iterations, 1);
-  EXPECT_LE(sa.refine_iterations, options.refine_options.max_iterations + 1);
+  EXPECT_LE(sa.refine_iterations, refine::RefineOptions{}.max_iterations + 1);
   for (const std::string& field :
        {"\"refine_iterations\": " + std::to_string(sa.refine_iterations),
         "\"refine_unreached_frames\": " + std::to_string(sa.refine_unreached_frames),
@@ -237,7 +239,8 @@ TEST_F(ReplayMitCsail, HypothesesFileListsEveryStepsLiveHypothesesWithTheDominan
 }
 
 TEST(Replay, UnwritableOutputIsAnErrorNotACrash) {
-  const ReplayResult r = RunReplay({}, ReplayOptions{}, "/proc/atlas-replay-cannot-be-here");
+  const ReplayResult r =
+      RunReplay(std::vector<SensorEvent>{}, ReplayOptions{}, "/proc/atlas-replay-cannot-be-here");
   EXPECT_FALSE(r.error.empty());
 }
 

@@ -1,4 +1,4 @@
-#include "tools/replay/closure_check.h"
+#include "replay/closure_check.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
