@@ -7,7 +7,7 @@
 
 #include <cstring>
 
-#include "drivers/agilex/can_frame.h"
+#include "drivers/can/can_frame.h"
 
 namespace atlas {
 
