@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 4, corrected logs: for each of the six Radish "corrected" logs, synthesise wheel
-# odometry from the corrected poses (seeded, a calibrated base's noise: drivers/sim
+# odometry from the corrected poses (seeded, a calibrated base's noise: sim/
 # WheelOdometryNoiseOptions defaults), run atlas-replay, score the Dijkstra-projected global
 # trajectory against the reference (atlas-eval --reference; dead reckoning of the same
 # synthesised odometry beside it), and check every map-match edge against the reference

@@ -3,7 +3,7 @@
 // (sonar_geometry.h). A wall segment echoes when the perpendicular from the transducer meets
 // it inside the segment with the normal inside the cone and within max_range; the nearest
 // echo is reported (first return), plus Gaussian noise. No specular misses or multipath (the
-// simulator, drivers/sim/sonar_model.h, has those).
+// simulator, sim/sonar_model.h, has those).
 
 #include <random>
 #include <vector>

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "daemon/atlasd/daemon_setup.h"
-#include "daemon/lcm_log/lcm_log_reader.h"
 #include "daemon/lcm_out/lcm_convert.h"
+#include "logs/lcm/lcm_log_reader.h"
 
 namespace atlas {
 namespace {

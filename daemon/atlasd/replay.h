@@ -12,7 +12,7 @@
 //                pose in the dominant frame's coordinates)
 //   summary.txt  events, undecodable, scans and sonar readings read, steps, frames, edges, and
 //                "log complete|truncated|corrupt"
-// The log is read by LcmLogReader (daemon/lcm_log). Returns the exit code: 0; 1 with a message
+// The log is read by LcmLogReader (logs/lcm). Returns the exit code: 0; 1 with a message
 // when the log is not an LCM log (nothing is written), when it is truncated or corrupt or holds
 // events on the raw channels that do not decode (the output then holds the steps of the events
 // read), when it holds nothing to step, or when the output cannot be written.

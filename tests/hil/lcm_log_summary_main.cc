@@ -9,7 +9,7 @@
 
 #include "atlas/health_t.hpp"
 #include "atlas/pose_t.hpp"
-#include "daemon/lcm_log/lcm_log_reader.h"
+#include "logs/lcm/lcm_log_reader.h"
 
 namespace {
 

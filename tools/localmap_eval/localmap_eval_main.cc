@@ -1,7 +1,7 @@
 // atlas-localmap-eval: evaluation of the line-feature EKF local map (issue 3).
 //
 //   atlas-localmap-eval mc   [--runs N] [--minutes M] [--seed S] [--capacity C]
-//       Monte Carlo consistency in a simulated corridor (drivers/sim ray caster, laser and
+//       Monte Carlo consistency in a simulated corridor (sim ray caster, laser and
 //       wheel-odometry models): average NEES of the robot pose and of the features per step
 //       against the 95 % chi-square band.
 //   atlas-localmap-eval real [--log F] [--relations F] [--stretch M] [--capacity C] [--png F]
@@ -35,11 +35,11 @@
 #include "core/localmap/line_ekf_map.h"
 #include "core/scanmatch/scan_matcher.h"
 #include "daemon/atlasd/odometry_track.h"
-#include "drivers/carmen/carmen_log.h"
-#include "drivers/sim/laser_model.h"
-#include "drivers/sim/ray_caster.h"
-#include "drivers/sim/route.h"
-#include "drivers/sim/wheel_odometry_model.h"
+#include "logs/carmen/carmen_log.h"
+#include "sim/laser_model.h"
+#include "sim/ray_caster.h"
+#include "sim/route.h"
+#include "sim/wheel_odometry_model.h"
 #include "tools/eval/tool_options.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/render/canvas.h"

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <fstream>
 
-#include "drivers/carmen/carmen_line.h"
-#include "drivers/sim/simulation.h"
+#include "logs/carmen/carmen_line.h"
+#include "sim/simulation.h"
 
 namespace atlas::draw {
 namespace {

@@ -35,7 +35,7 @@
 
 #include "daemon/atlasd/atlas_factory.h"
 #include "daemon/atlasd/step_loop.h"
-#include "drivers/carmen/carmen_log.h"
+#include "logs/carmen/carmen_log.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/replay/closure_check.h"
 #include "tools/replay/replay_files.h"

@@ -22,8 +22,8 @@
 
 #include "core/atlas/atlas.h"
 #include "core/sonar/sonar_options.h"
-#include "drivers/sim/simulation.h"
-#include "drivers/sim/wheel_odometry_model.h"
+#include "sim/simulation.h"
+#include "sim/wheel_odometry_model.h"
 #include "tools/replay/closure_check.h"
 
 namespace atlas::sonar_eval {

@@ -1,7 +1,7 @@
 // atlas-sonar-eval: evaluation of sonar-only line mapping (issue 7).
 //
 //   atlas-sonar-eval mc   [--runs N] [--minutes M] [--ring 16|24] [--seed S] [--capacity C]
-//       Seeded simulator runs in a corridor (drivers/sim ray caster; sonar ring with specular
+//       Seeded simulator runs in a corridor (sim ray caster; sonar ring with specular
 //       misses and multipath; laser; wheel odometry). On each run a sonar-only and a laser-only
 //       SonarLocalMap process the same odometry: robot NEES against the 95 % band, and
 //       relative-pose errors (pairs 5, 30, 90 s apart) against ground truth for sonar, laser and
@@ -32,13 +32,13 @@
 #include "core/localmap/line_model.h"
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
-#include "drivers/sim/building_generator.h"
-#include "drivers/sim/laser_model.h"
-#include "drivers/sim/ray_caster.h"
-#include "drivers/sim/route.h"
-#include "drivers/sim/simulation.h"
-#include "drivers/sim/sonar_model.h"
-#include "drivers/sim/wheel_odometry_model.h"
+#include "sim/building_generator.h"
+#include "sim/laser_model.h"
+#include "sim/ray_caster.h"
+#include "sim/route.h"
+#include "sim/simulation.h"
+#include "sim/sonar_model.h"
+#include "sim/wheel_odometry_model.h"
 #include "tools/eval/tool_options.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/render/canvas.h"
@@ -915,7 +915,7 @@ int RunAtlasMode(const Args& args) {
 // ---- assoc mode: the sonar map's data association against the simulator's truth ----
 
 // The wall whose echo the transducer at `sensor` (world) reports, as the simulator decides it
-// (drivers/sim SonarModel::Fire: nearest ray of the cone meeting a wall within the critical
+// (sim SonarModel::Fire: nearest ray of the cone meeting a wall within the critical
 // incidence), or -1 when no ray echoes (specular miss: no return, or a multipath one).
 int EchoingWall(const sim::RayCaster& caster, const sim::SonarOptions& so, const Pose2& sensor,
                 double beam_width, double max_range) {
