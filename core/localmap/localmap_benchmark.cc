@@ -9,10 +9,11 @@
 #include <sstream>
 #include <string>
 
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/line_extraction.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -52,7 +53,7 @@ LaserScan BenchmarkScan(bool* real) {
       }
     }
   }
-  FakeWallScanner scanner(CorridorWorld(30.0, 2.4), FakeLaserOptions(), 1);
+  FakeWallScanner scanner(sim::CorridorWalls(30.0, 2.4), FakeLaserOptions(), 1);
   return scanner.Scan(Pose2{5.0, 0.2, 0.1});
 }
 
@@ -76,7 +77,7 @@ struct TenFeatureSetup {
   LineEkfMap map;
   std::vector<ObservedLine> observed;
   TenFeatureSetup() : map(Options()) {
-    std::vector<Wall> walls;
+    std::vector<sim::Wall> walls;
     for (int k = 0; k < 5; ++k) {  // a zig-zag room: 10 walls in distinct directions
       const double a0 = 2 * M_PI * k / 5, a1 = 2 * M_PI * (k + 0.5) / 5,
                    a2 = 2 * M_PI * (k + 1) / 5;

@@ -30,12 +30,13 @@
 #include "core/common/parse_number.h"
 #include "core/eval/error_stats.h"
 #include "core/eval/relations_metric.h"
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
+#include "core/localmap/line_model.h"
 #include "core/scanmatch/scan_matcher.h"
 #include "daemon/atlasd/odometry_track.h"
 #include "logs/carmen/carmen_log.h"
+#include "sim/corridor.h"
 #include "sim/laser_model.h"
 #include "sim/ray_caster.h"
 #include "sim/route.h"
@@ -163,7 +164,7 @@ bool TrueLineOf(const ObservedLine& z, const Pose2& truth, const LaserScan& scan
     }
   }
   if (best < 0) return false;
-  line = FakeWallScanner::WallLine(Wall{walls[best].a, walls[best].b});
+  line = LineThroughPoints(walls[best].a, walls[best].b);
   return true;
 }
 
@@ -370,11 +371,7 @@ std::vector<StepNees> RunOnce(uint64_t seed, double minutes, const LocalMapOptio
   return out;
 }
 
-std::vector<sim::Wall> SimCorridor() {
-  std::vector<sim::Wall> walls;
-  for (const Wall& w : CorridorWorld(20.0, 2.4)) walls.push_back(sim::Wall{w.a, w.b});
-  return walls;
-}
+std::vector<sim::Wall> SimCorridor() { return sim::CorridorWalls(20.0, 2.4); }
 
 int RunMonteCarlo(const Args& args) {
   double minutes = 4;

@@ -58,13 +58,7 @@ double PoseNees(const UncertainPose& est, const Pose2& truth) {
   return e.dot(cov.ldlt().solve(e));
 }
 
-Vec2 WallLine(const sim::Wall& wall) {
-  const Vec2 d = (wall.b - wall.a).normalized();
-  double alpha = std::atan2(d.x(), -d.y());  // normal
-  double rho = wall.a.x() * std::cos(alpha) + wall.a.y() * std::sin(alpha);
-  CanonicalizeLine(rho, alpha);
-  return Vec2(rho, alpha);
-}
+Vec2 WallLine(const sim::Wall& wall) { return LineThroughPoints(wall.a, wall.b); }
 
 std::vector<Vec2> WallLinesInFrame(const std::vector<sim::Wall>& walls, const Pose2& origin) {
   const Pose2 to_frame = Inverse(origin);

@@ -27,12 +27,12 @@
 #include "core/atlas/atlas.h"
 #include "core/atlas/line_map_bootstrapper.h"
 #include "core/eval/error_stats.h"
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_model.h"
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
 #include "sim/building_generator.h"
+#include "sim/corridor.h"
 #include "sim/laser_model.h"
 #include "sim/ray_caster.h"
 #include "sim/route.h"
@@ -150,11 +150,7 @@ struct CorridorRun {
   sim::SonarModel ring_model;
   sim::DiffDriveFollower follower;
 
-  static std::vector<sim::Wall> Walls() {
-    std::vector<sim::Wall> w;
-    for (const Wall& c : CorridorWorld(20.0, 2.4)) w.push_back(sim::Wall{c.a, c.b});
-    return w;
-  }
+  static std::vector<sim::Wall> Walls() { return sim::CorridorWalls(20.0, 2.4); }
   static WheelOdometryNoiseOptions Wheel() {
     WheelOdometryNoiseOptions w;
     w.left_scale_error = w.right_scale_error = w.track_width_error = 0.0;

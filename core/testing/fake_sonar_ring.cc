@@ -1,4 +1,4 @@
-#include "core/sonar/fake_sonar_ring.h"
+#include "core/testing/fake_sonar_ring.h"
 
 #include <cmath>
 #include <numbers>
@@ -22,7 +22,7 @@ std::vector<SonarTransducer> FakeSonarRing(int count) {
 
 std::vector<SonarTransducer> FakeSonarRing24() { return FakeSonarRing(24); }
 
-SonarReading FireFakeSonarRing(const std::vector<FakeSonarWall>& walls,
+SonarReading FireFakeSonarRing(const std::vector<sim::Wall>& walls,
                                const std::vector<SonarTransducer>& ring, const Pose2& robot,
                                double noise_sigma, std::mt19937_64& rng) {
   std::normal_distribution<double> n01;
@@ -30,14 +30,12 @@ SonarReading FireFakeSonarRing(const std::vector<FakeSonarWall>& walls,
   reading.returns.reserve(ring.size());
   for (int i = 0; i < static_cast<int>(ring.size()); ++i) {
     double best = kNoReturn;
-    for (const FakeSonarWall& w : walls) {
+    for (const sim::Wall& w : walls) {
       const double len = (w.b - w.a).norm();
       if (!(len > 0.0)) continue;
       const Vec2 d = (w.b - w.a) / len;
-      const Vec2 n(-d.y(), d.x());
-      double rho = n.dot(w.a), alpha = std::atan2(n.y(), n.x());
-      CanonicalizeLine(rho, alpha);
-      const SonarRangePrediction p = PredictSonarRange(robot, ring[i], rho, alpha);
+      const Vec2 line = LineThroughPoints(w.a, w.b);
+      const SonarRangePrediction p = PredictSonarRange(robot, ring[i], line.x(), line.y());
       const double t = (p.foot - w.a).dot(d);
       if (!p.in_cone || t < 0.0 || t > len || p.range > ring[i].max_range) continue;
       best = std::min(best, p.range);

@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "core/atlas/atlas.h"
-#include "core/atlas/fake_local_map.h"
+#include "core/testing/fake_local_map.h"
 
 namespace atlas {
 
