@@ -13,7 +13,7 @@
 # GCC builds with optimisation (RelWithDebInfo, Release) get none either: with the PCH, GCC 12 at
 # -O2 reports false -Warray-bounds errors inside std::string's char_traits.h (inlined from
 # `std::string(...) + "..."` in core/localmap/localmap_benchmark.cc and
-# drivers/carmen/carmen_line_test.cc) that it does not report without it, where the location is
+# logs/carmen/carmen_line_test.cc) that it does not report without it, where the location is
 # a system header. Nor do fuzz trees (ATLAS_FUZZ): scripts/test.sh builds only the fuzz targets
 # and their few libraries there, and the donors cost more than they save (clang, 5 fuzzers:
 # 87.4 s CPU with the PCH, 78.7 s without). So the PCH serves Debug (-O0) trees, e.g. the

@@ -39,8 +39,8 @@
 
 #include "daemon/atlasd/atlas_factory.h"
 #include "daemon/atlasd/step_loop.h"
-#include "drivers/carmen/carmen_log.h"
 #include "formats/trajectory_tsv.h"
+#include "logs/carmen/carmen_log.h"
 #include "replay/closure_check.h"
 
 namespace atlas::replay {

@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "daemon/lcm_log/lcm_log_reader.h"
 #include "daemon/lcm_out/lcm_convert.h"
+#include "logs/lcm/lcm_log_reader.h"
 
 namespace atlas::replay {
 namespace {

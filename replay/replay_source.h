@@ -9,7 +9,7 @@
 
 #include "core/common/sensor_types.h"
 #include "daemon/config/daemon_options.h"
-#include "drivers/carmen/carmen_log.h"
+#include "logs/carmen/carmen_log.h"
 #include "replay/replay_run.h"
 
 namespace atlas::replay {

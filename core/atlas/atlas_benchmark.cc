@@ -9,7 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include "core/atlas/atlas.h"
-#include "core/atlas/atlas_test_world.h"
+#include "core/testing/atlas_test_world.h"
 
 namespace atlas {
 namespace {

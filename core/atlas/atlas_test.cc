@@ -12,8 +12,8 @@
 #include <set>
 #include <vector>
 
-#include "core/atlas/atlas_test_world.h"
 #include "core/atlas/dijkstra_projection.h"
+#include "core/testing/atlas_test_world.h"
 
 namespace atlas {
 namespace {

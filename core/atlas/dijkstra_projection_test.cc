@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/atlas/fake_local_map.h"
+#include "core/testing/fake_local_map.h"
 
 namespace atlas {
 namespace {

@@ -8,8 +8,9 @@
 #include <vector>
 
 #include "core/atlas/atlas.h"
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/line_ekf_map.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -21,7 +22,7 @@ struct Corridor {
   LineEkfMap map{options};
   Pose2 truth = start;  // robot in the world
 
-  explicit Corridor(std::vector<Wall> walls = CorridorWorld(30.0, 2.4))
+  explicit Corridor(std::vector<sim::Wall> walls = sim::CorridorWalls(30.0, 2.4))
       : scanner(std::move(walls), FakeLaserOptions{}, 11) {
     map.Update(scanner.Scan(truth), true);
     for (int i = 0; i < 6; ++i) Move(Pose2{0.2, 0.0, 0.0}, &map, true);
@@ -72,8 +73,8 @@ TEST(LineMapBootstrapper, SolvesThePoseFromTheScansNotTheSeed) {
 // but not the position along them. w cannot tell yet (kUndetermined: the atlas keeps the
 // juvenile and tries again with more scans), which is not a contradiction (kFailed).
 TEST(LineMapBootstrapper, UndeterminedWhenOnlyParallelWallsMatch) {
-  Corridor c(
-      {Wall{Vec2(-100.0, 1.2), Vec2(100.0, 1.2)}, Wall{Vec2(-100.0, -1.2), Vec2(100.0, -1.2)}});
+  Corridor c({sim::Wall{Vec2(-100.0, 1.2), Vec2(100.0, 1.2)},
+              sim::Wall{Vec2(-100.0, -1.2), Vec2(100.0, -1.2)}});
   ASSERT_EQ(c.map.Complexity(), 2);
   EXPECT_EQ(c.Juvenile(Pose2{0.05, 0.0, 0.0}, 4).outcome, BootstrapOutcome::kUndetermined);
 }
@@ -97,7 +98,7 @@ namespace {
 TEST(AtlasWithLineMaps, CorridorOutAndBack) {
   LocalMapOptions lo;
   lo.capacity = 6;
-  FakeWallScanner scanner(CorridorWorld(30.0, 2.4), FakeLaserOptions{}, 5);
+  FakeWallScanner scanner(sim::CorridorWalls(30.0, 2.4), FakeLaserOptions{}, 5);
   AtlasOptions o;
   Atlas atlas(
       o, [lo] { return std::make_unique<LineEkfMap>(lo); },

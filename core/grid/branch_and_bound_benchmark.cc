@@ -25,7 +25,7 @@ BENCHMARK(BM_Precompute)->Unit(benchmark::kMillisecond);
 
 void BM_BranchAndBound(benchmark::State& state) {
   const GridOptions o;
-  const std::vector<Wall> walls = RoomWalls(2.0);
+  const std::vector<sim::Wall> walls = RoomWalls(2.0);
   const ProbabilityGrid grid = ScannedGrid(walls, RoomTour(2.0), o);
   const PrecomputationGridStack grids(grid, o.search.depth);
   const Pose2 truth{2.0, 3.0, 0.7};
@@ -33,9 +33,9 @@ void BM_BranchAndBound(benchmark::State& state) {
   if (state.range(0) == 0) {
     points = ScanPoints(walls, truth, o);
   } else {
-    std::vector<Wall> moved;
+    std::vector<sim::Wall> moved;
     const RigidTransform to_source(Inverse(truth));
-    for (const Wall& w : walls) moved.push_back({to_source.Apply(w.a), to_source.Apply(w.b)});
+    for (const sim::Wall& w : walls) moved.push_back({to_source.Apply(w.a), to_source.Apply(w.b)});
     std::vector<Pose2> tour;
     for (const Pose2& p : RoomTour(2.0)) tour.push_back(Between(truth, Pose2{-p.x, p.y, -p.theta}));
     points = OccupiedCellCenters(ScannedGrid(moved, tour, o, 5), 0.6);

@@ -135,7 +135,7 @@ TEST(BranchAndBound, SlicedSearchEqualsOneShot) {
 
 TEST(BranchAndBound, FindsAScanInARoomOverAWideWindowWithAClearMargin) {
   const GridOptions o;
-  const std::vector<Wall> walls = RoomWalls();
+  const std::vector<sim::Wall> walls = RoomWalls();
   const ProbabilityGrid grid = ScannedGrid(walls, RoomTour(), o);
   const PrecomputationGridStack grids(grid, o.search.depth);
   const Pose2 truth{1.0, 1.5, 0.7};
@@ -157,7 +157,7 @@ TEST(BranchAndBound, FindsAScanInARoomOverAWideWindowWithAClearMargin) {
 
 TEST(BranchAndBound, ARepetitivePlaceHasASmallMargin) {
   const GridOptions o;
-  const std::vector<Wall> walls = PostLatticeWalls();
+  const std::vector<sim::Wall> walls = PostLatticeWalls();
   std::vector<Pose2> tour;
   for (int i = 0; i < 12; ++i)
     tour.push_back(Pose2{0.45 * std::cos(i), 0.45 * std::sin(i), 1.0 * i});
@@ -178,7 +178,7 @@ TEST(BranchAndBound, ARepetitivePlaceHasASmallMargin) {
 
 TEST(BranchAndBound, MatchesASubmapsOccupiedCells) {
   const GridOptions o;
-  const std::vector<Wall> walls = RoomWalls();
+  const std::vector<sim::Wall> walls = RoomWalls();
   const ProbabilityGrid target = ScannedGrid(walls, RoomTour(), o);
   // A second submap whose frame is `truth` in the target's frame, built from other poses.
   const Pose2 truth{0.8, -0.5, 0.3};

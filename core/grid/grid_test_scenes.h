@@ -1,5 +1,5 @@
 #pragma once
-// Scenes for the grid tests and benchmarks: wall layouts scanned by core/localmap's
+// Scenes for the grid tests and benchmarks: wall layouts (the simulator's walls) scanned by
 // FakeWallScanner, and the grids and point sets made from them.
 
 #include <cmath>
@@ -9,14 +9,14 @@
 #include "core/grid/grid_options.h"
 #include "core/grid/probability_grid.h"
 #include "core/grid/range_inserter.h"
-#include "core/localmap/fake_wall_scanner.h"
+#include "core/testing/fake_wall_scanner.h"
 
 namespace atlas {
 
 // A closed 10 x 8 m room (times `scale`), origin at its centre, with an alcove, a pillar and
 // an L-shaped counter, so that no placement but the true one fits it.
-inline std::vector<Wall> RoomWalls(double scale = 1.0) {
-  std::vector<Wall> w;
+inline std::vector<sim::Wall> RoomWalls(double scale = 1.0) {
+  std::vector<sim::Wall> w;
   auto box = [&w](double x0, double y0, double x1, double y1) {
     w.push_back({Vec2(x0, y0), Vec2(x1, y0)});
     w.push_back({Vec2(x1, y0), Vec2(x1, y1)});
@@ -34,7 +34,7 @@ inline std::vector<Wall> RoomWalls(double scale = 1.0) {
   box(2.0, -2.5, 2.4, -2.1);                        // pillar
   w.push_back({Vec2(-4.0, 2.0), Vec2(-2.0, 2.0)});  // counter
   w.push_back({Vec2(-2.0, 2.0), Vec2(-2.0, 1.2)});
-  for (Wall& wall : w) {
+  for (sim::Wall& wall : w) {
     wall.a *= scale;
     wall.b *= scale;
   }
@@ -51,13 +51,13 @@ inline std::vector<Pose2> RoomTour(double scale = 1.0) {
 }
 
 // Two parallel walls 2 m apart along x from -100 to 100 m: nothing fixes x.
-inline std::vector<Wall> LongCorridorWalls() {
+inline std::vector<sim::Wall> LongCorridorWalls() {
   return {{Vec2(-100, -1), Vec2(100, -1)}, {Vec2(-100, 1), Vec2(100, 1)}};
 }
 
 // Square posts of 0.2 m on a 1 m lattice over [-6, 6]^2: every 1 m shift looks alike.
-inline std::vector<Wall> PostLatticeWalls() {
-  std::vector<Wall> w;
+inline std::vector<sim::Wall> PostLatticeWalls() {
+  std::vector<sim::Wall> w;
   for (int i = -6; i <= 6; ++i) {
     for (int j = -6; j <= 6; ++j) {
       if (i == 0 && j == 0) continue;
@@ -81,8 +81,9 @@ inline FakeLaserOptions FullCircleLaser(int beams = 361, double max_range = 30.0
 }
 
 // A grid of `walls` from scans at `poses` (world = submap frame).
-inline ProbabilityGrid ScannedGrid(const std::vector<Wall>& walls, const std::vector<Pose2>& poses,
-                                   const GridOptions& options, uint64_t seed = 1) {
+inline ProbabilityGrid ScannedGrid(const std::vector<sim::Wall>& walls,
+                                   const std::vector<Pose2>& poses, const GridOptions& options,
+                                   uint64_t seed = 1) {
   FakeWallScanner scanner(walls, FullCircleLaser(), seed);
   ProbabilityGrid grid(options.grid);
   RangeInserter inserter(options.grid);
@@ -95,7 +96,7 @@ inline ProbabilityGrid ScannedGrid(const std::vector<Wall>& walls, const std::ve
 }
 
 // The returns of one scan from `robot`, in the robot frame.
-inline std::vector<Vec2> ScanPoints(const std::vector<Wall>& walls, const Pose2& robot,
+inline std::vector<Vec2> ScanPoints(const std::vector<sim::Wall>& walls, const Pose2& robot,
                                     const GridOptions& options, uint64_t seed = 2,
                                     const FakeLaserOptions& laser = FullCircleLaser()) {
   FakeWallScanner scanner(walls, laser, seed);
@@ -107,11 +108,11 @@ inline std::vector<Vec2> ScanPoints(const std::vector<Wall>& walls, const Pose2&
 // The occupied cells (probability >= 0.6) of a second submap of `walls` whose frame is
 // `frame` in the walls' frame, built from RoomTour(scale) mirrored in x: the same place seen
 // from other poses.
-inline std::vector<Vec2> OtherSubmapPoints(const std::vector<Wall>& walls, double scale,
+inline std::vector<Vec2> OtherSubmapPoints(const std::vector<sim::Wall>& walls, double scale,
                                            const Pose2& frame, const GridOptions& options) {
-  std::vector<Wall> moved;
+  std::vector<sim::Wall> moved;
   const RigidTransform to_frame(Inverse(frame));
-  for (const Wall& w : walls) moved.push_back({to_frame.Apply(w.a), to_frame.Apply(w.b)});
+  for (const sim::Wall& w : walls) moved.push_back({to_frame.Apply(w.a), to_frame.Apply(w.b)});
   std::vector<Pose2> tour;
   for (const Pose2& p : RoomTour(scale)) tour.push_back(Between(frame, Pose2{-p.x, p.y, -p.theta}));
   return OccupiedCellCenters(ScannedGrid(moved, tour, options, 5), 0.6);

@@ -12,7 +12,7 @@ namespace {
 
 void BM_InsertScan361(benchmark::State& state) {
   const GridOptions o;
-  const std::vector<Wall> walls = state.range(0) == 0 ? RoomWalls() : std::vector<Wall>{};
+  const std::vector<sim::Wall> walls = state.range(0) == 0 ? RoomWalls() : std::vector<sim::Wall>{};
   FakeWallScanner scanner(walls, FullCircleLaser(), 1);
   const Pose2 robot{0.5, -0.3, 0.2};
   RangeScan scan;

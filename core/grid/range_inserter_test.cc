@@ -108,7 +108,7 @@ TEST(RangeInserter, ReturnsBeyondTheCapAreDroppedAndTheirRaysClipped) {
 
 TEST(RangeInserter, ARoomIsMappedWithWallsOccupiedAndTheFloorFree) {
   const GridOptions o;
-  const std::vector<Wall> walls = RoomWalls();
+  const std::vector<sim::Wall> walls = RoomWalls();
   const ProbabilityGrid grid =
       ScannedGrid(walls, {Pose2{0, 0, 0}, Pose2{-3, -2, 1.0}, Pose2{3, 2, -2.0}}, o);
   const GridLimits& l = grid.limits();
@@ -116,7 +116,7 @@ TEST(RangeInserter, ARoomIsMappedWithWallsOccupiedAndTheFloorFree) {
   EXPECT_LE(l.width, o.grid.max_cells);
   // Walls lie on cell boundaries: a wall point is occupied when a cell beside it is.
   int wall_cells = 0, occupied = 0;
-  for (const Wall& w : walls) {
+  for (const sim::Wall& w : walls) {
     const double length = (w.b - w.a).norm();
     for (double s = 0.05; s < length - 0.05; s += 0.05) {
       const CellIndex c = l.CellOf(w.a + s / length * (w.b - w.a));

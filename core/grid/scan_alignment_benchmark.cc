@@ -12,7 +12,7 @@ namespace {
 
 void BM_AlignScan361(benchmark::State& state) {
   const GridOptions o;
-  const std::vector<Wall> walls = RoomWalls();
+  const std::vector<sim::Wall> walls = RoomWalls();
   const ProbabilityGrid grid = ScannedGrid(walls, RoomTour(), o);
   const Pose2 truth{1.0, 1.5, 0.7};
   const std::vector<Vec2> points = ScanPoints(walls, truth, o);

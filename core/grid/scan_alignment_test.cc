@@ -12,7 +12,7 @@ namespace {
 
 TEST(ScanAligner, RecoversAKnownOffsetInARoom) {
   const GridOptions o;
-  const std::vector<Wall> walls = RoomWalls();
+  const std::vector<sim::Wall> walls = RoomWalls();
   const ProbabilityGrid grid =
       ScannedGrid(walls, {Pose2{0, 0, 0}, Pose2{-3, -2, 1.0}, Pose2{3, 2, -2.0}}, o);
   ScanAligner aligner(o.alignment);
@@ -41,7 +41,7 @@ TEST(ScanAligner, RecoversAKnownOffsetInARoom) {
 
 TEST(ScanAligner, ReportsTheCorridorsLengthAsUnconstrained) {
   const GridOptions o;
-  const std::vector<Wall> walls = LongCorridorWalls();
+  const std::vector<sim::Wall> walls = LongCorridorWalls();
   std::vector<Pose2> poses;
   for (double x = -4.0; x <= 4.0; x += 2.0) poses.push_back(Pose2{x, 0.1, 0.0});
   const ProbabilityGrid grid = ScannedGrid(walls, poses, o);

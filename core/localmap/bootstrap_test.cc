@@ -4,18 +4,19 @@
 
 #include <Eigen/LU>
 
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/line_extraction.h"
+#include "core/localmap/line_model.h"
+#include "core/testing/fake_wall_scanner.h"
 
 namespace atlas {
 namespace {
 
-std::vector<MapLine> MapOf(const std::vector<Wall>& walls, double sigma_rho = 0.005,
+std::vector<MapLine> MapOf(const std::vector<sim::Wall>& walls, double sigma_rho = 0.005,
                            double sigma_alpha = 0.002) {
   std::vector<MapLine> map;
   for (int i = 0; i < static_cast<int>(walls.size()); ++i) {
-    const Vec2 l = FakeWallScanner::WallLine(walls[i]);
+    const Vec2 l = LineThroughPoints(walls[i].a, walls[i].b);
     MapLine m;
     m.id = 10 + i;
     m.rho = l(0);
@@ -29,7 +30,7 @@ std::vector<MapLine> MapOf(const std::vector<Wall>& walls, double sigma_rho = 0.
 }
 
 // Two scans: one at `earlier`, one at `current`, both seen from the true poses.
-std::vector<BootstrapScan> Scans(const std::vector<Wall>& walls, const Pose2& earlier,
+std::vector<BootstrapScan> Scans(const std::vector<sim::Wall>& walls, const Pose2& earlier,
                                  const Pose2& current, uint64_t seed) {
   FakeLaserOptions lo;
   lo.range_sigma = 0.01;
@@ -43,9 +44,9 @@ std::vector<BootstrapScan> Scans(const std::vector<Wall>& walls, const Pose2& ea
   return {s0, s1};
 }
 
-const std::vector<Wall> kRoom = {{Vec2(4.0, -1.5), Vec2(4.0, 2.0)},
-                                 {Vec2(-2.0, 2.0), Vec2(4.0, 2.0)},
-                                 {Vec2(-2.0, -1.5), Vec2(4.0, -1.5)}};
+const std::vector<sim::Wall> kRoom = {{Vec2(4.0, -1.5), Vec2(4.0, 2.0)},
+                                      {Vec2(-2.0, 2.0), Vec2(4.0, 2.0)},
+                                      {Vec2(-2.0, -1.5), Vec2(4.0, -1.5)}};
 
 TEST(BootstrapTest, SolvesThePoseFromFeaturesIndependentlyOfTheSeed) {
   const Pose2 truth{1.0, 0.5, 0.2};
@@ -74,7 +75,7 @@ TEST(BootstrapTest, SolvesThePoseFromFeaturesIndependentlyOfTheSeed) {
 }
 
 TEST(BootstrapTest, ParallelWallsOnlyAreUnderconstrained) {
-  const std::vector<Wall> corridor = {kRoom[1], kRoom[2]};
+  const std::vector<sim::Wall> corridor = {kRoom[1], kRoom[2]};
   const Pose2 truth{1.0, 0.5, 0.2};
   const auto scans = Scans(corridor, Pose2{0.7, 0.45, 0.15}, truth, 22);
   UncertainPose seed{Pose2{1.3, 0.3, 0.25}, Mat3(Vec3(0.2, 0.2, 0.01).asDiagonal())};

@@ -8,8 +8,9 @@
 #include <cstring>
 #include <random>
 
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/line_extraction.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -75,7 +76,7 @@ RunStats RunCorridor(LineEkfMap& map, uint64_t seed, int steps, bool allow_new =
   const OdometryNoiseOptions& on = map.Options().odometry;
   FakeLaserOptions lo;
   lo.range_sigma = map.Options().extraction.range_sigma;
-  FakeWallScanner scanner(CorridorWorld(), lo, seed);
+  FakeWallScanner scanner(sim::CorridorWalls(), lo, seed);
   std::mt19937_64 rng(seed + 1);
   std::normal_distribution<double> normal;
   Pose2 truth;
@@ -159,7 +160,7 @@ TEST(LineEkfMapTest, LineNearAFeatureIsNotAddedAgain) {
 // stays right; with 1 (the default) the map pairs it and turns the robot by about the segment's
 // angle, while claiming a smaller heading sigma than before.
 TEST(LineEkfMapTest, RecoveryPassLeavesALonePairingUnpaired) {
-  const std::vector<Wall> mapped = {{Vec2(3.0, -2.0), Vec2(3.0, 2.0)}};
+  const std::vector<sim::Wall> mapped = {{Vec2(3.0, -2.0), Vec2(3.0, 2.0)}};
   for (const int min_pairings : {2, 1}) {
     LocalMapOptions o = SimOptions();
     o.odometry.theta_var_per_m = 1e-3;  // heading sigma 10 mrad after 0.1 m, far above the lines'
@@ -174,7 +175,7 @@ TEST(LineEkfMapTest, RecoveryPassLeavesALonePairingUnpaired) {
     // The unmapped segment: the wall's middle part turned by 2.8 sigma about (3, 0).
     const double phi = 2.8 * sigma, half = 1.5;
     const Vec2 d(-std::sin(phi), std::cos(phi));
-    const std::vector<Wall> seen = {{Vec2(3.0, 0.0) - half * d, Vec2(3.0, 0.0) + half * d}};
+    const std::vector<sim::Wall> seen = {{Vec2(3.0, 0.0) - half * d, Vec2(3.0, 0.0) + half * d}};
     const ScanUpdate up =
         map.Update(FakeWallScanner(seen, FakeLaserOptions(), 22).Scan(truth), false);
     const double error = std::abs(WrapAngle(map.RobotPose().mean.theta - truth.theta));
@@ -195,9 +196,9 @@ TEST(LineEkfMapTest, RecoveryPassLeavesALonePairingUnpaired) {
 // recovery pass at 99.99 % pairs them and corrects the heading; without it nothing is matched
 // and the error stays.
 TEST(LineEkfMapTest, RecoveryPassPairsAfterALargeHeadingError) {
-  const std::vector<Wall> room = {{Vec2(3.0, -2.0), Vec2(3.0, 2.0)},
-                                  {Vec2(-1.0, 2.0), Vec2(3.0, 2.0)},
-                                  {Vec2(-1.0, -2.0), Vec2(3.0, -2.0)}};
+  const std::vector<sim::Wall> room = {{Vec2(3.0, -2.0), Vec2(3.0, 2.0)},
+                                       {Vec2(-1.0, 2.0), Vec2(3.0, 2.0)},
+                                       {Vec2(-1.0, -2.0), Vec2(3.0, -2.0)}};
   for (const bool recovery : {true, false}) {
     LocalMapOptions o = SimOptions();
     o.odometry.theta_var_per_m = 1e-3;  // 0.1 m: heading sigma 10 mrad, far above the lines'

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/localmap/fake_wall_scanner.h"
+#include "core/localmap/line_model.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -28,14 +30,14 @@ constexpr bool kSanitized = false;
 
 TEST(LineExtractionTest, EstimatedCovarianceMatchesSampleCovariance) {
   // One oblique wall 4 m long, seen over many beams; 2000 noisy scans.
-  const Wall wall{Vec2(3.0, -2.0), Vec2(2.0, 2.0)};
+  const sim::Wall wall{Vec2(3.0, -2.0), Vec2(2.0, 2.0)};
   FakeLaserOptions lo;
   lo.range_sigma = 0.02;
   FakeWallScanner scanner({wall}, lo, 7);
   LineExtractionOptions eo;
   eo.range_sigma = 0.02;
   eo.split_distance = 0.2;
-  const Vec2 truth = FakeWallScanner::WallLine(wall);
+  const Vec2 truth = LineThroughPoints(wall.a, wall.b);
   constexpr int kRuns = 2000;
   Vec2 mean_err = Vec2::Zero();
   Mat2 sample = Mat2::Zero();
@@ -77,7 +79,7 @@ TEST(LineExtractionTest, EstimatedCovarianceMatchesSampleCovariance) {
 TEST(LineExtractionTest, UnbiasedAtGrazingIncidenceAndNextToCorners) {
   FakeLaserOptions lo;
   lo.range_sigma = 0.01;
-  FakeWallScanner scanner(CorridorWorld(20.0, 2.4), lo, 7);
+  FakeWallScanner scanner(sim::CorridorWalls(20.0, 2.4), lo, 7);
   LineExtractionOptions eo;
   eo.range_sigma = 0.01;
   constexpr int kFits = kSanitized ? 400 : 4000;
@@ -121,8 +123,8 @@ TEST(LineExtractionTest, BentSegmentFailsTheFitTestButStraightOnesPass) {
   // (below the 3-sigma end-point trimming) but a root mean square of about 1.3 sigma, which
   // the chi-square test over ~130 points rejects.
   const double kink = 0.0045;
-  const std::vector<Wall> bent = {{Vec2(3.0, -2.0), Vec2(3.0, 0.0)},
-                                  {Vec2(3.0, 0.0), Vec2(3.0 - 2.0 * std::tan(kink), 2.0)}};
+  const std::vector<sim::Wall> bent = {{Vec2(3.0, -2.0), Vec2(3.0, 0.0)},
+                                       {Vec2(3.0, 0.0), Vec2(3.0 - 2.0 * std::tan(kink), 2.0)}};
   FakeLaserOptions exact;
   exact.range_sigma = 0.0;
   FakeWallScanner scanner(bent, exact, 5);
@@ -146,8 +148,8 @@ TEST(LineExtractionTest, BentSegmentFailsTheFitTestButStraightOnesPass) {
 }
 
 TEST(LineExtractionTest, CornerGivesTwoLinesWithEndpoints) {
-  const std::vector<Wall> walls = {{Vec2(4.0, -3.0), Vec2(4.0, 2.0)},
-                                   {Vec2(4.0, 2.0), Vec2(-2.0, 2.0)}};
+  const std::vector<sim::Wall> walls = {{Vec2(4.0, -3.0), Vec2(4.0, 2.0)},
+                                        {Vec2(4.0, 2.0), Vec2(-2.0, 2.0)}};
   FakeLaserOptions lo;
   lo.range_sigma = 0.005;
   FakeWallScanner scanner(walls, lo, 3);
@@ -155,7 +157,7 @@ TEST(LineExtractionTest, CornerGivesTwoLinesWithEndpoints) {
       ExtractLines(scanner.Scan(Pose2{}), LineExtractionOptions());
   ASSERT_EQ(lines.size(), 2u);
   for (int i = 0; i < 2; ++i) {
-    const Vec2 truth = FakeWallScanner::WallLine(walls[i]);
+    const Vec2 truth = LineThroughPoints(walls[i].a, walls[i].b);
     EXPECT_NEAR(lines[i].rho, truth(0), 0.02);
     EXPECT_NEAR(WrapAngle(lines[i].alpha - truth(1)), 0.0, 0.01);
   }
@@ -172,7 +174,7 @@ TEST(LineExtractionTest, CornerGivesTwoLinesWithEndpoints) {
 }
 
 TEST(LineExtractionTest, NoReturnBeamsAreNeverPoints) {
-  const Wall wall{Vec2(2.0, -3.0), Vec2(2.0, 3.0)};
+  const sim::Wall wall{Vec2(2.0, -3.0), Vec2(2.0, 3.0)};
   FakeLaserOptions lo;
   lo.range_sigma = 0.0;
   FakeWallScanner scanner({wall}, lo, 1);
@@ -195,8 +197,8 @@ TEST(LineExtractionTest, NoReturnBeamsAreNeverPoints) {
 
 TEST(LineExtractionTest, GapAndLengthAndPointOptionsAreHonoured) {
   // Two collinear walls separated by a 1 m opening.
-  const std::vector<Wall> walls = {{Vec2(2.0, -3.0), Vec2(2.0, -0.5)},
-                                   {Vec2(2.0, 0.5), Vec2(2.0, 3.0)}};
+  const std::vector<sim::Wall> walls = {{Vec2(2.0, -3.0), Vec2(2.0, -0.5)},
+                                        {Vec2(2.0, 0.5), Vec2(2.0, 3.0)}};
   FakeLaserOptions lo;
   lo.range_sigma = 0.0;
   FakeWallScanner scanner(walls, lo, 1);
@@ -214,7 +216,7 @@ TEST(LineExtractionTest, GapAndLengthAndPointOptionsAreHonoured) {
 }
 
 TEST(LineExtractionTest, RobotFrameUsesSensorMounting) {
-  const Wall wall{Vec2(3.0, -3.0), Vec2(3.0, 3.0)};
+  const sim::Wall wall{Vec2(3.0, -3.0), Vec2(3.0, 3.0)};
   FakeLaserOptions lo;
   lo.range_sigma = 0.0;
   lo.sensor_pose = Pose2{0.5, 0.0, 0.0};

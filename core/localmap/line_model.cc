@@ -16,6 +16,14 @@ bool CanonicalizeLine(double& rho, double& alpha) {
   return flipped;
 }
 
+Vec2 LineThroughPoints(const Vec2& a, const Vec2& b) {
+  const Vec2 d = (b - a).normalized();
+  double alpha = std::atan2(d.x(), -d.y());  // the normal
+  double rho = a.x() * std::cos(alpha) + a.y() * std::sin(alpha);
+  CanonicalizeLine(rho, alpha);
+  return Vec2(rho, alpha);
+}
+
 LineTransform LineToParent(const Pose2& pose, double rho_c, double alpha_c) {
   LineTransform t;
   const double a = alpha_c + pose.theta;

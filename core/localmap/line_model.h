@@ -30,6 +30,9 @@ struct ObservedLine {
   double Length() const { return (endpoint_b - endpoint_a).norm(); }
 };
 
+// The canonical (rho, alpha) of the infinite line through the distinct points a and b.
+Vec2 LineThroughPoints(const Vec2& a, const Vec2& b);
+
 // Puts (rho, alpha) in canonical form; returns true if it flipped the sign (the covariance of
 // a flipped line is D cov D with D = diag(-1, 1)).
 bool CanonicalizeLine(double& rho, double& alpha);

@@ -6,11 +6,12 @@
 #include <string>
 #include <variant>
 
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/line_extraction.h"
-#include "drivers/carmen/carmen_log.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "logs/carmen/carmen_log.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -30,7 +31,7 @@ LaserScan BenchmarkScan(bool* real) {
       return *scan;
     }
   }
-  FakeWallScanner scanner(CorridorWorld(30.0, 2.4), FakeLaserOptions(), 1);
+  FakeWallScanner scanner(sim::CorridorWalls(30.0, 2.4), FakeLaserOptions(), 1);
   return scanner.Scan(Pose2{5.0, 0.2, 0.1});
 }
 

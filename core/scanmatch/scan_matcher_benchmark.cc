@@ -3,8 +3,9 @@
 // the iterations both run).
 #include <benchmark/benchmark.h>
 
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/scanmatch/scan_matcher.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -14,7 +15,7 @@ void BM_ScanMatch361(benchmark::State& state) {
   laser.beams = 361;
   laser.max_range = 30.0;
   laser.sensor_pose = Pose2{0.1, 0.0, 0.0};
-  FakeWallScanner scanner(CorridorWorld(), laser, 1);
+  FakeWallScanner scanner(sim::CorridorWalls(), laser, 1);
   const Pose2 a{6.0, 0.3, 0.1}, b{6.25, 0.35, 0.25};
   const LaserScan ref = scanner.Scan(a), cur = scanner.Scan(b);
   const Pose2 truth = Between(a, b);

@@ -7,7 +7,8 @@
 #include <limits>
 #include <random>
 
-#include "core/localmap/fake_wall_scanner.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -37,7 +38,7 @@ UncertainPose Prior(const Pose2& mean, double sxy, double stheta) {
 }
 
 TEST(ScanMatcher, RecoversTheMotionFromAWrongOdometryHeading) {
-  FakeWallScanner laser(CorridorWorld(), Laser(), 7);
+  FakeWallScanner laser(sim::CorridorWalls(), Laser(), 7);
   const Pose2 a{6.0, 1.0, 0.1}, b{6.25, 1.05, 0.25};
   const Pose2 truth = Between(a, b);
   ScanMatchOptions options = Options();
@@ -60,8 +61,8 @@ TEST(ScanMatcher, RecoversTheMotionFromAWrongOdometryHeading) {
 TEST(ScanMatcher, KeepsTheOdometryAlongAFeaturelessCorridor) {
   // Two long parallel walls: the scans fix the heading and the cross-axis offset, not the
   // position along the axis.
-  const std::vector<Wall> walls = {{Vec2(-100, -1.2), Vec2(100, -1.2)},
-                                   {Vec2(-100, 1.2), Vec2(100, 1.2)}};
+  const std::vector<sim::Wall> walls = {{Vec2(-100, -1.2), Vec2(100, -1.2)},
+                                        {Vec2(-100, 1.2), Vec2(100, 1.2)}};
   FakeWallScanner laser(walls, Laser(), 3);
   const Pose2 a{0.0, 0.0, 0.0}, b{0.3, 0.02, 0.02};
   const Pose2 truth = Between(a, b);
@@ -84,7 +85,7 @@ TEST(ScanMatcher, CovarianceIsNotOverConfidentOverManyPairs) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> along(2.0, 26.0), across(-0.6, 0.6), turn(-0.5, 0.5);
-  FakeWallScanner laser(CorridorWorld(), Laser(), 5);
+  FakeWallScanner laser(sim::CorridorWalls(), Laser(), 5);
   ScanMatcher matcher(Options());
   const int runs = 200;
   double nees = 0.0, prior_error = 0.0, match_error = 0.0;
@@ -123,7 +124,7 @@ TEST(ScanMatcher, CovarianceIsNotOverConfidentOverManyPairs) {
 // 0.15 m, as mit-csail's odometry does for up to 0.6 s at a time: the match at the odometry's
 // increment pairs too few points; the recovery pass searches the heading with a weak prior.
 TEST(ScanMatcher, RecoveryPassFindsATurnTheOdometryMissed) {
-  FakeWallScanner laser(CorridorWorld(), Laser(), 4);
+  FakeWallScanner laser(sim::CorridorWalls(), Laser(), 4);
   const Pose2 a{8.0, 0.2, 0.3}, b = Compose(a, Pose2{0.15, 0.0, 15.0 * kDeg});
   const Pose2 truth = Between(a, b);
   const LaserScan ref = laser.Scan(a), cur = laser.Scan(b);
@@ -162,7 +163,7 @@ TEST(ScanMatcher, ReturnsThePriorWhenTheScansHaveNothingToMatch) {
   EXPECT_EQ(r.increment.mean.x, prior.mean.x);
   EXPECT_EQ(r.increment.cov, prior.cov);
   // A reference of walls, a current scan of one short wall only: too few pairs.
-  FakeWallScanner laser(CorridorWorld(), Laser(), 1);
+  FakeWallScanner laser(sim::CorridorWalls(), Laser(), 1);
   matcher.SetReference(laser.Scan(Pose2{5.0, 0.0, 0.0}));
   LaserScan sparse = empty;
   for (int i = 170; i < 190; ++i) sparse.ranges[i] = 50.0f;  // beyond max_range: unused

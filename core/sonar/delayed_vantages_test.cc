@@ -8,8 +8,8 @@
 #include <numbers>
 #include <random>
 
-#include "core/sonar/fake_sonar_ring.h"
 #include "core/sonar/sonar_local_map.h"
+#include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
@@ -166,7 +166,7 @@ Eigen::Matrix<double, 5, 5> WhitenedInitialisationErrors(bool delayed_states, in
     t->max_range = 6.0;
   }
   const std::vector<SonarTransducer> ring = {left, ahead};
-  const std::vector<FakeSonarWall> walls = {{Vec2(-5.0, 2.0), Vec2(20.0, 2.0)}};
+  const std::vector<sim::Wall> walls = {{Vec2(-5.0, 2.0), Vec2(20.0, 2.0)}};
   const Vec2 wall(2.0, std::numbers::pi / 2);
   const Pose2 u_true{0.2, 0.0, 0.02};
 

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "core/sonar/fake_sonar_ring.h"
 #include "core/sonar/sonar_geometry.h"
+#include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {

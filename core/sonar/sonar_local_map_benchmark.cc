@@ -9,16 +9,16 @@
 #include <numbers>
 #include <random>
 
-#include "core/sonar/fake_sonar_ring.h"
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
+#include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
 
-std::vector<FakeSonarWall> Rooms() {
+std::vector<sim::Wall> Rooms() {
   // A ten-sided room (circumradius 3 m): every wall can be mapped from a small circle inside.
-  std::vector<FakeSonarWall> w;
+  std::vector<sim::Wall> w;
   for (int i = 0; i < 10; ++i) {
     const double a0 = 2.0 * std::numbers::pi * i / 10, a1 = 2.0 * std::numbers::pi * (i + 1) / 10;
     w.push_back({Vec2(3.0 * std::cos(a0), 3.0 * std::sin(a0)),

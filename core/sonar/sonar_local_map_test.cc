@@ -8,13 +8,13 @@
 #include <numbers>
 #include <random>
 
-#include "core/sonar/fake_sonar_ring.h"
 #include "core/sonar/sonar_geometry.h"
+#include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
 
-std::vector<FakeSonarWall> Corridor() {
+std::vector<sim::Wall> Corridor() {
   return {{Vec2(-2, 1.2), Vec2(14, 1.2)},
           {Vec2(-2, -1.2), Vec2(14, -1.2)},
           {Vec2(14, -1.2), Vec2(14, 1.2)}};

@@ -7,8 +7,8 @@
 #include <memory>
 #include <random>
 
-#include "core/sonar/fake_sonar_ring.h"
 #include "core/sonar/sonar_local_map.h"
+#include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
@@ -26,14 +26,14 @@ SonarLocalMapOptions Options() {
 // A frame's map made by driving along +x from the origin (the map-frame origin, as after
 // Genesis) with exact odometry, then the readings of a juvenile driving on from there.
 struct Frame {
-  std::vector<FakeSonarWall> walls;
+  std::vector<sim::Wall> walls;
   SonarLocalMap map{Options()};
   std::mt19937_64 rng{5};
   Pose2 truth{};
   Pose2 juvenile_start;  // truth when the juvenile is seeded
   std::vector<JuvenileScan> z;
 
-  Frame(std::vector<FakeSonarWall> w, int map_steps, int juvenile_steps) : walls(std::move(w)) {
+  Frame(std::vector<sim::Wall> w, int map_steps, int juvenile_steps) : walls(std::move(w)) {
     const Pose2 u{0.05, 0.0, 0.0};
     for (int i = 0; i < map_steps; ++i) {
       map.UpdateWithSonar(Fire(), true);
@@ -71,7 +71,7 @@ struct Frame {
 };
 
 // A corridor widening along x: two walls 39 degrees apart (y = +-(1.2 + 0.35 x)).
-std::vector<FakeSonarWall> WideningCorridor() {
+std::vector<sim::Wall> WideningCorridor() {
   return {{Vec2(-3, 0.15), Vec2(8, 4.0)}, {Vec2(-3, -0.15), Vec2(8, -4.0)}};
 }
 

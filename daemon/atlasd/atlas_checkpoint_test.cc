@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/atlas/atlas_test_world.h"
-#include "core/atlas/fake_local_map.h"
+#include "core/testing/atlas_test_world.h"
+#include "core/testing/fake_local_map.h"
 #include "daemon/atlasd/atlas_export.h"
 
 namespace atlas {

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sonar/fake_sonar_ring.h"
+#include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {

@@ -8,7 +8,7 @@
 // The daemon is RunLiveDaemon() itself (live_daemon.h: readers, queues, loop, store writer,
 // signals) on the shipped config/atlasd.toml, with only the device paths, the simulated laser's
 // unit and range, the LCM URL, the state directory and [scheduling] changed. The scans and the
-// odometry come from a simulated run through a generated building (drivers/sim; 181 beams at
+// odometry come from a simulated run through a generated building (sim; 181 beams at
 // 75 Hz, odometry at 50 Hz): the fake AgileX base plays the odometry on the fake CAN bus at real
 // time (drivers/fake), and the benchmark writes each scan's 0xB0 telegram (sick::
 // EncodeMeasuredValues, the bytes the fake LMS sends) in one write() at its real time on the
@@ -74,8 +74,8 @@
 #include "drivers/fake/playback.h"
 #include "drivers/serial/pseudo_terminal.h"
 #include "drivers/sick/lms_messages.h"
-#include "drivers/sim/building_generator.h"
-#include "drivers/sim/simulation.h"
+#include "sim/building_generator.h"
+#include "sim/simulation.h"
 
 namespace atlas {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/atlas/atlas_test_world.h"
+#include "core/testing/atlas_test_world.h"
 #include "daemon/atlasd/step_loop.h"
 
 namespace atlas {
@@ -25,7 +25,7 @@ class FakeStepSink : public StepSink {
   int64_t last_steps = 0;
 };
 
-// TestScan() (core/atlas/atlas_test_world.h) at `t` seconds.
+// TestScan() (core/testing/atlas_test_world.h) at `t` seconds.
 inline LaserScan ScanAt(double t) {
   LaserScan s = TestScan();
   s.stamp = FromSeconds(t);

@@ -4,9 +4,10 @@
 
 #include <vector>
 
-#include "core/atlas/atlas_test_world.h"
-#include "core/localmap/fake_wall_scanner.h"
+#include "core/testing/atlas_test_world.h"
+#include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/fake_step_sink.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -20,7 +21,7 @@ TEST(HealthReport, CountsScanMatchesAndFallbacks) {
     ASSERT_EQ(ValidateMapperSettings(s), "");
     StepLoop loop(StepLoopOptions{}, s, &atlas);
     FakeStepSink sink;
-    FakeWallScanner scanner(CorridorWorld(), FakeLaserOptions{}, 3);
+    FakeWallScanner scanner(sim::CorridorWalls(), FakeLaserOptions{}, 3);
     const int scans = 6;
     for (int i = 0; i < scans; ++i) {
       const Time t = FromSeconds(0.2 * i);

@@ -5,9 +5,10 @@
 #include <map>
 #include <string>
 
-#include "core/localmap/fake_wall_scanner.h"
+#include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -79,7 +80,7 @@ std::unique_ptr<Atlas> MappedAtlas(const DaemonOptions& o) {
   std::unique_ptr<Atlas> atlas = MakeAtlas(ToMapperSettings(o));
   FakeLaserOptions laser;
   laser.beams = 181;
-  FakeWallScanner scanner(CorridorWorld(), laser, 7);
+  FakeWallScanner scanner(sim::CorridorWalls(), laser, 7);
   for (int i = 0; i < 40; ++i) atlas->Step(Pose2{0.05, 0.0, 0.0}, scanner.Scan({0.05 * i, 0, 0}));
   return atlas;
 }

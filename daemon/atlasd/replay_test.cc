@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "core/localmap/fake_wall_scanner.h"
-#include "core/sonar/fake_sonar_ring.h"
+#include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/fake_step_sink.h"
 #include "daemon/atlasd/input_drain.h"
@@ -127,14 +127,12 @@ LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t se
   std::unique_ptr<Atlas> atlas = MakeAtlas(settings);
   StepLoop loop(ToStepLoopOptions(o), settings, atlas.get());
   FakeStepSink sink;
-  const std::vector<FakeSonarWall> sonar_walls = {{Vec2(-5, 1.2), Vec2(30, 1.2)},
-                                                  {Vec2(-5, -1.2), Vec2(30, -1.2)},
-                                                  {Vec2(9, -1.2), Vec2(9, 1.2)}};
-  std::vector<Wall> laser_walls;
-  for (const FakeSonarWall& w : sonar_walls) laser_walls.push_back({w.a, w.b});
+  const std::vector<sim::Wall> walls = {{Vec2(-5, 1.2), Vec2(30, 1.2)},
+                                        {Vec2(-5, -1.2), Vec2(30, -1.2)},
+                                        {Vec2(9, -1.2), Vec2(9, 1.2)}};
   FakeLaserOptions laser_options;
   laser_options.beams = 181;
-  FakeWallScanner laser(laser_walls, laser_options, seed);
+  FakeWallScanner laser(walls, laser_options, seed);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution wakes(0.5), catches_up(0.3), late(0.2);
   SpscQueue<OdometrySample> odometry_queue(64);
@@ -153,7 +151,7 @@ LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t se
     const Pose2 robot{0.5 * t, 0.0, 0.0};
     if (k % 2 == 0) odometry_queue.Push({FromSeconds(t), robot});
     if (k % 10 == 3) {
-      SonarReading reading = FireFakeSonarRing(sonar_walls, settings.sonar_ring, robot, 0.01, rng);
+      SonarReading reading = FireFakeSonarRing(walls, settings.sonar_ring, robot, 0.01, rng);
       reading.stamp = FromSeconds(t);
       sonar_queue.Push(std::move(reading));
       ++run.readings;

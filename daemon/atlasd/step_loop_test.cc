@@ -6,10 +6,11 @@
 #include <random>
 #include <vector>
 
-#include "core/atlas/atlas_test_world.h"
-#include "core/localmap/fake_wall_scanner.h"
-#include "core/sonar/fake_sonar_ring.h"
+#include "core/testing/atlas_test_world.h"
+#include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/fake_step_sink.h"
+#include "sim/corridor.h"
 
 namespace atlas {
 namespace {
@@ -210,7 +211,7 @@ TEST_F(StepLoopTest, StepsScansAndSonarReadingsInTheOrderAdded) {
 TEST(StepLoopScanMatch, MatchedIncrementsReplaceAWrongOdometryHeading) {
   FakeLaserOptions laser;
   laser.sensor_pose = Pose2{0.1, 0.0, 0.0};
-  const std::vector<Wall> world = CorridorWorld();
+  const std::vector<sim::Wall> world = sim::CorridorWalls();
   for (const bool enabled : {true, false}) {
     TestWorld maps;
     Atlas atlas(TestWorld::Options(), maps.Factory(), nullptr);
@@ -278,7 +279,7 @@ TEST(StepLoopScanMatch, MatchedIncrementsReplaceAWrongOdometryHeading) {
 }
 
 // localmap.sensors "sonar": MakeAtlas builds sonar-only maps, and a robot driving down a
-// corridor with a 24-transducer ring (the tangent model, core/sonar fake_sonar_ring.h) maps its
+// corridor with a 24-transducer ring (the tangent model, core/testing/fake_sonar_ring.h) maps its
 // walls and is localised by sonar steps alone; no laser, and no dead reckoning.
 TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
   MapperSettings s;
@@ -291,8 +292,8 @@ TEST(StepLoopSonar, SonarOnlyAtlasMapsACorridor) {
   std::unique_ptr<Atlas> atlas = MakeAtlas(s);
   StepLoop loop(StepLoopOptions{}, s, atlas.get());
   FakeStepSink sink;
-  const std::vector<FakeSonarWall> walls = {{Vec2(-5, 1.2), Vec2(30, 1.2)},
-                                            {Vec2(-5, -1.2), Vec2(30, -1.2)}};
+  const std::vector<sim::Wall> walls = {{Vec2(-5, 1.2), Vec2(30, 1.2)},
+                                        {Vec2(-5, -1.2), Vec2(30, -1.2)}};
   std::mt19937_64 rng(5);
   // 12 s at 0.5 m/s along the corridor; odometry at 50 Hz, the ring at 10 Hz.
   int readings = 0;

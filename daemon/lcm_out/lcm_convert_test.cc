@@ -5,7 +5,7 @@
 #include <cmath>
 #include <lcm/lcm-cpp.hpp>
 
-#include "core/atlas/atlas_test_world.h"
+#include "core/testing/atlas_test_world.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 
 namespace atlas {

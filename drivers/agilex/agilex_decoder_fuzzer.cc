@@ -8,8 +8,8 @@
 #include <cstring>
 
 #include "drivers/agilex/agilex_messages.h"
-#include "drivers/agilex/can_frame_linux.h"
 #include "drivers/agilex/wheel_odometry.h"
+#include "drivers/can/can_frame_linux.h"
 #include "drivers/framing/fuzz_check.h"
 
 namespace {

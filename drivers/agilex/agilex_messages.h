@@ -10,7 +10,7 @@
 
 #include <cstdint>
 
-#include "drivers/agilex/can_frame.h"
+#include "drivers/can/can_frame.h"
 
 namespace atlas::agilex {
 

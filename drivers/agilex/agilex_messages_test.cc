@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "drivers/agilex/can_frame_linux.h"
+#include "drivers/can/can_frame_linux.h"
 
 namespace atlas::agilex {
 namespace {

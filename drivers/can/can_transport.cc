@@ -17,7 +17,7 @@
 
 #include <utility>
 
-#include "drivers/agilex/can_frame_linux.h"
+#include "drivers/can/can_frame_linux.h"
 
 namespace atlas {
 

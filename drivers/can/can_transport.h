@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "core/common/time.h"
-#include "drivers/agilex/can_frame.h"
+#include "drivers/can/can_frame.h"
 
 namespace atlas {
 

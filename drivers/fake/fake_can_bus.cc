@@ -6,7 +6,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-#include "drivers/agilex/can_frame_linux.h"
+#include "drivers/can/can_frame_linux.h"
 
 namespace atlas::fake {
 

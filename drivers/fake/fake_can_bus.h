@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "drivers/agilex/can_frame.h"
+#include "drivers/can/can_frame.h"
 
 namespace atlas::fake {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "drivers/carmen/carmen_log.h"
+#include "logs/carmen/carmen_log.h"
 
 namespace atlas::fake {
 

@@ -11,9 +11,9 @@
 
 #include "atlas/health_t.hpp"
 #include "atlas/pose_t.hpp"
-#include "daemon/lcm_log/lcm_log_reader.h"
 #include "formats/text_rows.h"
 #include "formats/trajectory_tsv.h"
+#include "logs/lcm/lcm_log_reader.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "core/common/parse_number.h"
-#include "drivers/carmen/carmen_log.h"
-#include "drivers/carmen/reference_odometry.h"
 #include "formats/pose_file.h"
+#include "logs/carmen/carmen_log.h"
+#include "sim/reference_odometry.h"
 #include "tools/eval/trajectory_files.h"
 
 namespace atlas::eval {

@@ -15,7 +15,7 @@
 #include "core/eval/reference_score.h"
 #include "core/eval/relations_metric.h"
 #include "core/eval/timed_trajectory.h"
-#include "drivers/carmen/carmen_log.h"
+#include "logs/carmen/carmen_log.h"
 
 namespace atlas::eval {
 

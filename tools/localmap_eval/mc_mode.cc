@@ -14,13 +14,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/localmap/fake_wall_scanner.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
-#include "drivers/sim/laser_model.h"
-#include "drivers/sim/ray_caster.h"
-#include "drivers/sim/route.h"
-#include "drivers/sim/wheel_odometry_model.h"
+#include "core/localmap/line_model.h"
+#include "sim/laser_model.h"
+#include "sim/ray_caster.h"
+#include "sim/route.h"
+#include "sim/wheel_odometry_model.h"
 #include "tools/localmap_eval/filter_overrides.h"
 #include "tools/monte_carlo/corridor.h"
 #include "tools/monte_carlo/nees_band.h"
@@ -96,7 +96,7 @@ bool TrueLineOf(const ObservedLine& z, const Pose2& truth, const LaserScan& scan
     }
   }
   if (best < 0) return false;
-  line = FakeWallScanner::WallLine(Wall{walls[best].a, walls[best].b});
+  line = LineThroughPoints(walls[best].a, walls[best].b);
   return true;
 }
 

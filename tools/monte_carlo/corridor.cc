@@ -1,14 +1,10 @@
 #include "tools/monte_carlo/corridor.h"
 
-#include "core/localmap/fake_wall_scanner.h"
+#include "sim/corridor.h"
 
 namespace atlas::mc {
 
-std::vector<sim::Wall> CorridorWalls() {
-  std::vector<sim::Wall> walls;
-  for (const Wall& w : CorridorWorld(20.0, 2.4)) walls.push_back(sim::Wall{w.a, w.b});
-  return walls;
-}
+std::vector<sim::Wall> CorridorWalls() { return sim::CorridorWalls(20.0, 2.4); }
 
 std::vector<Vec2> CorridorWaypoints() {
   std::vector<Vec2> w;

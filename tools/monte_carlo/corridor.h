@@ -1,6 +1,6 @@
 #pragma once
 // The simulated corridor of the evaluation tools' Monte Carlo runs: 20 m x 2.4 m
-// (CorridorWorld), the robot driving back and forth along its centre 40 times, weaving
+// (sim::CorridorWalls), the robot driving back and forth along its centre 40 times, weaving
 // +-0.25 m between waypoints 3 m apart, at most 0.6 m/s; odometry at 50 Hz, range data at every
 // kScanEvery-th odometry step (10 Hz).
 
@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/geometry/se2.h"
-#include "drivers/sim/ray_caster.h"
-#include "drivers/sim/route.h"
+#include "sim/ray_caster.h"
+#include "sim/route.h"
 
 namespace atlas::mc {
 

@@ -5,7 +5,7 @@
 // model (OdometryNoiseOptions).
 
 #include "core/localmap/localmap_options.h"
-#include "drivers/sim/wheel_odometry_model.h"
+#include "sim/wheel_odometry_model.h"
 
 namespace atlas::mc {
 

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "drivers/sim/building_generator.h"
-#include "drivers/sim/carmen_writer.h"
-#include "drivers/sim/simulation.h"
+#include "sim/building_generator.h"
+#include "sim/carmen_writer.h"
+#include "sim/simulation.h"
 #include "tools/render/run_data.h"
 #include "tools/render/run_drawing.h"
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "drivers/carmen/carmen_line.h"
-#include "drivers/sim/simulation.h"
 #include "formats/pose_file.h"
 #include "formats/text_rows.h"
+#include "logs/carmen/carmen_line.h"
+#include "sim/simulation.h"
 
 namespace atlas::draw {
 

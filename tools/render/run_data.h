@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/common/sensor_types.h"
-#include "drivers/sim/world.h"
+#include "sim/world.h"
 
 namespace atlas::draw {
 

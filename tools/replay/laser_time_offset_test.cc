@@ -7,8 +7,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "drivers/sim/building_generator.h"
-#include "drivers/sim/simulation.h"
+#include "sim/building_generator.h"
+#include "sim/simulation.h"
 
 namespace atlas::replay {
 namespace {

@@ -13,9 +13,9 @@
 #include "core/common/parse_number.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
-#include "drivers/carmen/reference_odometry.h"
 #include "replay/replay_run.h"
 #include "replay/replay_source.h"
+#include "sim/reference_odometry.h"
 #include "tools/replay/laser_time_offset.h"
 #include "tools/replay/replay_refiner.h"
 

@@ -14,9 +14,9 @@
 #include <string>
 
 #include "core/common/parse_number.h"
-#include "drivers/sim/building_generator.h"
-#include "drivers/sim/carmen_writer.h"
-#include "drivers/sim/simulation.h"
+#include "sim/building_generator.h"
+#include "sim/carmen_writer.h"
+#include "sim/simulation.h"
 
 namespace {
 

@@ -11,12 +11,12 @@
 // rectangle inset by corridor_width. Alcoves (alcove_width along the wall, alcove_depth deep)
 // are cut into the outer wall of every side long enough, one per period, keeping
 // corner_clearance from the corners. The route graph is the corridor centreline: a ring of
-// corridor nodes at most node_spacing apart, so a route (drivers/sim PlanRoute, which never
+// corridor nodes at most node_spacing apart, so a route (sim PlanRoute, which never
 // turns straight back) drives round the loop, always the same way, whatever the seed.
 
 #include <string>
 
-#include "drivers/sim/world.h"
+#include "sim/world.h"
 
 namespace atlas::sonar_eval {
 

@@ -9,8 +9,8 @@
 
 #include "core/localmap/line_model.h"
 #include "core/sonar/sonar_local_map.h"
-#include "drivers/sim/ray_caster.h"
-#include "drivers/sim/simulation.h"
+#include "sim/ray_caster.h"
+#include "sim/simulation.h"
 #include "tools/sonar_eval/corridor_run.h"
 #include "tools/sonar_eval/sonar_atlas_run.h"
 #include "tools/sonar_eval/world_option.h"

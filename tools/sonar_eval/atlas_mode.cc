@@ -18,7 +18,7 @@
 #include "core/localmap/line_ekf_map.h"
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
-#include "drivers/sim/simulation.h"
+#include "sim/simulation.h"
 #include "tools/monte_carlo/nees_band.h"
 #include "tools/sonar_eval/corridor_run.h"
 #include "tools/sonar_eval/sonar_atlas_run.h"

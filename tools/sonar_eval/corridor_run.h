@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "drivers/sim/laser_model.h"
-#include "drivers/sim/ray_caster.h"
-#include "drivers/sim/route.h"
-#include "drivers/sim/sonar_model.h"
-#include "drivers/sim/wheel_odometry_model.h"
+#include "sim/laser_model.h"
+#include "sim/ray_caster.h"
+#include "sim/route.h"
+#include "sim/sonar_model.h"
+#include "sim/wheel_odometry_model.h"
 
 namespace atlas::sonar_eval {
 

@@ -22,9 +22,9 @@
 
 #include "core/atlas/atlas.h"
 #include "core/sonar/sonar_options.h"
-#include "drivers/sim/simulation.h"
-#include "drivers/sim/wheel_odometry_model.h"
 #include "replay/closure_check.h"
+#include "sim/simulation.h"
+#include "sim/wheel_odometry_model.h"
 
 namespace atlas::sonar_eval {
 

@@ -13,9 +13,9 @@
 
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
-#include "drivers/sim/route.h"
-#include "drivers/sim/simulation.h"
-#include "drivers/sim/sonar_model.h"
+#include "sim/route.h"
+#include "sim/simulation.h"
+#include "sim/sonar_model.h"
 #include "tools/sonar_eval/alcove_loop_world.h"
 
 namespace atlas::sonar_eval {

@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "drivers/sim/building_generator.h"
+#include "sim/building_generator.h"
 
 namespace atlas::sonar_eval {
 

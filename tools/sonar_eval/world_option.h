@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "drivers/sim/world.h"
+#include "sim/world.h"
 #include "tools/sonar_eval/alcove_loop_world.h"
 
 namespace atlas::sonar_eval {

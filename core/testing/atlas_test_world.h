@@ -1,0 +1,53 @@
+#pragma once
+// A scripted world for Atlas tests and benchmarks (not a fake of a class: a test fixture).
+// Every fake map explains the observations made within `radius` of its own origin, and only as
+// far as it has features (2 observations per feature), so a fresh map starts poor and a known
+// map is good at once. Maps are tagged with their creation order, which equals the frame id
+// when the atlas is the only user of the factory.
+
+#include <memory>
+
+#include "core/atlas/atlas.h"
+#include "core/testing/fake_local_map.h"
+
+namespace atlas {
+
+struct TestWorld {
+  double radius = 3.0;
+  int capacity = 6;
+  int observations = 10;
+  std::shared_ptr<FakeWorldScript> script = std::make_shared<FakeWorldScript>();
+  std::shared_ptr<int> next_tag = std::make_shared<int>(0);
+
+  TestWorld() { Install(); }
+  void Install() {
+    const double r = radius;
+    script->observations = observations;
+    script->matched = [r](int, const Pose2& p, int obs, int complexity) {
+      return std::hypot(p.x, p.y) < r ? std::min(obs, 2 * complexity) : 0;
+    };
+  }
+  Atlas::MapFactory Factory() const {
+    FakeLocalMapOptions o;
+    o.capacity = capacity;
+    auto script_copy = std::shared_ptr<const FakeWorldScript>(script);
+    auto tag = next_tag;
+    return [o, script_copy, tag]() {
+      return std::make_unique<FakeLocalMap>(o, script_copy, (*tag)++);
+    };
+  }
+  static AtlasOptions Options() {
+    AtlasOptions o;
+    o.quality.alpha = 0.3;
+    o.refine_interval_steps = 3;
+    return o;
+  }
+};
+
+inline LaserScan TestScan() {
+  LaserScan s;
+  s.ranges.assign(10, 1.0f);
+  return s;
+}
+
+}  // namespace atlas

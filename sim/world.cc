@@ -1,0 +1,158 @@
+#include "sim/world.h"
+
+#include <charconv>
+#include <istream>
+#include <ostream>
+#include <sstream>
+
+#include "core/common/parse_number.h"
+
+namespace atlas::sim {
+namespace {
+
+std::vector<std::string_view> SplitWords(std::string_view line) {
+  std::vector<std::string_view> words;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != '\r') ++j;
+    if (j > i) words.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
+
+// Shortest text that reads back to the same double.
+std::string Num(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof(buf), v);
+  return std::string(buf, r.ptr);
+}
+
+}  // namespace
+
+const char* ToString(NodeKind kind) {
+  switch (kind) {
+    case NodeKind::kCorridor:
+      return "corridor";
+    case NodeKind::kDoor:
+      return "door";
+    case NodeKind::kRoom:
+      return "room";
+  }
+  return "?";
+}
+
+int World::CountNodes(NodeKind kind) const {
+  int n = 0;
+  for (const RouteNode& node : nodes) n += node.kind == kind;
+  return n;
+}
+
+void Bounds::Extend(const Vec2& p) {
+  if (empty) {
+    min = max = p;
+    empty = false;
+  } else {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+}
+
+Bounds WorldBounds(const World& world) {
+  Bounds b;
+  for (const Wall& w : world.walls) {
+    b.Extend(w.a);
+    b.Extend(w.b);
+  }
+  for (const RouteNode& n : world.nodes) b.Extend(n.position);
+  return b;
+}
+
+WorldParseResult ParseWorld(std::istream& in, const std::string& source) {
+  WorldParseResult result;
+  World& world = result.world;
+  std::string line;
+  int line_no = 0;
+  bool have_header = false;
+  auto fail = [&](const std::string& what) {
+    result.world = World{};
+    result.error = source + ":" + std::to_string(line_no) + ": " + what;
+    return result;
+  };
+  while (std::getline(in, line)) {
+    ++line_no;
+    const size_t hash = line.find('#');
+    const auto words = SplitWords(std::string_view(line).substr(0, hash));
+    if (words.empty()) continue;
+    const std::string_view key = words[0];
+    if (!have_header) {
+      if (key != "atlas-world" || words.size() != 2 || words[1] != "1")
+        return fail("expected the header line 'atlas-world 1' (is this an atlas world file?)");
+      have_header = true;
+      continue;
+    }
+    if (key == "wall") {
+      double v[4];
+      if (words.size() != 5) return fail("'wall' needs 4 numbers: x1 y1 x2 y2");
+      for (int i = 0; i < 4; ++i)
+        if (!ParseNumber(words[i + 1], &v[i]))
+          return fail("'wall': '" + std::string(words[i + 1]) + "' is not a finite number");
+      world.walls.push_back(Wall{Vec2(v[0], v[1]), Vec2(v[2], v[3])});
+    } else if (key == "node") {
+      int id;
+      double x, y;
+      if (words.size() != 5) return fail("'node' needs: id x y kind");
+      if (!ParseInteger(words[1], &id)) return fail("'node': id is not an integer");
+      if (id != static_cast<int>(world.nodes.size()))
+        return fail("'node': expected id " + std::to_string(world.nodes.size()) +
+                    " (ids count up from 0 in order)");
+      if (!ParseNumber(words[2], &x) || !ParseNumber(words[3], &y))
+        return fail("'node': x y must be finite numbers");
+      RouteNode node{Vec2(x, y), NodeKind::kCorridor};
+      if (words[4] == "corridor") {
+        node.kind = NodeKind::kCorridor;
+      } else if (words[4] == "door") {
+        node.kind = NodeKind::kDoor;
+      } else if (words[4] == "room") {
+        node.kind = NodeKind::kRoom;
+      } else {
+        return fail("'node': kind must be corridor, door or room, not '" + std::string(words[4]) +
+                    "'");
+      }
+      world.nodes.push_back(node);
+    } else if (key == "edge") {
+      int a, b;
+      if (words.size() != 3 || !ParseInteger(words[1], &a) || !ParseInteger(words[2], &b))
+        return fail("'edge' needs two node ids");
+      const int n = static_cast<int>(world.nodes.size());
+      if (a < 0 || a >= n || b < 0 || b >= n || a == b)
+        return fail("'edge': node ids must name two different nodes defined above");
+      world.edges.push_back(RouteEdge{a, b});
+    } else {
+      return fail("unknown keyword '" + std::string(key) + "' (expected wall, node or edge)");
+    }
+  }
+  if (!have_header) {
+    line_no = 0;
+    return fail("empty input: no 'atlas-world 1' header");
+  }
+  return result;
+}
+
+void WriteWorld(std::ostream& out, const World& world) {
+  std::ostringstream s;
+  s << "# atlasd simulator world: walls (m), route graph nodes and edges. See docs/formats.md.\n"
+    << "atlas-world 1\n";
+  for (const Wall& w : world.walls)
+    s << "wall " << Num(w.a.x()) << ' ' << Num(w.a.y()) << ' ' << Num(w.b.x()) << ' '
+      << Num(w.b.y()) << '\n';
+  for (size_t i = 0; i < world.nodes.size(); ++i)
+    s << "node " << i << ' ' << Num(world.nodes[i].position.x()) << ' '
+      << Num(world.nodes[i].position.y()) << ' ' << ToString(world.nodes[i].kind) << '\n';
+  for (const RouteEdge& e : world.edges) s << "edge " << e.from << ' ' << e.to << '\n';
+  out << s.str();
+}
+
+}  // namespace atlas::sim
