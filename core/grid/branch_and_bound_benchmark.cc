@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "core/grid/branch_and_bound.h"
-#include "core/grid/grid_test_scenes.h"
+#include "core/testing/grid_scenes.h"
 
 namespace atlas {
 namespace {

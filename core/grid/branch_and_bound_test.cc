@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "core/grid/grid_test_scenes.h"
+#include "core/testing/grid_scenes.h"
 
 namespace atlas {
 namespace {

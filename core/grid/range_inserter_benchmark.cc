@@ -4,7 +4,7 @@
 // space up to no_return_free_range).
 #include <benchmark/benchmark.h>
 
-#include "core/grid/grid_test_scenes.h"
+#include "core/testing/grid_scenes.h"
 #include "core/grid/range_inserter.h"
 
 namespace atlas {

@@ -4,7 +4,7 @@
 // about the correlative search's cost alone).
 #include <benchmark/benchmark.h>
 
-#include "core/grid/grid_test_scenes.h"
+#include "core/testing/grid_scenes.h"
 #include "core/grid/scan_alignment.h"
 
 namespace atlas {

@@ -5,7 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "core/grid/grid_test_scenes.h"
+#include "core/testing/grid_scenes.h"
 
 namespace atlas {
 namespace {

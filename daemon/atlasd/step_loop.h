@@ -42,7 +42,7 @@
 //   38400 baud and about 15 ms at 500 kbaud (a 181-value one half as long), plus the sweep
 //   itself. On mit-csail (361 beams at 4.7 Hz, the rate 38400 baud allows: docs/devices.md)
 //   the odometry fits best 0.10-0.12 s before the stamps (docs/design.md, "Laser time offset";
-//   tools/replay/laser_time_offset.h calibrates the offset without ground truth). Only the
+//   replay/laser_time_offset.h calibrates the offset without ground truth). Only the
 //   odometry lookup uses the offset: the scan's stamp stays its identity (the stamp of the
 //   pose reported to the sink, of last_scan_stamp(), of the laser-silence rule), as the
 //   drivers made it. A positive offset may reach past the odometry known at the scan's

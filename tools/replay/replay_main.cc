@@ -16,7 +16,7 @@
 #include "replay/replay_run.h"
 #include "replay/replay_source.h"
 #include "sim/reference_odometry.h"
-#include "tools/replay/laser_time_offset.h"
+#include "replay/laser_time_offset.h"
 #include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {

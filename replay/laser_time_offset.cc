@@ -1,4 +1,4 @@
-#include "tools/replay/laser_time_offset.h"
+#include "replay/laser_time_offset.h"
 
 #include <cmath>
 #include <cstdio>
