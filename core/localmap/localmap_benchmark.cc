@@ -55,7 +55,7 @@ struct TenFeatureSetup {
   LineEkfMap map;
   std::vector<ObservedLine> observed;
   TenFeatureSetup() : map(Options()) {
-    std::vector<Wall> walls;
+    std::vector<sim::Wall> walls;
     for (int k = 0; k < 5; ++k) {  // a zig-zag room: 10 walls in distinct directions
       const double a0 = 2 * M_PI * k / 5, a1 = 2 * M_PI * (k + 0.5) / 5,
                    a2 = 2 * M_PI * (k + 1) / 5;
