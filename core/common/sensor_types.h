@@ -21,6 +21,12 @@ inline bool IsReturn(float range) { return std::isfinite(range); }
 struct OdometrySample {
   Time stamp{};
   Pose2 pose;
+  // As the base reported them, where it does (0 otherwise): cumulative wheel distances, metres,
+  // and its velocities, m/s and rad/s. Carried to the raw-odometry output only.
+  double left_m = 0.0;
+  double right_m = 0.0;
+  double linear_velocity = 0.0;
+  double angular_velocity = 0.0;
 };
 
 // One planar laser scan. Beam i has bearing angle_min + i * angle_increment in the sensor
@@ -48,9 +54,9 @@ struct SonarReading {
 
 // Mounting of one sonar transducer on the robot.
 struct SonarTransducer {
-  Pose2 pose;                   // x, y (m) and heading (rad) on the robot
-  double beam_width = 0.4363;   // full cone angle, radians (25 degrees)
-  double max_range = 5.0;       // metres
+  Pose2 pose;                  // x, y (m) and heading (rad) on the robot
+  double beam_width = 0.4363;  // full cone angle, radians (25 degrees)
+  double max_range = 5.0;      // metres
 };
 
 // Ground truth or a reference trajectory (simulator, corrected logs), never fed to the atlas.

@@ -116,6 +116,8 @@ bool StepLoop::StepOne(StepSink* sink) {
   last_scan_stamp_ = stamp;
   laser_silent_ = false;
   last_dominant_ = atlas_->Dominant();
+  dead_reckoned_ = last_dominant_;
+  dead_reckoned_odometry_ = odometry;
   sink->OnPose(stamp, last_dominant_, PoseSource::kScan);
   atlas_->MaintainGraph();
   const auto elapsed = std::chrono::steady_clock::now() - t0;
@@ -164,11 +166,11 @@ void StepLoop::DeadReckon(StepSink* sink) {
   const OdometrySample& newest = track_.Newest();
   if (newest.stamp - last_dead_reckoning_ < options_.dead_reckoning_period) return;
   last_dead_reckoning_ = newest.stamp;
-  const Pose2 delta = Between(previous_odometry_, newest.pose);
-  DominantOutput out = last_dominant_;
+  const Pose2 delta = Between(dead_reckoned_odometry_, newest.pose);
   const UncertainPose increment{delta, OdometryIncrementNoise(delta, settings_)};
-  out.pose = Compose(last_dominant_.pose, increment);
-  sink->OnPose(newest.stamp, out, PoseSource::kOdometryOnly);
+  dead_reckoned_.pose = Compose(dead_reckoned_.pose, increment);
+  dead_reckoned_odometry_ = newest.pose;
+  sink->OnPose(newest.stamp, dead_reckoned_, PoseSource::kOdometryOnly);
 }
 
 StepTimeSummary StepLoop::TakePeriod() {

@@ -159,6 +159,10 @@ class StepLoop {
   DominantOutput last_dominant_;
   bool laser_silent_ = false;
   Time last_dead_reckoning_{};
+  // The published pose while the laser is away, and the odometry it was last moved to: each
+  // dead-reckoning period composes one increment, so the covariance grows with the path.
+  DominantOutput dead_reckoned_;
+  Pose2 dead_reckoned_odometry_;
   int64_t steps_ = 0, overruns_ = 0, dropped_scans_ = 0, scans_without_odometry_ = 0;
   ScanMatcher matcher_;
   int64_t scan_matches_ = 0, scan_match_fallbacks_ = 0;

@@ -146,6 +146,37 @@ TEST_F(StepLoopTest, DeadReckonsWhileTheLaserIsAwayAndRecovers) {
   EXPECT_EQ(sink.poses.back().source, PoseSource::kScan);
 }
 
+// While the laser is away the robot turns one way and back: the published uncertainty grows
+// with the path turned, never shrinks because the net rotation since the scan does.
+TEST_F(StepLoopTest, DeadReckonedUncertaintyGrowsWithThePathNotTheNetMotion) {
+  StepLoopOptions o;
+  o.laser_timeout = std::chrono::milliseconds(500);
+  o.dead_reckoning_period = std::chrono::milliseconds(100);
+  StepLoop loop(o, settings_, &atlas_);
+  FakeStepSink sink;
+  loop.AddOdometry({FromSeconds(0.0), Pose2{}});
+  loop.AddScan(ScanAt(0.0));
+  loop.StepAll(&sink);
+  sink.poses.clear();
+  // 4 s turning on the spot at +1 rad/s, then 4 s at -1 rad/s, back to the heading of the scan.
+  for (int i = 1; i <= 400; ++i) {
+    const double t = 0.02 * i;
+    const double theta = t <= 4.0 ? t : 8.0 - t;
+    loop.AddOdometry({FromSeconds(t), Pose2{0, 0, WrapAngle(theta)}});
+    loop.StepOne(&sink);
+  }
+  ASSERT_GE(sink.poses.size(), 60u);
+  for (size_t k = 1; k < sink.poses.size(); ++k) {
+    ASSERT_EQ(sink.poses[k].source, PoseSource::kOdometryOnly);
+    EXPECT_GE(sink.poses[k].pose.pose.cov(2, 2), sink.poses[k - 1].pose.pose.cov(2, 2))
+        << "at " << ToSeconds(sink.poses[k].stamp) << " s";
+  }
+  // Back at the scan's heading, after 8 rad of turning: the variance is that of the path.
+  EXPECT_NEAR(sink.poses.back().pose.pose.mean.theta, 0.0, 1e-6);
+  const size_t half = sink.poses.size() / 2;
+  EXPECT_GT(sink.poses.back().pose.pose.cov(2, 2), 1.5 * sink.poses[half].pose.pose.cov(2, 2));
+}
+
 TEST_F(StepLoopTest, PublishesOnOdometryAloneWhenNoScanEverCame) {
   StepLoopOptions o;
   StepLoop loop(o, settings_, &atlas_);

@@ -221,6 +221,10 @@ atlas::odometry_t ToOdometryMessage(const OdometrySample& sample) {
   m.x = sample.pose.x;
   m.y = sample.pose.y;
   m.theta = sample.pose.theta;
+  m.left_m = sample.left_m;
+  m.right_m = sample.right_m;
+  m.linear_velocity = sample.linear_velocity;
+  m.angular_velocity = sample.angular_velocity;
   return m;
 }
 
@@ -228,6 +232,10 @@ OdometrySample FromOdometryMessage(const atlas::odometry_t& m) {
   OdometrySample s;
   s.stamp = FromUtime(m.utime);
   s.pose = Pose2{m.x, m.y, m.theta};
+  s.left_m = m.left_m;
+  s.right_m = m.right_m;
+  s.linear_velocity = m.linear_velocity;
+  s.angular_velocity = m.angular_velocity;
   return s;
 }
 

@@ -29,10 +29,17 @@ TEST(LcmConvertTest, RawLaserRoundTripsExactly) {
 }
 
 TEST(LcmConvertTest, RawOdometryAndSonarRoundTrip) {
-  const OdometrySample o{FromSeconds(3.000001), Pose2{1, 2, -0.5}};
-  const OdometrySample ob = FromOdometryMessage(ToOdometryMessage(o));
+  const OdometrySample o{FromSeconds(3.000001), Pose2{1, 2, -0.5}, 12.345, -6.789, 0.75, -0.125};
+  const atlas::odometry_t om = ToOdometryMessage(o);
+  EXPECT_EQ(om.left_m, 12.345);
+  EXPECT_EQ(om.right_m, -6.789);
+  EXPECT_EQ(om.linear_velocity, 0.75);
+  EXPECT_EQ(om.angular_velocity, -0.125);
+  const OdometrySample ob = FromOdometryMessage(om);
   EXPECT_EQ(ob.stamp, o.stamp);
   EXPECT_EQ(ob.pose.theta, -0.5);
+  EXPECT_EQ(ob.left_m, 12.345);
+  EXPECT_EQ(ob.angular_velocity, -0.125);
   SonarReading r;
   r.stamp = FromSeconds(4.0);
   r.returns = {{3, 1.25f}, {7, kNoReturn}};

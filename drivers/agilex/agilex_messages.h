@@ -17,6 +17,8 @@ namespace atlas::agilex {
 inline constexpr uint32_t kSystemStateId = 0x211;
 inline constexpr uint32_t kMotionStateId = 0x221;
 inline constexpr uint32_t kOdometryId = 0x311;
+// The base sends 0x311 and 0x221 every 20 ms (docs/devices.md, section 3).
+inline constexpr double kFramePeriodS = 0.02;
 
 struct WheelDistances {  // 0x311
   int32_t left_mm = 0;

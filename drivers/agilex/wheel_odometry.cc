@@ -62,7 +62,8 @@ OdometryStep WheelOdometryIntegrator::Update(Time stamp, const WheelDistances& c
   if (dt > options_.max_gap_s) return discontinuity(DiscontinuityCause::kGap);
   const double dl = (static_cast<int64_t>(counters.left_mm) - previous.left_mm) * 1e-3;
   const double dr = (static_cast<int64_t>(counters.right_mm) - previous.right_mm) * 1e-3;
-  const double limit = options_.max_speed_mps * dt + options_.slack_m;
+  // A frame covers at least the base's own period, however close it arrived to the last one.
+  const double limit = options_.max_speed_mps * std::max(dt, kFramePeriodS) + options_.slack_m;
   if (std::abs(dl) > limit || std::abs(dr) > limit)
     return discontinuity(DiscontinuityCause::kImplausibleChange);
   const double ds = 0.5 * (dl + dr);
@@ -75,6 +76,8 @@ OdometryStep WheelOdometryIntegrator::Update(Time stamp, const WheelDistances& c
     step = Pose2{radius * std::sin(dtheta), radius * (1.0 - std::cos(dtheta)), dtheta};
   }
   sample_.pose = Compose(sample_.pose, step);
+  sample_.left_m = counters.left_mm * 1e-3;
+  sample_.right_m = counters.right_mm * 1e-3;
   return OdometryStep::kIntegrated;
 }
 

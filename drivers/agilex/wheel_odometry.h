@@ -52,8 +52,9 @@ class WheelOdometryIntegrator {
   // options must be valid (asserted).
   explicit WheelOdometryIntegrator(const WheelOdometryOptions& options);
 
-  // Feeds one 0x311 frame's counters, stamped at arrival. Stamps should increase; a stamp that
-  // does not is treated as dt = 0 (only changes within the slack are plausible).
+  // Feeds one 0x311 frame's counters, stamped at arrival. A change is plausible within
+  // max_speed_mps * max(dt, kFramePeriodS) + slack_m: frames that arrive together (or with a
+  // stamp that does not increase) still each cover one period of the base's motion.
   OdometryStep Update(Time stamp, const WheelDistances& counters);
 
   // The cumulative pose at the last update (stamp of the last update).

@@ -106,12 +106,26 @@ TEST(WheelOdometry, PlausibilityScalesWithElapsedTime) {
   EXPECT_EQ(odo.Update(Ms(40), {79 + 81, 79}), OdometryStep::kDiscontinuity);
   // Within max_gap_s (1 s), 0.15 s allow 0.47 m.
   EXPECT_EQ(odo.Update(Ms(190), {79 + 81 + 460, 79}), OdometryStep::kIntegrated);
-  // A stamp that does not advance only allows the slack.
+  // A stamp that does not advance allows one frame period of the base: 0.08 m.
   EXPECT_EQ(odo.Update(Ms(190), {630, 89}), OdometryStep::kIntegrated);
-  EXPECT_EQ(odo.Update(Ms(150), {660, 89}), OdometryStep::kDiscontinuity);
+  EXPECT_EQ(odo.Update(Ms(150), {630 + 81, 89}), OdometryStep::kDiscontinuity);
   EXPECT_EQ(odo.last_cause(), DiscontinuityCause::kImplausibleChange);
   EXPECT_EQ(odo.discontinuities(), 2u);
   EXPECT_EQ(odo.updates(), 6u);
+}
+
+// Two frames delayed on the bus arrive together: each covers one 20 ms period of motion at
+// 2.5 m/s (0.05 m), which is plausible, and none of the motion is lost.
+TEST(WheelOdometry, FramesArrivingTogetherAreIntegrated) {
+  WheelOdometryIntegrator odo(Options());
+  odo.Update(Ms(0), {0, 0});
+  EXPECT_EQ(odo.Update(Ms(40), {50, 50}), OdometryStep::kIntegrated);
+  EXPECT_EQ(odo.Update(Ms(40), {100, 100}), OdometryStep::kIntegrated);
+  EXPECT_EQ(odo.Update(FromSeconds(0.0401), {150, 150}), OdometryStep::kIntegrated);
+  EXPECT_EQ(odo.discontinuities(), 0u);
+  EXPECT_NEAR(odo.sample().pose.x, 0.15, 1e-12);
+  EXPECT_EQ(odo.sample().left_m, 0.15);
+  EXPECT_EQ(odo.sample().right_m, 0.15);
 }
 
 TEST(WheelOdometry, RereferenceKeepsThePose) {

@@ -261,9 +261,15 @@ TEST(DeviceReaderTest, OdometryReconnectReReferencesTheCounters) {
       return got >= n;
     });
   };
+  bus.Broadcast(agilex::EncodeMotionState({500, -250}));
   for (int mm : {120, 130, 140}) bus.Broadcast(agilex::EncodeOdometry({mm, mm}));
   ASSERT_TRUE(pop_until(3)) << got;  // the first frame is the reference, at the origin
   EXPECT_NEAR(last.pose.x, 0.02, 1e-9);
+  // The raw sample carries what the base reported: counters and velocities.
+  EXPECT_EQ(last.left_m, 0.14);
+  EXPECT_EQ(last.right_m, 0.14);
+  EXPECT_EQ(last.linear_velocity, 0.5);
+  EXPECT_EQ(last.angular_velocity, -0.25);
   bus.Close();
   ASSERT_TRUE(WaitFor([&] { return r.Health().disconnects >= 1; }));
   ASSERT_TRUE(bus.Listen(path, &err)) << err;

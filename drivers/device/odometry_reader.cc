@@ -50,7 +50,10 @@ void OdometryReader::HandleFrame(const CanReadResult& r) {
         // the first one is.
         if (step == agilex::OdometryStep::kDiscontinuity) return;
       }
-      queue_.Push(integrator_.sample());
+      OdometrySample sample = integrator_.sample();
+      sample.linear_velocity = motion_.linear_mps();
+      sample.angular_velocity = motion_.angular_radps();
+      queue_.Push(sample);
       health_.samples.fetch_add(1, std::memory_order_relaxed);
       return;
     }
@@ -66,6 +69,8 @@ void OdometryReader::HandleFrame(const CanReadResult& r) {
       }
       return;
     case agilex::FrameKind::kMotionState:
+      motion_ = m.motion;
+      return;
     case agilex::FrameKind::kUnknownId:
       return;
     case agilex::FrameKind::kErrorFrame: {

@@ -52,6 +52,7 @@ class OdometryReader final : public DeviceReader {
   std::unique_ptr<CanTransport> transport_;
   agilex::WheelOdometryIntegrator integrator_;
   SpscQueue<OdometrySample> queue_;
+  agilex::MotionState motion_{};  // the base's last reported velocities
   agilex::SystemState last_system_{};
   bool have_system_ = false;
 };
