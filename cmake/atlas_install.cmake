@@ -114,7 +114,10 @@ install(DIRECTORY ${CMAKE_SOURCE_DIR}/config/robot/ DESTINATION ${_atlas_doc_dir
 install(FILES ${CMAKE_SOURCE_DIR}/config/atlasd-fakedev.toml
         DESTINATION ${_atlas_doc_dir}/examples)
 
-# Debian's copyright file and changelog (packaging/deb/).
+# Debian's copyright file and changelog (packaging/deb/), and the package's maintainer.
+set(CPACK_PACKAGE_CONTACT
+    "atlasd maintainers <maintainers@users.noreply.h-seed-80565290.example>"
+    CACHE STRING "The package's Maintainer field")
 set(_atlas_deb_dir ${CMAKE_SOURCE_DIR}/packaging/deb)
 configure_file(${_atlas_deb_dir}/changelog.in ${CMAKE_BINARY_DIR}/packaging/changelog.Debian @ONLY)
 add_custom_command(
@@ -131,20 +134,20 @@ install(FILES ${_atlas_deb_dir}/copyright ${CMAKE_BINARY_DIR}/packaging/changelo
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME atlasd)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
-set(CPACK_PACKAGE_CONTACT
-    "atlasd maintainers <maintainers@users.noreply.h-seed-80565290.example>"
-    CACHE STRING "The package's Maintainer field")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "real-time mapping daemon for mobile robots (Atlas)")
 set(CPACK_PACKAGE_DESCRIPTION
-    "atlasd maps with a laser scanner, sonar and wheel odometry in real time. It implements\n"
-    "the Atlas framework (Bosse, Newman, Leonard, Teller): a graph of small local map\n"
-    "frames instead of one global map, so that the work per sensor update stays constant\n"
-    "however large the mapped region grows. It publishes pose, local map, atlas graph and\n"
-    "health on LCM, runs under systemd (sd_notify, watchdog) and saves its atlas to SQLite.\n"
-    "The package also holds the offline tools, the fake devices, and the LCM message\n"
-    "types as .lcm files, C++ headers, Python modules and a Java jar.")
+    "atlasd maps with a laser scanner, sonar and wheel odometry in real time.\n"
+    "It implements the Atlas framework (Bosse, Newman, Leonard, Teller): a graph\n"
+    "of small local map frames instead of one global map, so that the work per\n"
+    "sensor update stays constant however large the mapped region grows. It\n"
+    "publishes pose, local map, atlas graph and health on LCM, runs under systemd\n"
+    "(sd_notify, watchdog) and saves its atlas to SQLite.\n"
+    "The package also holds the offline tools, the fake devices, and the LCM\n"
+    "message types as .lcm files, C++ headers, Python modules and a Java jar.")
 string(REPLACE ";" "" CPACK_PACKAGE_DESCRIPTION "${CPACK_PACKAGE_DESCRIPTION}")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+# Debian revision 1 of the upstream version: the changelog is changelog.Debian.gz.
+set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
