@@ -129,8 +129,8 @@ add_custom_target(atlas_deb_changelog ALL DEPENDS ${CMAKE_BINARY_DIR}/packaging/
 install(FILES ${_atlas_deb_dir}/copyright ${CMAKE_BINARY_DIR}/packaging/changelog.Debian.gz
         DESTINATION ${_atlas_doc_dir})
 
-# CPack DEB. Run-time dependencies come from the binaries (dpkg-shlibdeps); atlas-spy's Java
-# ones are recommended.
+# CPack DEB. Run-time dependencies come from the binaries (dpkg-shlibdeps), and python3;
+# atlas-spy's Java ones are recommended.
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME atlasd)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
@@ -151,6 +151,8 @@ set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The Python modules of the message types.
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3:any")
 if(TARGET atlas_lcmtypes_jar)
   set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
       "default-jre | java-runtime, liblcm-java, libjchart2d-java")

@@ -31,7 +31,7 @@ purge() {
 }
 trap 'purge; cleanup' EXIT
 
-# 1. Package and install.
+# 1. Package and install. (Debian's python3, which reads /usr/lib/python3/dist-packages.)
 cpack --config "$BUILD_DIR/CPackConfig.cmake" -B "$WORK/pkg" >"$WORK/cpack.err" 2>&1 ||
   fail "cpack failed: $(tail -n 20 "$WORK/cpack.err")"
 debs=("$WORK"/pkg/atlasd_*.deb)
@@ -51,7 +51,7 @@ grep -q '^ExecStart=/usr/bin/atlasd ' /lib/systemd/system/atlasd.service ||
   fail "the installed unit does not run /usr/bin/atlasd"
 dpkg-query -W -f='${Conffiles}\n' atlasd | grep -q '^ /etc/atlasd/atlasd.toml ' ||
   fail "/etc/atlasd/atlasd.toml is not a conffile: $(dpkg-query -W -f='${Conffiles}' atlasd)"
-PYTHONDONTWRITEBYTECODE=1 python3 -c 'from atlas import pose_t
+PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -c 'from atlas import pose_t
 p = pose_t(); p.x = 1.5
 assert pose_t.decode(p.encode()).x == 1.5' 2>"$WORK/python.err" ||
   fail "the installed Python types do not round-trip: $(cat "$WORK/python.err")"
@@ -114,9 +114,12 @@ dpkg-query -W -f='${db:Status-Status}' atlasd 2>/dev/null | grep -qv '^not-insta
 left=()
 while IFS= read -r f; do
   [ -e "$f" ] || [ -L "$f" ] || continue
-  # A directory stays when another package owns it too (/usr/bin, /usr/share/man/man1 ...).
-  [ -d "$f" ] && [ ! -L "$f" ] && dpkg -S "$f" >/dev/null 2>&1 && continue
-  [ -d "$f" ] && [ ! -L "$f" ] && [ -n "$(ls -A "$f")" ] && continue
+  # A directory stays when another package owns it too (/usr/bin, /usr/share/man/man1 ...) or
+  # holds other files (/lib, a link to /usr/lib on a merged /usr).
+  if [ -d "$f" ]; then
+    dpkg -S "$f" >/dev/null 2>&1 && continue
+    [ -n "$(ls -A "$f/")" ] && continue
+  fi
   left+=("$f")
 done <"$WORK/contents"
 for f in /etc/atlasd /usr/share/doc/atlasd /usr/share/atlasd /usr/include/atlas \
