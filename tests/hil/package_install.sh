@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # HIL (package): the Debian package of this build tree on this machine, as a user would have it.
 #   1. cpack makes the package; dpkg -i installs it;
-#   2. the installed atlasd checks the installed /etc/atlasd/atlasd.toml (a conffile);
+#   2. systemd-analyze verifies the installed unit; the installed atlasd checks the installed
+#      /etc/atlasd/atlasd.toml (a conffile);
 #   3. the installed atlas-sim makes a run, the installed atlas-fakedev plays it, and the
 #      installed atlasd (started directly, no systemctl) maps it with the installed
 #      configuration adapted to the fakes, publishing poses on LCM; SIGTERM stops it cleanly;
@@ -49,6 +50,10 @@ for f in /usr/bin/atlasd /usr/bin/atlas-fakedev /usr/bin/atlas-sim /usr/bin/atla
 done
 grep -q '^ExecStart=/usr/bin/atlasd ' /lib/systemd/system/atlasd.service ||
   fail "the installed unit does not run /usr/bin/atlasd"
+if command -v systemd-analyze >/dev/null; then
+  systemd-analyze verify /lib/systemd/system/atlasd.service >"$WORK/verify.err" 2>&1 ||
+    fail "systemd-analyze verify of the installed unit: $(cat "$WORK/verify.err")"
+fi
 dpkg-query -W -f='${Conffiles}\n' atlasd | grep -q '^ /etc/atlasd/atlasd.toml ' ||
   fail "/etc/atlasd/atlasd.toml is not a conffile: $(dpkg-query -W -f='${Conffiles}' atlasd)"
 PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -c 'from atlas import pose_t
