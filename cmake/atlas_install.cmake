@@ -135,6 +135,10 @@ set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME atlasd)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "real-time mapping daemon for mobile robots (Atlas)")
+set(_atlas_deb_jar "")
+if(TARGET atlas_lcmtypes_jar)
+  set(_atlas_deb_jar " and a Java jar")
+endif()
 set(CPACK_PACKAGE_DESCRIPTION
     "atlasd maps with a laser scanner, sonar and wheel odometry in real time.\n"
     "It implements the Atlas framework (Bosse, Newman, Leonard, Teller): a graph\n"
@@ -143,7 +147,7 @@ set(CPACK_PACKAGE_DESCRIPTION
     "publishes pose, local map, atlas graph and health on LCM, runs under systemd\n"
     "(sd_notify, watchdog) and saves its atlas to SQLite.\n"
     "The package also holds the offline tools, the fake devices, and the LCM\n"
-    "message types as .lcm files, C++ headers, Python modules and a Java jar.")
+    "message types as .lcm files, C++ headers, Python modules${_atlas_deb_jar}.")
 string(REPLACE ";" "" CPACK_PACKAGE_DESCRIPTION "${CPACK_PACKAGE_DESCRIPTION}")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 # Debian revision 1 of the upstream version: the changelog is changelog.Debian.gz.
