@@ -4,6 +4,7 @@
 # *_fuzzer.cc and *_main.cc forms the library <lib>; every *_test.cc is linked into one
 # GoogleTest executable <lib>_test registered with ctest; every *_benchmark.cc into
 # <lib>_benchmark; every *_fuzzer.cc becomes its own libFuzzer target when ATLAS_FUZZ is on.
+# The robot build (ATLAS_ROBOT) makes the library only.
 function(atlas_module)
   cmake_parse_arguments(M "" "NAME" "DEPS;TEST_DEPS" ${ARGN})
   file(GLOB all_cc CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
@@ -30,7 +31,7 @@ function(atlas_module)
     add_library(${M_NAME} INTERFACE)
     target_link_libraries(${M_NAME} INTERFACE ${M_DEPS} Eigen3::Eigen)
   endif()
-  if(test_cc)
+  if(test_cc AND NOT ATLAS_ROBOT)
     add_executable(${M_NAME}_test ${test_cc})
     target_link_libraries(${M_NAME}_test PRIVATE ${M_NAME} ${M_TEST_DEPS} GTest::gtest_main
                           GTest::gmock)
@@ -76,4 +77,13 @@ macro(atlas_add_child_modules)
       add_subdirectory(${_c})
     endif()
   endforeach()
+endmacro()
+
+# Ends the calling CMakeLists.txt in the robot build (ATLAS_ROBOT): for folders whose targets
+# need GoogleTest, Ceres, Java or cairo (`needs`, printed).
+macro(atlas_skip_in_robot_build needs)
+  if(ATLAS_ROBOT)
+    message(STATUS "robot build: ${CMAKE_CURRENT_SOURCE_DIR} skipped (needs ${needs})")
+    return()
+  endif()
 endmacro()

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job, from any working directory: atlasd maps a simulated building on fake devices.
-#  1. builds atlasd and its tools (release);
+#  1. builds atlasd, every tool and the message types' jar for atlas-spy (release; not the
+#     tests);
 #  2. atlas-sim generates a building with loops and drives a robot through it (laser, sonar,
 #     wheel odometry, as a CARMEN log);
 #  3. inside a private network namespace (LCM multicast stays on its own loopback), atlas-fakedev
@@ -27,8 +28,7 @@ if [ -z "${ATLAS_DEMO_IN_NETNS:-}" ]; then
   "$ROOT/scripts/install-deps.sh"
   cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
   echo "== building atlasd and its tools (the first build takes a while)"
-  cmake --build "$BUILD" -j "$(nproc)" --target atlasd atlas-fakedev atlas-sim atlas-render \
-    atlas-lcm-log-summary >/dev/null
+  cmake --build "$BUILD" -j "$(nproc)" --target atlas_tools >/dev/null
   rm -rf "$OUT"
   mkdir -p "$OUT"
   echo "== simulating a building with loops and a robot driving through it"

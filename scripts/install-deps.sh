@@ -24,6 +24,7 @@ packages=(
   iproute2 util-linux           # private network namespaces for the hardware-in-loop tests
   xvfb xauth imagemagick        # lcm-spy under a virtual display, and its screenshot
   systemd                       # systemd-analyze verify
+  help2man dpkg-dev file        # the Debian package: man pages from --help, cpack's shlibdeps
 )
 
 missing=()

@@ -18,6 +18,10 @@ NotifyResult ServiceNotifier::Watchdog() { return Send("WATCHDOG=1"); }
 
 NotifyResult ServiceNotifier::Stopping() { return Send("STOPPING=1"); }
 
+NotifyResult ServiceNotifier::ExtendTimeout(std::chrono::microseconds from_now) {
+  return Send(("EXTEND_TIMEOUT_USEC=" + std::to_string(from_now.count())).c_str());
+}
+
 NotifyResult ServiceNotifier::Status(std::string_view one_line) {
   std::string state = "STATUS=";
   state.reserve(state.size() + one_line.size());

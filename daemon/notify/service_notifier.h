@@ -8,6 +8,8 @@
 // - Status(line) whenever the one-line summary changes (STATUS=...); newlines are replaced by
 //   spaces so that a status can never inject another assignment.
 // - Stopping() when shutdown begins (STOPPING=1).
+// - ExtendTimeout(t) while a start waits on something outside atlasd (the multicast route):
+//   systemd's start timeout is pushed to at least t from now (EXTEND_TIMEOUT_USEC=).
 // Outside systemd ($NOTIFY_SOCKET unset) every call does nothing and says kNotUnderSystemd.
 // Each call is one datagram, safe from any thread, never blocks for long (datagram socket).
 
@@ -24,6 +26,7 @@ class ServiceNotifier {
   NotifyResult Watchdog();
   NotifyResult Status(std::string_view one_line);
   NotifyResult Stopping();
+  NotifyResult ExtendTimeout(std::chrono::microseconds from_now);
 
   // The service's WatchdogSec when systemd expects pings from this process
   // ($WATCHDOG_USEC, with $WATCHDOG_PID naming this process); zero when no watchdog is set.

@@ -71,6 +71,12 @@ TEST_F(FakeNotifySocket, StatusIsKeptOnOneLine) {
   EXPECT_EQ(Receive(), "STATUS=a READY=1 ");
 }
 
+TEST_F(FakeNotifySocket, ExtendTimeoutSaysHowLongFromNow) {
+  ServiceNotifier n;
+  EXPECT_EQ(n.ExtendTimeout(std::chrono::seconds(30)), NotifyResult::kSent);
+  EXPECT_EQ(Receive(), "EXTEND_TIMEOUT_USEC=30000000");
+}
+
 TEST_F(FakeNotifySocket, WatchdogIntervalIsReadForThisProcessOnly) {
   EXPECT_EQ(ServiceNotifier::WatchdogInterval().count(), 0);
   setenv("WATCHDOG_USEC", "3000000", 1);
