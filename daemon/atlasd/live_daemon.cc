@@ -14,6 +14,7 @@
 #include "daemon/atlasd/live_timing.h"
 #include "daemon/atlasd/loop_thread.h"
 #include "daemon/config/config_loader.h"
+#include "daemon/lcm_out/multicast_route.h"
 #include "daemon/notify/service_notifier.h"
 
 namespace atlas {
@@ -56,12 +57,34 @@ int RunLiveDaemon(const DaemonOptions& options, const LiveFlags& flags) {
                  "(raise LimitMEMLOCK or grant CAP_IPC_LOCK)\n",
                  std::strerror(errno));
 
+  // A robot may boot before its network: wait (stoppable) for a route to the LCM group, as a
+  // missing device is waited for, instead of failing the start.
+  ServiceNotifier notifier;
+  const RouteWaitResult route = WaitForMulticastRoute(
+      options.lcm.url, RouteWaitOptions{},
+      [&notifier](int error, Duration waited) {
+        if (waited == Duration::zero())
+          std::fprintf(stderr,
+                       "atlasd: no route to lcm.url's multicast group (%s); waiting for one "
+                       "(ip route add 224.0.0.0/4 dev IFACE, or the network's .network file)\n",
+                       std::strerror(error));
+        notifier.Status(std::string("waiting for a multicast route for LCM: ") +
+                        std::strerror(error));
+        notifier.ExtendTimeout(std::chrono::seconds(5));
+      },
+      [&signals](Duration period) {
+        const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(period).count();
+        const timespec t{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+        const int s = sigtimedwait(&signals, nullptr, &t);
+        return s != SIGTERM && s != SIGINT;
+      });
+  if (route == RouteWaitResult::kStopped) return 0;
+
   LoopShared shared;
   LoopThread loop(options, flags, &shared);
   if (!loop.Start(start)) return 1;
   std::thread loop_thread([&loop] { loop.Run(); });
 
-  ServiceNotifier notifier;
   const Time ready_deadline = start + SecondsToDuration(flags.ready_timeout_s);
   bool ready = false;
   const auto watchdog = ServiceNotifier::WatchdogInterval();
