@@ -14,6 +14,7 @@
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
 #include "sim/reference_odometry.h"
+#include "tools/eval/trajectory_files.h"
 #include "tools/replay/laser_time_offset.h"
 #include "tools/replay/replay_run.h"
 
@@ -54,11 +55,15 @@ Options:
   --corrected          a Radish "corrected" log: line order is the clock, its poses are the
                        reference; wheel odometry is synthesised from them with seeded noise:
     --seed N             random seed (default 1)
+    --odometry-noise LEVEL  default | realistic (below)
     --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
     --left-scale E       left wheel radius error, relative (default 0.0002)
     --right-scale E      right wheel radius error, relative (default -0.0002)
     --track-width-error E  relative track width error (default 0.002)
     --line-period S      seconds per line for the line-order clock (default 0.05)
+  --reference FILE     a trajectory file (atlas-sim's truth.tsv) whose poses within 1 ms of a
+                       scan are its reference: writes reference.tsv and closures.tsv as
+                       --corrected does (not with --corrected)
   --log-max-range M    ranges >= M metres in the log are no-return (aces-corrected: 50)
   --max-scans N        step only the first N scans (default: all)
   --config FILE        atlasd's configuration file: the mapper ([atlas], [noise.*], laser
@@ -124,6 +129,7 @@ int Main(int argc, char** argv) {
   carmen::CarmenLogOptions log_options;
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
+  std::string reference_path;
   bool quiet = false, corrected = false, sweep = false;
   OffsetRange sweep_range;
   // --config first, so that the other options override what it sets.
@@ -156,6 +162,7 @@ int Main(int argc, char** argv) {
     };
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
+      std::fputs(kOdometryNoiseHelp, stdout);
       return 0;
     } else if (a == "--out") {
       const char* v = value();
@@ -191,6 +198,14 @@ int Main(int argc, char** argv) {
       const char* v = value();
       if (v == nullptr) return Usage("--seed needs a value");
       if (!SeedArgument(a, v, seed, error)) return Usage(error);
+    } else if (a == "--odometry-noise") {
+      const char* v = value();
+      if (v == nullptr || !SetOdometryNoiseLevel(v, &noise))
+        return Usage("--odometry-noise needs default or realistic");
+    } else if (a == "--reference") {
+      const char* v = value();
+      if (v == nullptr || *v == '\0') return Usage("--reference needs a file");
+      reference_path = v;
     } else if (a == "--wheel-noise") {
       if (!number(0, 1, noise.wheel_noise_per_m)) return Usage(error);
     } else if (a == "--left-scale") {
@@ -216,6 +231,8 @@ int Main(int argc, char** argv) {
     }
   }
   if (log_path.empty()) return Usage("no LOG given");
+  if (corrected && !reference_path.empty())
+    return Usage("--reference and --corrected both give the reference: give one");
   if (std::string e = options.Validate(); !e.empty()) return Usage(e);
   if (corrected) {
     log_options.clock = carmen::Clock::kLineOrder;
@@ -256,6 +273,20 @@ int Main(int argc, char** argv) {
     }
     reference = ReferenceAtScans(read.log);
     synthesized = carmen::EventsWithSynthesizedOdometry(read.log, noise, seed);
+  }
+  if (!reference_path.empty()) {
+    const eval::TextFile file = eval::ReadTextFile(reference_path);
+    if (!file.error.empty()) {
+      std::fprintf(stderr, "atlas-replay: %s\n", file.error.c_str());
+      return 1;
+    }
+    const eval::TrajectoryParse parsed = eval::ParseTrajectory(file.text, reference_path);
+    if (!parsed.error.empty()) {
+      std::fprintf(stderr, "atlas-replay: %s\n", parsed.error.c_str());
+      return 1;
+    }
+    for (const eval::TimedPose& p : parsed.trajectory.poses())
+      reference.push_back(TruthSample{p.stamp, p.pose});
   }
   const std::vector<carmen::CarmenEvent>& events = corrected ? synthesized : read.log.events;
   if (sweep) return Sweep(events, options, sweep_range, out_dir, quiet, log_path);
