@@ -16,7 +16,7 @@
 # OUT/K-atlas.png (the atlas's whole run).
 #
 # Usage: scripts/eval-kinds.sh [OUT]      (default OUT: /tmp/atlas-eval-kinds)
-# Environment: SEEDS (default 1..20), KINDS (default every kind but office), LENGTH_KM
+# Environment: SEEDS (default 1..20), KINDS (default every kind, office first), LENGTH_KM
 # (default 0.5), ODOMETRY_NOISE (default | realistic, default default), JOBS (default 2),
 # ATLAS_BIN (directory of atlas-sim, atlas-replay, atlas-eval, atlas-render; default
 # <repo>/build/release/bin, built if missing).
@@ -26,7 +26,7 @@ script_usage "${BASH_SOURCE[0]}" out "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-/tmp/atlas-eval-kinds}
 SEEDS=${SEEDS:-$(seq -s ' ' 1 20)}
-KINDS=${KINDS:-curved clutter glass corridor hall campus people}
+KINDS=${KINDS:-office curved clutter glass corridor hall campus people}
 LENGTH_KM=${LENGTH_KM:-0.5}
 ODOMETRY_NOISE=${ODOMETRY_NOISE:-default}
 JOBS=${JOBS:-2}

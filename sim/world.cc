@@ -66,6 +66,30 @@ int World::CountNodes(NodeKind kind) const {
   return n;
 }
 
+std::vector<std::vector<int>> RouteAdjacency(const World& world) {
+  std::vector<std::vector<int>> adjacent(world.nodes.size());
+  for (const RouteEdge& e : world.edges) {
+    adjacent[e.from].push_back(e.to);
+    adjacent[e.to].push_back(e.from);
+  }
+  return adjacent;
+}
+
+int CountReachableNodes(const World& world, int from) {
+  const auto adjacent = RouteAdjacency(world);
+  std::vector<bool> seen(world.nodes.size(), false);
+  std::vector<int> open{from};
+  seen[from] = true;
+  int reached = 1;
+  while (!open.empty()) {
+    const int n = open.back();
+    open.pop_back();
+    for (int m : adjacent[n])
+      if (!seen[m]) seen[m] = true, ++reached, open.push_back(m);
+  }
+  return reached;
+}
+
 void Bounds::Extend(const Vec2& p) {
   if (empty) {
     min = max = p;

@@ -63,6 +63,11 @@ struct World {
   int CountNodes(NodeKind kind) const;
 };
 
+// Each node's neighbours along the route edges.
+std::vector<std::vector<int>> RouteAdjacency(const World& world);
+// How many nodes the route graph reaches from node `from` (itself included).
+int CountReachableNodes(const World& world, int from);
+
 struct Bounds {
   Vec2 min = Vec2::Zero();
   Vec2 max = Vec2::Zero();
