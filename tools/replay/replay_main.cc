@@ -27,7 +27,7 @@ constexpr const char* kHelp = R"(Usage: atlas-replay [options] LOG
 
 Runs a CARMEN log (plain or gzip; ODOM and laser lines) through the Atlas as fast as it can,
 with atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped).
-SIMDIR, an atlas-sim output directory, stands for SIMDIR/run.clf (its truth is not used).
+SIMDIR, an atlas-sim output directory, stands for SIMDIR/run.clf (its truth only with --reference).
 Writes into --out DIR (docs/formats.md, "atlas-replay output"):
   trajectory.tsv   timestamp frame x y theta   (dominant hypothesis's pose in its own frame)
   graph.tsv        from to x y theta c00 c01 c02 c11 c12 c22 kind   (one row per edge)
