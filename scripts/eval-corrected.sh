@@ -14,13 +14,15 @@
 # Usage: scripts/eval-corrected.sh [OUT]      (default OUT: /tmp/atlas-eval-corrected)
 # Environment: ATLAS_BIN (directory of atlas-replay, atlas-eval, atlas-carmen, atlas-render;
 # default <repo>/build/release/bin, built if missing), SEED (default 1), FIG7_LOG (default
-# intel), FIG7_PNG (default OUT/fig7-<log>.png), REFINE=1 to also score global_refined.tsv.
+# intel), FIG7_PNG (default OUT/fig7-<log>.png), REFINE=1 to also score global_refined.tsv,
+# ODOMETRY_NOISE (default | realistic: the synthesised odometry's noise level, default default).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
 script_usage "${BASH_SOURCE[0]}" out "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-/tmp/atlas-eval-corrected}
 SEED=${SEED:-1}
+ODOMETRY_NOISE=${ODOMETRY_NOISE:-default}
 DATA=${ATLAS_DATA:-$ROOT/../shared/datasets/corrected}
 source "$ROOT/scripts/release-bin.sh"
 BIN=$(release_bin atlas-replay atlas-eval atlas-carmen atlas-render)
@@ -52,7 +54,8 @@ for name in intel aces freiburg-079 freiburg-101 csail seattle; do
   dir=$OUT/$name
   mkdir -p "$dir"
   echo "== $name: replaying" >&2
-  "$BIN/atlas-replay" --quiet --corrected --seed "$SEED" "${range[@]}" "${CONFIG_FLAG[@]}" \
+  "$BIN/atlas-replay" --quiet --corrected --seed "$SEED" --odometry-noise "$ODOMETRY_NOISE" \
+    "${range[@]}" "${CONFIG_FLAG[@]}" \
     "${REFINE_FLAG[@]}" \
     --out "$dir" "$log" >"$dir/replay.txt"
   "$BIN/atlas-eval" --json --reference "$dir/reference.tsv" "$dir/global.tsv" >"$dir/eval.json"
@@ -61,7 +64,8 @@ for name in intel aces freiburg-079 freiburg-101 csail seattle; do
       >"$dir/eval_refined.json"
   fi
   # Dead reckoning of the same synthesised odometry (same seed and noise), for scale.
-  "$BIN/atlas-carmen" --corrected --dump-odometry --seed "$SEED" "${range[@]/--log-max-range/--max-range}" \
+  "$BIN/atlas-carmen" --corrected --dump-odometry --seed "$SEED" \
+    --odometry-noise "$ODOMETRY_NOISE" "${range[@]/--log-max-range/--max-range}" \
     -o "$dir/odometry.tsv" "$log"
   "$BIN/atlas-eval" --json --reference "$dir/reference.tsv" "$dir/odometry.tsv" \
     >"$dir/eval_odometry.json"
@@ -70,33 +74,7 @@ for name in intel aces freiburg-079 freiburg-101 csail seattle; do
   # as relations; the atlas's relation is composed along the Dijkstra path between the two
   # poses' frames (atlas-eval --atlas), so a loop the atlas did not close shows as the error
   # accumulated around it. Dead reckoning on the same pairs for scale.
-  python3 - "$dir/reference.tsv" "$dir/revisits.relations" <<'PY'
-import math, sys
-ref = [tuple(map(float, l.split()[:4])) for l in open(sys.argv[1]) if not l.startswith("#")]
-travel = [0.0]
-for a, b in zip(ref, ref[1:]):
-    travel.append(travel[-1] + math.hypot(b[1] - a[1], b[2] - a[2]))
-last = -5
-with open(sys.argv[2], "w") as out:
-    for i, (t, x, y, th) in enumerate(ref):
-        if i - last < 5:
-            continue
-        best = None
-        for j in range(i):
-            if travel[i] - travel[j] < 20.0:
-                break
-            d = math.hypot(ref[j][1] - x, ref[j][2] - y)
-            if d < 1.5 and (best is None or d < best[0]):
-                best = (d, j)
-        if best is None:
-            continue
-        tj, xj, yj, thj = ref[best[1]]
-        c, s = math.cos(thj), math.sin(thj)
-        dth = (th - thj + math.pi) % (2 * math.pi) - math.pi
-        out.write("%.6f %.6f %.6f %.6f 0 0 0 %.6f\n" % (
-            tj, t, c * (x - xj) + s * (y - yj), -s * (x - xj) + c * (y - yj), dth))
-        last = i
-PY
+  "$ROOT/scripts/relations-from-reference.py" "$dir/reference.tsv" "$dir/revisits.relations"
   if [[ -s $dir/revisits.relations ]]; then
     "$BIN/atlas-eval" --json --relations "$dir/revisits.relations" --atlas "$dir" \
       --errors "$dir/revisits_errors.tsv" >"$dir/revisits.json"

@@ -4,22 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 #include <set>
 
 #include "sim/ray_caster.h"
 
 namespace atlas::sim {
 namespace {
-
-std::vector<std::vector<int>> Adjacency(const World& w) {
-  std::vector<std::vector<int>> adj(w.nodes.size());
-  for (const RouteEdge& e : w.edges) {
-    adj[e.from].push_back(e.to);
-    adj[e.to].push_back(e.from);
-  }
-  return adj;
-}
 
 TEST(BuildingOptions, DefaultsValidBadRejected) {
   EXPECT_EQ(BuildingOptions{}.Validate(), "");
@@ -60,20 +50,9 @@ TEST(BuildingGenerator, RouteGraphIsConnectedWithLoopsOfSeveralSizes) {
   BuildingOptions o;
   o.min_rooms = 100;
   const World w = GenerateBuilding(o, 1);
-  const auto adj = Adjacency(w);
+  const auto adj = RouteAdjacency(w);
   // Connected: every node reachable from node 0.
-  std::vector<bool> seen(w.nodes.size(), false);
-  std::queue<int> q;
-  q.push(0);
-  seen[0] = true;
-  int reached = 1;
-  while (!q.empty()) {
-    const int n = q.front();
-    q.pop();
-    for (int m : adj[n])
-      if (!seen[m]) seen[m] = true, ++reached, q.push(m);
-  }
-  EXPECT_EQ(reached, static_cast<int>(w.nodes.size()));
+  EXPECT_EQ(CountReachableNodes(w, 0), static_cast<int>(w.nodes.size()));
   // Independent loops (cycle rank E - V + 1): one per block of the grid, at least 9 here.
   const int cycle_rank = static_cast<int>(w.edges.size()) - static_cast<int>(w.nodes.size()) + 1;
   EXPECT_GE(cycle_rank, 9);

@@ -1,9 +1,24 @@
 #include "sim/laser_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace atlas::sim {
+namespace {
+
+// Distance along the unit ray from `origin` to the disc's near side, +inf if missed.
+double RayToDisc(const Vec2& origin, const Vec2& unit, const Disc& disc) {
+  const Vec2 w = disc.centre - origin;
+  const double along = w.dot(unit), miss2 = w.squaredNorm() - along * along;
+  const double r2 = disc.radius * disc.radius;
+  if (miss2 > r2) return std::numeric_limits<double>::infinity();
+  const double t = along - std::sqrt(r2 - miss2);
+  return t > 0.0 ? t : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
 
 std::string LaserOptions::Validate() const {
   if (beams < 2 || beams > 10000) return "laser beams must be in [2, 10000] (SICK: 181 or 361)";
@@ -26,7 +41,8 @@ LaserModel::LaserModel(const LaserOptions& options, uint64_t seed) : o_(options)
   }
 }
 
-LaserScan LaserModel::Scan(const RayCaster& caster, const Pose2& robot, Time stamp) {
+LaserScan LaserModel::Scan(const RayCaster& caster, const Pose2& robot, Time stamp,
+                           std::span<const Disc> obstacles) {
   LaserScan scan;
   scan.stamp = stamp;
   const double fov = o_.fov_deg * std::numbers::pi / 180.0;
@@ -42,9 +58,11 @@ LaserScan LaserModel::Scan(const RayCaster& caster, const Pose2& robot, Time sta
     const Vec2& b = beam_dirs_[i];
     const Vec2 dir(c * b.x() - s * b.y(), s * b.x() + c * b.y());
     const RayHit hit = caster.Cast(origin, dir, o_.max_range);
+    double nearest = hit.hit() ? hit.range : std::numeric_limits<double>::infinity();
+    for (const Disc& d : obstacles) nearest = std::min(nearest, RayToDisc(origin, dir, d));
     float range = kNoReturn;
-    if (hit.hit()) {
-      const double r = hit.range + o_.range_sigma * noise_.Normal();
+    if (nearest <= o_.max_range) {
+      const double r = nearest + o_.range_sigma * noise_.Normal();
       if (r < o_.max_range) range = static_cast<float>(std::max(0.0, r));
     }
     if (noise_.Chance(o_.dropout_probability)) range = kNoReturn;

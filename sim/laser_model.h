@@ -2,8 +2,9 @@
 // A SICK LMS-like planar laser: beams evenly over the field of view, the first at -fov/2
 // (counter-clockwise order, as CARMEN FLASER), each the first wall hit along its ray plus
 // Gaussian range noise. Beyond max_range, and with a small random dropout probability, a beam
-// has no return (kNoReturn).
+// has no return (kNoReturn). Moving obstacles (discs) are hit as the walls are.
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,10 @@ struct LaserOptions {
 class LaserModel {
  public:
   LaserModel(const LaserOptions& options, uint64_t seed);
-  // A scan taken from the robot at `robot` (world frame), stamped `stamp`.
-  LaserScan Scan(const RayCaster& caster, const Pose2& robot, Time stamp);
+  // A scan taken from the robot at `robot` (world frame), stamped `stamp`; `obstacles`
+  // (people's legs) are seen as well as the walls.
+  LaserScan Scan(const RayCaster& caster, const Pose2& robot, Time stamp,
+                 std::span<const Disc> obstacles = {});
 
  private:
   LaserOptions o_;

@@ -35,12 +35,13 @@ RayCaster::RayCaster(const std::vector<Wall>& walls, double cell_size)
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) visit(y * nx_ + x);
   };
-  for (const Wall& w : walls_) cells_of(w, [&](int c) { ++count[c + 1]; });
+  for (const Wall& w : walls_)
+    if (!w.glass) cells_of(w, [&](int c) { ++count[c + 1]; });
   for (size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
   cell_start_ = count;
   cell_walls_.resize(count.back());
   for (int i = 0; i < static_cast<int>(walls_.size()); ++i)
-    cells_of(walls_[i], [&](int c) { cell_walls_[count[c]++] = i; });
+    if (!walls_[i].glass) cells_of(walls_[i], [&](int c) { cell_walls_[count[c]++] = i; });
 }
 
 inline double RayCaster::Intersect(int i, double ox, double oy, double ux, double uy) const {
@@ -60,6 +61,7 @@ RayHit RayCaster::CastBruteForce(const Vec2& origin, const Vec2& direction,
   const Vec2 u = direction.normalized();
   RayHit best{kInf, -1};
   for (int i = 0; i < num_walls(); ++i) {
+    if (walls_[i].glass) continue;
     const double t = Intersect(i, origin.x(), origin.y(), u.x(), u.y());
     if (t < best.range) best = {t, i};
   }

@@ -4,7 +4,8 @@
 //
 // Each wall is listed in every cell its bounding box overlaps (exact for axis-aligned walls).
 // A ray walks the cells in order (Amanatides & Woo, "A fast voxel traversal algorithm", 1987)
-// and stops at the first cell whose nearest hit lies inside that cell.
+// and stops at the first cell whose nearest hit lies inside that cell. Glass walls are not
+// hit: rays pass through them.
 
 #include <vector>
 

@@ -14,11 +14,7 @@ double Angle(const Vec2& v) { return std::atan2(v.y(), v.x()); }
 
 std::vector<int> PlanRoute(const World& world, double length_m, int start, uint64_t seed) {
   const int n = static_cast<int>(world.nodes.size());
-  std::vector<std::vector<int>> adjacent(n);
-  for (const RouteEdge& e : world.edges) {
-    adjacent[e.from].push_back(e.to);
-    adjacent[e.to].push_back(e.from);
-  }
+  const std::vector<std::vector<int>> adjacent = RouteAdjacency(world);
   std::vector<int> route;
   if (start < 0 || start >= n || adjacent[start].empty()) return route;
   std::mt19937_64 rng(seed);

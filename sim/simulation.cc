@@ -77,6 +77,7 @@ SimulationSummary Simulate(const World& world, const SimulationOptions& o, Simul
   const double laser_dt = 1.0 / o.laser_options.rate_hz;
   const double sonar_dt = 1.0 / o.sonar_options.reading_hz;
   long step = 0, laser_n = 0, sonar_n = 0;
+  std::vector<Disc> legs;
   double next_progress = 0.0;
 
   Pose2 truth = robot.pose();
@@ -104,7 +105,10 @@ SimulationSummary Simulate(const World& world, const SimulationOptions& o, Simul
         const Pose2 true_pose = InterpolatePose(truth, next_truth.pose, f);
         const Pose2 odo_pose = InterpolatePose(odo.pose, next_odo.pose, f);
         if (tl <= tsn) {
-          sink.OnLaser(laser.Scan(caster, true_pose, FromSeconds(t)), odo_pose);
+          legs.clear();
+          for (const Person& p : world.people)
+            for (const Disc& d : PersonLegs(p, t - o.start_time)) legs.push_back(d);
+          sink.OnLaser(laser.Scan(caster, true_pose, FromSeconds(t), legs), odo_pose);
           ++laser_n;
         } else {
           sink.OnSonar(sonar.Read(caster, true_pose, FromSeconds(t)), odo_pose);

@@ -5,7 +5,8 @@
 // (DiffDriveFollower), the wheel-odometry model reports (WheelOdometryModel), and laser scans
 // and sonar readings fall due at their own rates; a sensor stamped between two steps sees the
 // true pose interpolated to its stamp. Everything random is drawn from generators seeded from
-// `seed`, so a run is reproducible. Events reach the sink in stamp order.
+// `seed`, so a run is reproducible. Events reach the sink in stamp order. The world's people
+// walk from the first stamp on; the laser sees their legs, the sonar does not.
 
 #include <cstdint>
 #include <functional>

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <string_view>
 
 #include "core/common/sensor_types.h"
 
@@ -44,10 +45,25 @@ struct WheelOdometryNoiseOptions {
   // Relative error of the nominal track width: the true track width is
   // track_width_m * (1 + track_width_error).
   double track_width_error = 0.002;
+  // Variance of a distance error common to both wheels (slip, an uneven floor), m^2 per metre
+  // travelled: it changes the distance but not the heading.
+  double common_noise_per_m = 0.0;
 
   // Empty when valid, else what is wrong.
   std::string Validate() const;
 };
+
+// Named noise levels, for the tools' --odometry-noise:
+//   default    the defaults above (a calibrated base)
+//   realistic  a real base: distance random 2 % per metre (sigma after 1 m straight), distance
+//              scale +1 %, turns +1 % (the wheels' scale; the track width is right), heading
+//              drift 0.1 deg per metre on a straight line; the random heading noise stays
+//              the default's (wheel_noise_per_m).
+// Sets every field but track_width_m (the drift is made for the track width already set).
+// False if `level` names no level.
+bool SetOdometryNoiseLevel(std::string_view level, WheelOdometryNoiseOptions* options);
+// The tools' help for --odometry-noise, with mit-csail's own B21 odometry beside the levels.
+extern const char* const kOdometryNoiseHelp;
 
 class WheelOdometryModel {
  public:

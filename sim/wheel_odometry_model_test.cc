@@ -146,5 +146,59 @@ TEST(WheelOdometryModel, RandomNoiseVarianceGrowsWithDistance) {
   }
 }
 
+// The realistic level has the statistics it names: over many seeds, a 10 m straight run's
+// distance is 1 % long with 2 % per metre of random error (sigma 0.02 sqrt(10) m) and its
+// heading drifts 0.1 deg per metre; a full turn in place is reported 1 % large.
+TEST(OdometryNoiseLevel, RealisticHasTheStatedStatistics) {
+  WheelOdometryNoiseOptions opt;
+  ASSERT_TRUE(SetOdometryNoiseLevel("realistic", &opt));
+  EXPECT_EQ(opt.Validate(), "");
+  const double length = 10.0;
+  const auto line = StraightLine(length);
+  std::vector<TruthSample> turn;
+  for (int i = 0; i <= 628; ++i) turn.push_back({FromSeconds(i * 0.02), Pose2{0, 0, i * 0.01}});
+  const int runs = 400;
+  double d = 0, d2 = 0, h = 0, t = 0;
+  for (int r = 0; r < runs; ++r) {
+    WheelOdometryModel straight(opt, 500 + r);
+    OdometrySample last;
+    for (const auto& s : line) last = straight.Step(s);
+    const double err = std::hypot(last.pose.x, last.pose.y) - length;
+    d += err;
+    d2 += err * err;
+    h += last.pose.theta;
+    WheelOdometryModel turning(opt, 5000 + r);
+    double turned = 0.0;
+    Pose2 previous = turn.front().pose;
+    for (const auto& s : turn) {
+      const Pose2 p = turning.Step(s).pose;
+      turned += WrapAngle(p.theta - previous.theta);
+      previous = p;
+    }
+    t += turned / 6.28;
+  }
+  const double mean = d / runs, sigma = std::sqrt(d2 / runs - mean * mean);
+  EXPECT_NEAR(mean / length, 0.01, 0.0015);
+  EXPECT_NEAR(sigma / (0.02 * std::sqrt(length)), 1.0, 0.1);
+  EXPECT_NEAR((h / runs) * 180.0 / kPi / length, 0.1, 0.02);
+  EXPECT_NEAR(t / runs, 1.01, 0.001);
+}
+
+TEST(OdometryNoiseLevel, DefaultIsTheDefaultsAndUnknownIsRefused) {
+  WheelOdometryNoiseOptions opt;
+  opt.track_width_m = 0.5;
+  ASSERT_TRUE(SetOdometryNoiseLevel("realistic", &opt));
+  EXPECT_EQ(opt.track_width_m, 0.5);
+  EXPECT_NEAR((opt.right_scale_error - opt.left_scale_error) / 0.5, 0.1 * kPi / 180.0, 1e-12);
+  ASSERT_TRUE(SetOdometryNoiseLevel("default", &opt));
+  const WheelOdometryNoiseOptions defaults;
+  EXPECT_EQ(opt.wheel_noise_per_m, defaults.wheel_noise_per_m);
+  EXPECT_EQ(opt.left_scale_error, defaults.left_scale_error);
+  EXPECT_EQ(opt.right_scale_error, defaults.right_scale_error);
+  EXPECT_EQ(opt.track_width_error, defaults.track_width_error);
+  EXPECT_EQ(opt.common_noise_per_m, 0.0);
+  EXPECT_FALSE(SetOdometryNoiseLevel("awful", &opt));
+}
+
 }  // namespace
 }  // namespace atlas

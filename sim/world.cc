@@ -1,7 +1,9 @@
 #include "sim/world.h"
 
 #include <charconv>
+#include <cmath>
 #include <istream>
+#include <numbers>
 #include <ostream>
 #include <sstream>
 
@@ -44,10 +46,48 @@ const char* ToString(NodeKind kind) {
   return "?";
 }
 
+std::array<Disc, 2> PersonLegs(const Person& p, double t) {
+  constexpr double kLegRadius = 0.06, kStride = 0.7;
+  const Vec2 path = p.b - p.a;
+  const double length = path.norm();
+  if (length < 1e-9) return {Disc{p.a, kLegRadius}, Disc{p.a, kLegRadius}};
+  const double s = std::fmod(p.speed * std::max(t, 0.0), 2.0 * length);
+  const Vec2 u = path / length;
+  const Vec2 centre = p.a + (s < length ? s : 2.0 * length - s) * u;
+  const Vec2 forward = s < length ? u : Vec2(-u), side(-u.y(), u.x());
+  const double swing = 0.15 * std::sin(std::numbers::pi * s / kStride);
+  return {Disc{centre + 0.1 * side + swing * forward, kLegRadius},
+          Disc{centre - 0.1 * side - swing * forward, kLegRadius}};
+}
+
 int World::CountNodes(NodeKind kind) const {
   int n = 0;
   for (const RouteNode& node : nodes) n += node.kind == kind;
   return n;
+}
+
+std::vector<std::vector<int>> RouteAdjacency(const World& world) {
+  std::vector<std::vector<int>> adjacent(world.nodes.size());
+  for (const RouteEdge& e : world.edges) {
+    adjacent[e.from].push_back(e.to);
+    adjacent[e.to].push_back(e.from);
+  }
+  return adjacent;
+}
+
+int CountReachableNodes(const World& world, int from) {
+  const auto adjacent = RouteAdjacency(world);
+  std::vector<bool> seen(world.nodes.size(), false);
+  std::vector<int> open{from};
+  seen[from] = true;
+  int reached = 1;
+  while (!open.empty()) {
+    const int n = open.back();
+    open.pop_back();
+    for (int m : adjacent[n])
+      if (!seen[m]) seen[m] = true, ++reached, open.push_back(m);
+  }
+  return reached;
 }
 
 void Bounds::Extend(const Vec2& p) {
@@ -95,11 +135,20 @@ WorldParseResult ParseWorld(std::istream& in, const std::string& source) {
     }
     if (key == "wall") {
       double v[4];
-      if (words.size() != 5) return fail("'wall' needs 4 numbers: x1 y1 x2 y2");
+      if (words.size() != 5 && !(words.size() == 6 && words[5] == "glass"))
+        return fail("'wall' needs 4 numbers: x1 y1 x2 y2, then optionally 'glass'");
       for (int i = 0; i < 4; ++i)
         if (!ParseNumber(words[i + 1], &v[i]))
           return fail("'wall': '" + std::string(words[i + 1]) + "' is not a finite number");
-      world.walls.push_back(Wall{Vec2(v[0], v[1]), Vec2(v[2], v[3])});
+      world.walls.push_back(Wall{Vec2(v[0], v[1]), Vec2(v[2], v[3]), words.size() == 6});
+    } else if (key == "person") {
+      double v[5];
+      if (words.size() != 6) return fail("'person' needs 5 numbers: x1 y1 x2 y2 speed");
+      for (int i = 0; i < 5; ++i)
+        if (!ParseNumber(words[i + 1], &v[i]))
+          return fail("'person': '" + std::string(words[i + 1]) + "' is not a finite number");
+      if (!(v[4] > 0.0 && v[4] <= 5.0)) return fail("'person': speed must be in (0, 5] m/s");
+      world.people.push_back(Person{Vec2(v[0], v[1]), Vec2(v[2], v[3]), v[4]});
     } else if (key == "node") {
       int id;
       double x, y;
@@ -131,7 +180,8 @@ WorldParseResult ParseWorld(std::istream& in, const std::string& source) {
         return fail("'edge': node ids must name two different nodes defined above");
       world.edges.push_back(RouteEdge{a, b});
     } else {
-      return fail("unknown keyword '" + std::string(key) + "' (expected wall, node or edge)");
+      return fail("unknown keyword '" + std::string(key) +
+                  "' (expected wall, node, edge or person)");
     }
   }
   if (!have_header) {
@@ -147,11 +197,14 @@ void WriteWorld(std::ostream& out, const World& world) {
     << "atlas-world 1\n";
   for (const Wall& w : world.walls)
     s << "wall " << Num(w.a.x()) << ' ' << Num(w.a.y()) << ' ' << Num(w.b.x()) << ' '
-      << Num(w.b.y()) << '\n';
+      << Num(w.b.y()) << (w.glass ? " glass\n" : "\n");
   for (size_t i = 0; i < world.nodes.size(); ++i)
     s << "node " << i << ' ' << Num(world.nodes[i].position.x()) << ' '
       << Num(world.nodes[i].position.y()) << ' ' << ToString(world.nodes[i].kind) << '\n';
   for (const RouteEdge& e : world.edges) s << "edge " << e.from << ' ' << e.to << '\n';
+  for (const Person& p : world.people)
+    s << "person " << Num(p.a.x()) << ' ' << Num(p.a.y()) << ' ' << Num(p.b.x()) << ' '
+      << Num(p.b.y()) << ' ' << Num(p.speed) << '\n';
   out << s.str();
 }
 

@@ -67,6 +67,9 @@ TEST(World, ErrorsNameTheLineAndTheProblem) {
       {"atlas-world 1\nnode 0 0 0 kitchen\n", "kind must be corridor, door or room"},
       {"atlas-world 1\nnode 0 0 0 room\nedge 0 1\n", "test.world:3: 'edge': node ids"},
       {"atlas-world 1\n\nwindow 0 0\n", "test.world:3: unknown keyword 'window'"},
+      {"atlas-world 1\nwall 0 0 1 1 mirror\n", "test.world:2: 'wall' needs 4 numbers"},
+      {"atlas-world 1\nperson 0 0 1 1\n", "test.world:2: 'person' needs 5 numbers"},
+      {"atlas-world 1\nperson 0 0 1 1 -1\n", "'person': speed must be in (0, 5]"},
   };
   for (const Case& c : cases) {
     const WorldParseResult r = Parse(c.text);
@@ -74,6 +77,37 @@ TEST(World, ErrorsNameTheLineAndTheProblem) {
     EXPECT_NE(r.error.find(c.expect), std::string::npos) << r.error << " / want " << c.expect;
     EXPECT_TRUE(r.world.walls.empty());
   }
+}
+
+TEST(World, GlassWallsAndPeopleRoundTrip) {
+  const WorldParseResult r =
+      Parse("atlas-world 1\nwall 0 0 4 0 glass\nwall 4 0 4 3\nperson 1 1 3.5 1 1.25\n");
+  ASSERT_TRUE(r.ok()) << r.error;
+  ASSERT_EQ(r.world.walls.size(), 2u);
+  EXPECT_TRUE(r.world.walls[0].glass);
+  EXPECT_FALSE(r.world.walls[1].glass);
+  ASSERT_EQ(r.world.people.size(), 1u);
+  EXPECT_EQ(r.world.people[0].b, Vec2(3.5, 1));
+  EXPECT_EQ(r.world.people[0].speed, 1.25);
+  std::ostringstream out;
+  WriteWorld(out, r.world);
+  EXPECT_NE(out.str().find("wall 0 0 4 0 glass\nwall 4 0 4 3\n"), std::string::npos);
+  EXPECT_NE(out.str().find("person 1 1 3.5 1 1.25\n"), std::string::npos);
+}
+
+TEST(World, PersonWalksToAndFro) {
+  const Person p{Vec2(0, 0), Vec2(4, 0), 2.0};
+  auto middle = [&](double t) {
+    const auto legs = PersonLegs(p, t);
+    return Vec2(0.5 * (legs[0].centre + legs[1].centre));
+  };
+  EXPECT_NEAR((middle(0.0) - Vec2(0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((middle(1.0) - Vec2(2, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((middle(3.0) - Vec2(2, 0)).norm(), 0.0, 1e-12);  // on the way back
+  EXPECT_NEAR((middle(4.0) - Vec2(0, 0)).norm(), 0.0, 1e-12);
+  const auto legs = PersonLegs(p, 0.3);
+  EXPECT_NEAR((legs[0].centre - legs[1].centre).y(), 0.2, 1e-12);  // across the path
+  EXPECT_EQ(legs[0].radius, 0.06);
 }
 
 TEST(World, BoundsCoverWallsAndNodes) {

@@ -41,11 +41,12 @@ Reading:
 
 Synthesised odometry (with --corrected and --dump-odometry):
   --seed N             random seed, an integer in [0, 18446744073709551615] (default 1)
+  --odometry-noise LEVEL  default | realistic (below)
   --track-width M      nominal track width (default 0.4)
   --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
-  --left-scale E       left wheel scale error (default 0.001)
-  --right-scale E      right wheel scale error (default -0.001)
-  --track-width-error E  relative track width error (default 0.005)
+  --left-scale E       left wheel scale error (default 0.0002)
+  --right-scale E      right wheel scale error (default -0.0002)
+  --track-width-error E  relative track width error (default 0.002)
 
 Other:
   -o FILE              output file for the dump modes (default stdout)
@@ -138,6 +139,7 @@ int Main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
+      std::fputs(kOdometryNoiseHelp, stdout);
       return 0;
     } else if (a == "--count" || a == "--dump-odometry" || a == "--dump-reference") {
       if (!mode_option.empty() && mode_option != a)
@@ -156,6 +158,9 @@ int Main(int argc, char** argv) {
     } else if (a == "-o") {
       if (i + 1 >= argc) return Usage("-o needs a file name");
       output = argv[++i];
+    } else if (a == "--odometry-noise") {
+      if (i + 1 >= argc || !SetOdometryNoiseLevel(argv[++i], &noise))
+        return Usage("--odometry-noise needs default or realistic");
     } else if (a == "--seed") {
       std::string error;
       if (i + 1 >= argc) return Usage("--seed needs an integer");

@@ -13,6 +13,8 @@ const Color kTruthColor{0.12, 0.35, 0.85, 0.55};
 const Color kOdometryColor{0.85, 0.1, 0.55, 0.7};
 const Color kScanColor{1.0, 0.45, 0.0, 0.6};
 const Color kGraphColor{0.2, 0.7, 0.3, 0.6};
+const Color kGlassColor{0.3, 0.75, 0.95};
+const Color kPeopleColor{0.6, 0.2, 0.8, 0.5};
 
 sim::Bounds ContentBounds(const RunData& run, bool with_odometry) {
   sim::Bounds b = sim::WorldBounds(run.world);
@@ -45,9 +47,16 @@ void LayoutRun(const RunData& run, const RunDrawOptions& options, int* height_px
 
 void DrawRun(Canvas& canvas, const RunData& run, const RunDrawOptions& options) {
   const double px_per_m = canvas.view().pixels_per_metre();
-  std::vector<std::pair<Vec2, Vec2>> walls;
-  for (const sim::Wall& w : run.world.walls) walls.emplace_back(w.a, w.b);
+  std::vector<std::pair<Vec2, Vec2>> walls, glass;
+  for (const sim::Wall& w : run.world.walls) (w.glass ? glass : walls).emplace_back(w.a, w.b);
   canvas.Segments(walls, Stroke{kWallColor, std::clamp(0.06 * px_per_m, 1.0, 3.0)});
+  if (!glass.empty())
+    canvas.Segments(glass, Stroke{kGlassColor, std::clamp(0.06 * px_per_m, 1.0, 3.0)});
+  // People: the paths they walk to and fro.
+  std::vector<std::pair<Vec2, Vec2>> walks;
+  for (const sim::Person& p : run.world.people) walks.emplace_back(p.a, p.b);
+  if (!walks.empty())
+    canvas.Segments(walks, Stroke{kPeopleColor, std::clamp(0.1 * px_per_m, 1.5, 5.0)});
   // Scans over the walls they hit (the walls stay visible around them).
   if (options.draw_scans) {
     std::vector<Vec2> points;
@@ -111,6 +120,8 @@ void DrawRun(Canvas& canvas, const RunData& run, const RunDrawOptions& options) 
   }
   canvas.TextPx(Vec2(kMarginPx, 22), title, 16, Color{0, 0, 0}, true);
   std::vector<LegendEntry> legend{{"walls", kWallColor}, {"true trajectory", kTruthColor}};
+  if (!glass.empty()) legend.push_back({"glass (no return)", kGlassColor});
+  if (!walks.empty()) legend.push_back({"people walking", kPeopleColor});
   std::string odometry_label = "odometry (drifts)";
   if (options.odometry_length_m > 0.0) {
     char buf[64];

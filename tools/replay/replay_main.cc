@@ -13,10 +13,12 @@
 #include "core/common/parse_number.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
+#include "formats/pose_file.h"
+#include "formats/text_rows.h"
+#include "replay/laser_time_offset.h"
 #include "replay/replay_run.h"
 #include "replay/replay_source.h"
 #include "sim/reference_odometry.h"
-#include "replay/laser_time_offset.h"
 #include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {
@@ -30,7 +32,7 @@ Runs a CARMEN log (plain or gzip; ODOM and laser lines), or an lcm-logger file w
 raw channels (lcm.channels.raw_*, from --config), through the Atlas as fast as it can, with
 atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped). `atlasd
 --replay LOG --out DIR --config FILE` is the same replay: it writes the same files.
-SIMDIR, an atlas-sim output directory, stands for SIMDIR/run.clf (its truth is not used).
+SIMDIR, an atlas-sim output directory, stands for SIMDIR/run.clf (its truth only with --reference).
 Writes into --out DIR (docs/formats.md, "Replay output"):
   trajectory.tsv   timestamp frame x y theta   (dominant hypothesis's pose in its own frame)
   graph.tsv        from to x y theta c00 c01 c02 c11 c12 c22 kind   (one row per edge)
@@ -58,11 +60,15 @@ Options:
   --corrected          a Radish "corrected" log: line order is the clock, its poses are the
                        reference; wheel odometry is synthesised from them with seeded noise:
     --seed N             random seed (default 1)
+    --odometry-noise LEVEL  default | realistic (below)
     --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
     --left-scale E       left wheel radius error, relative (default 0.0002)
     --right-scale E      right wheel radius error, relative (default -0.0002)
     --track-width-error E  relative track width error (default 0.002)
     --line-period S      seconds per line for the line-order clock (default 0.05)
+  --reference FILE     a trajectory file (atlas-sim's truth.tsv) whose poses within 1 ms of a
+                       scan are its reference: writes reference.tsv and closures.tsv as
+                       --corrected does (not with --corrected)
   --log-max-range M    ranges >= M metres in the log are no-return (aces-corrected: 50)
   --max-scans N        step only the first N scans (default: all)
   --config FILE        atlasd's configuration file: the mapper ([atlas], [noise.*], laser
@@ -128,6 +134,7 @@ int Main(int argc, char** argv) {
   carmen::CarmenLogOptions log_options;
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
+  std::string reference_path;
   bool quiet = false, corrected = false, sweep = false;
   OffsetRange sweep_range;
   LcmChannels channels;  // of an lcm-logger file: the configuration's raw channels
@@ -162,6 +169,7 @@ int Main(int argc, char** argv) {
     };
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
+      std::fputs(kOdometryNoiseHelp, stdout);
       return 0;
     } else if (a == "--out") {
       const char* v = value();
@@ -197,6 +205,14 @@ int Main(int argc, char** argv) {
       const char* v = value();
       if (v == nullptr) return Usage("--seed needs a value");
       if (!SeedArgument(a, v, seed, error)) return Usage(error);
+    } else if (a == "--odometry-noise") {
+      const char* v = value();
+      if (v == nullptr || !SetOdometryNoiseLevel(v, &noise))
+        return Usage("--odometry-noise needs default or realistic");
+    } else if (a == "--reference") {
+      const char* v = value();
+      if (v == nullptr || *v == '\0') return Usage("--reference needs a file");
+      reference_path = v;
     } else if (a == "--wheel-noise") {
       if (!number(0, 1, noise.wheel_noise_per_m)) return Usage(error);
     } else if (a == "--left-scale") {
@@ -222,6 +238,8 @@ int Main(int argc, char** argv) {
     }
   }
   if (log_path.empty()) return Usage("no LOG given");
+  if (corrected && !reference_path.empty())
+    return Usage("--reference and --corrected both give the reference: give one");
   if (std::string e = options.Validate(); !e.empty()) return Usage(e);
   if (corrected) {
     log_options.clock = carmen::Clock::kLineOrder;
@@ -265,11 +283,26 @@ int Main(int argc, char** argv) {
     reference = ReferenceAtScans(source.carmen);
     synthesized = carmen::EventsWithSynthesizedOdometry(source.carmen, noise, seed);
   }
+  if (!reference_path.empty()) {
+    const formats::TextFile file = formats::ReadTextFile(reference_path);
+    if (!file.error.empty()) {
+      std::fprintf(stderr, "atlas-replay: %s\n", file.error.c_str());
+      return 1;
+    }
+    const formats::PoseRows parsed = formats::ParsePoseRows(file.text, reference_path);
+    if (!parsed.error.empty()) {
+      std::fprintf(stderr, "atlas-replay: %s\n", parsed.error.c_str());
+      return 1;
+    }
+    for (const eval::TimedPose& p : parsed.poses) reference.push_back(TruthSample{p.stamp, p.pose});
+  }
   if (sweep)
     return Sweep(corrected ? synthesized : source.carmen.events, options, sweep_range, out_dir,
                  quiet, log_path);
-  ReplayResult r = corrected ? RunReplay(synthesized, options, out_dir, progress, 1000, reference)
-                             : RunReplay(source.events, options, out_dir, progress, 1000);
+  ReplayResult r = corrected || !reference.empty()
+                       ? RunReplay(corrected ? synthesized : source.carmen.events, options, out_dir,
+                                   progress, 1000, reference)
+                       : RunReplay(source.events, options, out_dir, progress, 1000);
   if (!quiet && tty) std::fputc('\n', stderr);
   if (!r.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", r.error.c_str());

@@ -15,6 +15,7 @@
 
 #include "core/common/parse_number.h"
 #include "sim/building_generator.h"
+#include "sim/building_kinds.h"
 #include "sim/carmen_writer.h"
 #include "sim/simulation.h"
 
@@ -35,9 +36,12 @@ Runs are reproducible from --seed.
 
 options:
   --out DIR               output directory (created; files in it are overwritten)
-  --rooms N               generate a building with at least N rooms, 1..100000 (default 24)
+  --kind NAME             the kind of building to generate (default office): office, curved,
+                          clutter, glass, corridor, hall, campus, people (sim/building_kinds.h);
+                          the laser's range defaults to the kind's (campus 80 m)
+  --rooms N               generate an office with at least N rooms, 1..100000 (default 24)
   --world FILE            drive through this world file instead of generating one (not with
-                          --rooms)
+                          --rooms or --kind)
   --length-km X           route length in km (default 0.5)
   --seed N                random seed for building, route and sensor noise, an integer in
                           [0, 18446744073709551615] (default 1)
@@ -45,11 +49,12 @@ options:
   --odometry-hz HZ        odometry and ground-truth rate (default 50)
   --laser-beams 181|361   laser beams over 180 degrees (default 181)
   --laser-hz HZ           laser scan rate (default 10)
-  --laser-max-range M     laser maximum range (default 30)
+  --laser-max-range M     laser maximum range (default 30; the campus 80)
   --laser-noise M         laser range noise sigma (default 0.01)
   --no-laser              no laser
   --sonar none|p3dx|b21   sonar ring: 16 P3-DX or 24 B21-like transducers (default p3dx)
   --sonar-hz HZ           sonar readings per second (default 10)
+  --odometry-noise LEVEL  default | realistic (below)
   --track-width M         odometry track width (default 0.4)
   --wheel-noise V         wheel distance variance per metre, m^2/m (default 5e-6)
   --left-scale-error E    left wheel radius error, relative (default 0.0002)
@@ -134,11 +139,13 @@ int main(int argc, char** argv) {
   sim.sonar = true;
   BuildingOptions building;
   std::string out_dir, world_file, sonar_kind = "p3dx";
-  bool quiet = false, rooms_given = false;
+  bool quiet = false, rooms_given = false, kind_given = false, range_given = false;
+  BuildingKind kind = BuildingKind::kOffice;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
+      std::fputs(kOdometryNoiseHelp, stdout);
       return 0;
     }
     if (a == "--no-laser") {
@@ -152,6 +159,8 @@ int main(int argc, char** argv) {
     static const char* const kWithValue[] = {"--out",
                                              "--world",
                                              "--rooms",
+                                             "--kind",
+                                             "--odometry-noise",
                                              "--length-km",
                                              "--seed",
                                              "--speed",
@@ -184,6 +193,16 @@ int main(int argc, char** argv) {
       out_dir = v;
     } else if (a == "--world") {
       world_file = v;
+    } else if (a == "--kind") {
+      if (!ParseBuildingKind(v, &kind))
+        return Fail(
+            "--kind must be one of office, curved, clutter, glass, corridor, hall, "
+            "campus, people, not '" +
+            std::string(v) + "'");
+      kind_given = true;
+    } else if (a == "--odometry-noise") {
+      if (!SetOdometryNoiseLevel(v, &sim.odometry_options))
+        return Fail("--odometry-noise must be default or realistic, not '" + std::string(v) + "'");
     } else if (a == "--rooms") {
       integer(1, 100000, &building.min_rooms);
       rooms_given = true;
@@ -206,6 +225,7 @@ int main(int argc, char** argv) {
       sim.laser_options.rate_hz = number(0.1, 1000);
     } else if (a == "--laser-max-range") {
       sim.laser_options.max_range = number(0.5, 1000);
+      range_given = true;
     } else if (a == "--laser-noise") {
       sim.laser_options.range_sigma = number(0, 1);
     } else if (a == "--sonar") {
@@ -225,8 +245,12 @@ int main(int argc, char** argv) {
     }
   }
   if (out_dir.empty()) return Fail("--out DIR is required (where to write the run)");
-  if (rooms_given && !world_file.empty())
-    return Fail("--rooms generates a building; --world reads one: give one of them");
+  if ((rooms_given || kind_given) && !world_file.empty())
+    return Fail("--rooms and --kind generate a building; --world reads one: give one of them");
+  if (rooms_given && kind != BuildingKind::kOffice)
+    return Fail("--rooms sizes an office; --kind " + std::string(ToString(kind)) +
+                " has its own size");
+  if (!range_given) sim.laser_options.max_range = KindLaserMaxRange(kind);
   if (sonar_kind == "none") {
     sim.sonar = false;
   } else if (sonar_kind == "p3dx") {
@@ -242,7 +266,8 @@ int main(int argc, char** argv) {
 
   World world;
   if (world_file.empty()) {
-    world = GenerateBuilding(building, sim.seed);
+    world = kind == BuildingKind::kOffice ? GenerateBuilding(building, sim.seed)
+                                          : GenerateKind(kind, sim.seed);
   } else {
     std::ifstream in(world_file);
     if (!in) return Fail("cannot open world file '" + world_file + "'");
