@@ -18,6 +18,18 @@ namespace {
 class StepLoopTest : public ::testing::Test {
  protected:
   StepLoopTest() : atlas_(TestWorld::Options(), world_.Factory(), nullptr) {}
+  // The laser counts as away after 0.5 s without a scan; dead reckoning every 100 ms.
+  static StepLoopOptions DeadReckoningOptions() {
+    StepLoopOptions o;
+    o.laser_timeout = std::chrono::milliseconds(500);
+    o.dead_reckoning_period = std::chrono::milliseconds(100);
+    return o;
+  }
+  static void StepOneScanAtZero(StepLoop* loop, FakeStepSink* sink) {
+    loop->AddOdometry({FromSeconds(0.0), Pose2{}});
+    loop->AddScan(ScanAt(0.0));
+    loop->StepAll(sink);
+  }
   TestWorld world_;
   Atlas atlas_;
   MapperSettings settings_;
@@ -114,14 +126,9 @@ TEST_F(StepLoopTest, CountsOverrunsAgainstTheBudget) {
 }
 
 TEST_F(StepLoopTest, DeadReckonsWhileTheLaserIsAwayAndRecovers) {
-  StepLoopOptions o;
-  o.laser_timeout = std::chrono::milliseconds(500);
-  o.dead_reckoning_period = std::chrono::milliseconds(100);
-  StepLoop loop(o, settings_, &atlas_);
+  StepLoop loop(DeadReckoningOptions(), settings_, &atlas_);
   FakeStepSink sink;
-  loop.AddOdometry({FromSeconds(0.0), Pose2{}});
-  loop.AddScan(ScanAt(0.0));
-  loop.StepAll(&sink);
+  StepOneScanAtZero(&loop, &sink);
   const DominantOutput at_scan = sink.poses.back().pose;
   sink.poses.clear();
   // 2 s of odometry at 50 Hz driving along x at 1 m/s, no scans.
@@ -149,14 +156,9 @@ TEST_F(StepLoopTest, DeadReckonsWhileTheLaserIsAwayAndRecovers) {
 // While the laser is away the robot turns one way and back: the published uncertainty grows
 // with the path turned, never shrinks because the net rotation since the scan does.
 TEST_F(StepLoopTest, DeadReckonedUncertaintyGrowsWithThePathNotTheNetMotion) {
-  StepLoopOptions o;
-  o.laser_timeout = std::chrono::milliseconds(500);
-  o.dead_reckoning_period = std::chrono::milliseconds(100);
-  StepLoop loop(o, settings_, &atlas_);
+  StepLoop loop(DeadReckoningOptions(), settings_, &atlas_);
   FakeStepSink sink;
-  loop.AddOdometry({FromSeconds(0.0), Pose2{}});
-  loop.AddScan(ScanAt(0.0));
-  loop.StepAll(&sink);
+  StepOneScanAtZero(&loop, &sink);
   sink.poses.clear();
   // 4 s turning on the spot at +1 rad/s, then 4 s at -1 rad/s, back to the heading of the scan.
   for (int i = 1; i <= 400; ++i) {

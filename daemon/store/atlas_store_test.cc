@@ -33,6 +33,8 @@ class StoreDir : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string db() const { return (dir_ / AtlasStore::kFileName).string(); }
+  // A child process saves Batch(1..5) into the store and is killed (SIGKILL) right after.
+  void SaveFiveBatchesThenSigkill();
 
   fs::path dir_;
 };
@@ -259,10 +261,7 @@ TEST_F(StoreDir, InterruptedCreationIsCreatedAgain) {
   EXPECT_TRUE(store.Save(Batch(1), &error)) << error;
 }
 
-// A writer killed right after a commit leaves its -wal (and -shm) behind. Here the wal-index is
-// also damaged, as a writer killed while updating it leaves it, so that a read-only connection
-// cannot read the WAL without recovery: the store must recover it, not refuse it.
-TEST_F(StoreDir, WalLeftByAKilledWriterIsRecoveredNotRefused) {
+void StoreDir::SaveFiveBatchesThenSigkill() {
   const pid_t child = fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
@@ -277,6 +276,13 @@ TEST_F(StoreDir, WalLeftByAKilledWriterIsRecoveredNotRefused) {
   int status = 0;
   ASSERT_EQ(waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFSIGNALED(status));
+}
+
+// A writer killed right after a commit leaves its -wal (and -shm) behind. Here the wal-index is
+// also damaged, as a writer killed while updating it leaves it, so that a read-only connection
+// cannot read the WAL without recovery: the store must recover it, not refuse it.
+TEST_F(StoreDir, WalLeftByAKilledWriterIsRecoveredNotRefused) {
+  ASSERT_NO_FATAL_FAILURE(SaveFiveBatchesThenSigkill());
   ASSERT_TRUE(fs::exists(db() + "-wal"));
   ASSERT_GT(fs::file_size(db() + "-wal"), 0u);
   {  // Make the two copies of the wal-index header disagree: the index needs recovery.
@@ -298,20 +304,7 @@ TEST_F(StoreDir, WalLeftByAKilledWriterIsRecoveredNotRefused) {
 // kill -9 before the first checkpoint can leave the main file empty beside a full -wal. SQLite
 // would open that as a new database and delete the log: the pair must be moved aside instead.
 TEST_F(StoreDir, EmptyMainFileBesideAFullWalIsMovedAsideNotDiscarded) {
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    AtlasStore store;
-    std::string error;
-    if (!store.Open(dir_.string()).ok()) _exit(2);
-    for (int k = 1; k <= 5; ++k) {
-      if (!store.Save(Batch(k), &error)) _exit(3);
-    }
-    raise(SIGKILL);
-  }
-  int status = 0;
-  ASSERT_EQ(waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFSIGNALED(status));
+  ASSERT_NO_FATAL_FAILURE(SaveFiveBatchesThenSigkill());
   fs::resize_file(db(), 0);
   const std::string wal = ReadFile(db() + "-wal");
   ASSERT_FALSE(wal.empty());
