@@ -21,7 +21,7 @@
 #
 # A reused PCH is only valid when it was built with the flags and macros of the file that uses
 # it. The donors are targets of the top directory, so they carry the global flags (-Wall -Wextra
-# -Werror, build type, sanitizers, ATLAS_SHARED_DIR ...); <n> numbers the distinct sets of
+# -Werror, build type, sanitizers ...); <n> numbers the distinct sets of
 # compile options and definitions that a target receives from what it links (e.g. -pthread from
 # LCM's pkg-config, which defines _REENTRANT), and the donor of that set carries the same ones.
 # Definitions a target adds itself (ATLAS_FAKEDEV) or gets from a package found in a subfolder

@@ -6,6 +6,7 @@
 #include <string>
 #include <variant>
 
+#include "atlas_paths.h"
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/line_extraction.h"

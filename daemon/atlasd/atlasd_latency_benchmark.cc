@@ -66,6 +66,7 @@
 
 #include "atlas/health_t.hpp"
 #include "atlas/pose_t.hpp"
+#include "atlas_paths.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
 #include "daemon/config/config_loader.h"

@@ -12,6 +12,7 @@
 #include <map>
 #include <sstream>
 
+#include "atlas_paths.h"
 #include "daemon/atlasd/daemon_setup.h"
 
 namespace atlas {

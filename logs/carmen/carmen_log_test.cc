@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "atlas_paths.h"
+
 namespace atlas::carmen {
 namespace {
 

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "atlas_paths.h"
 #include "drivers/device/laser_reader.h"
 #include "drivers/device/odometry_reader.h"
 #include "drivers/device/sonar_reader.h"

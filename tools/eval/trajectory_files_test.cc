@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "atlas_paths.h"
 #include "formats/text_rows.h"
 
 namespace atlas::eval {

@@ -1,6 +1,7 @@
 // atlas-localmap-eval: evaluation of the line-feature EKF local map; one file per mode
 // (mc_mode.h, real_mode.h).
 
+#include "atlas_paths.h"
 #include "tools/eval/tool_modes.h"
 #include "tools/localmap_eval/mc_mode.h"
 #include "tools/localmap_eval/real_mode.h"

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "atlas_paths.h"
 #include "core/eval/error_stats.h"
 #include "core/eval/relations_metric.h"
 #include "core/localmap/line_ekf_map.h"

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "atlas_paths.h"
 #include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {
