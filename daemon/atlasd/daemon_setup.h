@@ -2,8 +2,8 @@
 // DaemonOptions (the configuration file) -> the options of each part atlasd runs: the device
 // readers, the mapper and the step loop. One place, so that live runs and replay agree.
 
-#include "daemon/atlasd/atlas_factory.h"
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/mapper_factory.h"
+#include "core/mapper/step_loop.h"
 #include "daemon/config/daemon_options.h"
 #include "drivers/device/laser_reader.h"
 #include "drivers/device/odometry_reader.h"

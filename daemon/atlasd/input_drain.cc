@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/step_loop.h"
 #include "daemon/lcm_out/lcm_convert.h"
 
 namespace atlas {

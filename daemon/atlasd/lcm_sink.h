@@ -4,7 +4,7 @@
 // loop thread's clock (docs/lcm.md).
 
 #include "core/atlas/atlas.h"
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/step_loop.h"
 #include "daemon/config/daemon_options.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 

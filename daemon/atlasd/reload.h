@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/atlas/atlas.h"
-#include "daemon/atlasd/atlas_factory.h"
+#include "core/mapper/mapper_factory.h"
 #include "daemon/config/daemon_options.h"
 
 namespace atlas {

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_step_sink.h"
 #include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/daemon_setup.h"
-#include "daemon/atlasd/fake_step_sink.h"
 #include "daemon/atlasd/input_drain.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 #include "formats/replay_dir.h"

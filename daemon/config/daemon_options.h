@@ -37,7 +37,7 @@ struct LaserOptions {
   MountPose mount{0.1, 0.0, 0.0};
   int queue_capacity = 8;  // scans between the reader thread and the loop
   // A scan was taken at its arrival stamp + time_offset_s (negative: before it), seconds: the
-  // loop looks the odometry up there (daemon/atlasd/step_loop.h says why). 0 on our robot
+  // loop looks the odometry up there (core/mapper/step_loop.h says why). 0 on our robot
   // until calibrated (docs/config.md, "Laser time offset"); mit-csail needs about -0.1.
   double time_offset_s = 0.0;
 };

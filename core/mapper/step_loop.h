@@ -64,8 +64,8 @@
 #include <vector>
 
 #include "core/atlas/atlas.h"
-#include "daemon/atlasd/atlas_factory.h"
-#include "daemon/atlasd/odometry_track.h"
+#include "core/mapper/mapper_factory.h"
+#include "core/mapper/odometry_track.h"
 
 namespace atlas {
 

@@ -1,4 +1,4 @@
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/step_loop.h"
 
 #include <algorithm>
 

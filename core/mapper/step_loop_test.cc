@@ -1,4 +1,4 @@
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/step_loop.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 
 #include "core/testing/atlas_test_world.h"
 #include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_step_sink.h"
 #include "core/testing/fake_wall_scanner.h"
-#include "daemon/atlasd/fake_step_sink.h"
 #include "sim/corridor.h"
 
 namespace atlas {
