@@ -82,6 +82,45 @@ TEST_F(StepLoopTest, LaserTimeOffsetShiftsTheOdometryLookupNotTheStamp) {
   }
 }
 
+// stamp_resolution: everything added is truncated to whole microseconds before the loop uses
+// it (the pose's stamp, the odometry lookup, last_scan_stamp); the default keeps nanoseconds.
+TEST_F(StepLoopTest, StampsAreTruncatedToTheStampResolution) {
+  for (const Duration resolution : {Duration::zero(), Duration(std::chrono::microseconds(1))}) {
+    Atlas atlas(TestWorld::Options(), world_.Factory(), nullptr);
+    StepLoopOptions o;
+    o.stamp_resolution = resolution;
+    ASSERT_EQ(o.Validate(), "");
+    StepLoop loop(o, settings_, &atlas);
+    FakeStepSink sink;
+    // Odometry 1 m apart 1 ms apart; the scan 0.999 us after the first sample.
+    loop.AddOdometry({Time(std::chrono::nanoseconds(1'000'000'000)), Pose2{}});
+    loop.AddScan(ScanAt(1.0));
+    loop.AddOdometry({Time(std::chrono::nanoseconds(1'001'000'000)), Pose2{1.0, 0, 0}});
+    LaserScan scan = ScanAt(1.0);
+    scan.stamp = Time(std::chrono::nanoseconds(1'000'000'999));
+    loop.AddScan(std::move(scan));
+    ASSERT_EQ(loop.StepAll(&sink), 2);
+    ASSERT_EQ(sink.poses.size(), 2u);
+    const Pose2 moved = Between(sink.poses[0].pose.pose.mean, sink.poses[1].pose.pose.mean);
+    if (resolution == Duration::zero()) {
+      EXPECT_EQ(sink.poses[1].stamp.time_since_epoch().count(), 1'000'000'999);
+      EXPECT_NEAR(moved.x, 0.000999, 1e-9);  // 999 ns of the 1 ms between the samples
+    } else {
+      EXPECT_EQ(sink.poses[1].stamp.time_since_epoch().count(), 1'000'000'000);
+      EXPECT_NEAR(moved.x, 0.0, 1e-9);
+    }
+    EXPECT_EQ(loop.last_scan_stamp(), sink.poses[1].stamp);
+  }
+}
+
+TEST_F(StepLoopTest, StampResolutionIsValidated) {
+  StepLoopOptions o;
+  o.stamp_resolution = Duration(-1);
+  EXPECT_NE(o.Validate().find("stamp_resolution"), std::string::npos);
+  o.stamp_resolution = std::chrono::milliseconds(1001);
+  EXPECT_NE(o.Validate().find("stamp_resolution"), std::string::npos);
+}
+
 TEST_F(StepLoopTest, LaserTimeOffsetBeyondOneSecondIsRejected) {
   StepLoopOptions o;
   o.laser_time_offset = std::chrono::milliseconds(-1001);

@@ -12,6 +12,7 @@
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_timing.h"
 #include "daemon/atlasd/reload.h"
+#include "daemon/lcm_out/lcm_convert.h"
 
 namespace atlas {
 namespace {
@@ -76,8 +77,11 @@ bool LoopThread::Start(Time start) {
   atlas_ = MakeAtlas(ToMapperSettings(options_));
   OpenStore();
   last_checkpoint_ = Now();
-  loop_ = std::make_unique<StepLoop>(ToStepLoopOptions(options_), ToMapperSettings(options_),
-                                     atlas_.get());
+  // The loop steps the stamps a recording of the raw channels keeps, so that `atlasd --replay`
+  // of the recording steps what the live loop stepped (core/mapper/step_loop.h).
+  StepLoopOptions loop_options = ToStepLoopOptions(options_);
+  loop_options.stamp_resolution = kUtimeResolution;
+  loop_ = std::make_unique<StepLoop>(loop_options, ToMapperSettings(options_), atlas_.get());
 
   odometry_ = std::make_unique<OdometryReader>(ToOdometryReaderOptions(options_));
   odometry_->Start();
