@@ -30,9 +30,16 @@ class StepLoopTest : public ::testing::Test {
     loop->AddScan(ScanAt(0.0));
     loop->StepAll(sink);
   }
+  // The fake maps move the robot by exactly the odometry increment they are given; scan
+  // matching (on by default) would replace it, and has its own tests (StepLoopScanMatch).
+  static MapperSettings WithoutScanMatching() {
+    MapperSettings s;
+    s.scan_match.enabled = false;
+    return s;
+  }
   TestWorld world_;
   Atlas atlas_;
-  MapperSettings settings_;
+  MapperSettings settings_ = WithoutScanMatching();
 };
 
 TEST_F(StepLoopTest, OdometryIsInterpolatedToTheScanStamp) {

@@ -5,8 +5,8 @@
 
 #include "core/atlas/atlas.h"
 #include "core/mapper/step_loop.h"
-#include "daemon/config/daemon_options.h"
 #include "daemon/lcm_out/atlas_publisher.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

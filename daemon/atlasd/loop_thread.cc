@@ -94,7 +94,7 @@ bool LoopThread::Start(Time start) {
   if (options_.sonar.enabled) {
     SonarReaderOptions so = ToSonarReaderOptions(options_);
     // Readings the maps do not use are drained with the scans (republished when asked).
-    if (options_.localmap.sensors != LocalMapSensors::kLaser)
+    if (options_.localmap.sensors != RangeSensors::kLaser)
       so.on_reading = [this] { shared_->SignalRange(); };
     sonar_ = std::make_unique<SonarReader>(so);
     sonar_->Start();
@@ -126,12 +126,12 @@ void LoopThread::OnOdometry(const OdometrySample& sample) {
 // localmap.sensors: the maps are stepped with the laser, the sonar, or both.
 void LoopThread::OnSonar(SonarReading& reading) {
   if (republish_raw_) publisher_->RawSonar(reading);
-  if (options_.localmap.sensors != LocalMapSensors::kLaser) loop_->AddSonar(std::move(reading));
+  if (options_.localmap.sensors != RangeSensors::kLaser) loop_->AddSonar(std::move(reading));
 }
 
 void LoopThread::OnScan(LaserScan& scan) {
   if (republish_raw_) publisher_->RawLaser(scan);
-  if (options_.localmap.sensors != LocalMapSensors::kSonar) loop_->AddScan(std::move(scan));
+  if (options_.localmap.sensors != RangeSensors::kSonar) loop_->AddScan(std::move(scan));
 }
 
 void LoopThread::PublishHealth(Time now) {

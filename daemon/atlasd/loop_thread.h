@@ -28,12 +28,12 @@
 #include "daemon/atlasd/input_drain.h"
 #include "daemon/atlasd/lcm_sink.h"
 #include "daemon/atlasd/live_daemon.h"
-#include "daemon/config/daemon_options.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 #include "daemon/store/atlas_store_writer.h"
 #include "drivers/device/laser_reader.h"
 #include "drivers/device/odometry_reader.h"
 #include "drivers/device/sonar_reader.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

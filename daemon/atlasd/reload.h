@@ -17,7 +17,7 @@
 
 #include "core/atlas/atlas.h"
 #include "core/mapper/mapper_factory.h"
-#include "daemon/config/daemon_options.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 
