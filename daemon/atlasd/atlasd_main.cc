@@ -11,6 +11,7 @@
 #include "daemon/atlasd/live_daemon.h"
 #include "daemon/atlasd/replay.h"
 #include "daemon/config/config_loader.h"
+#include "daemon/notify/stderr_log.h"
 
 namespace {
 
@@ -105,9 +106,9 @@ int main(int argc, char** argv) {
   atlas::ConfigResult config =
       atlas::LoadConfigFile(flags.config_path, atlas::ValidateDerivedOptions);
   if (!config.ok()) {
-    for (const auto& e : config.errors) std::fprintf(stderr, "%s\n", e.ToString().c_str());
-    std::fprintf(stderr, "atlasd: configuration %s rejected (exit 78)\n",
-                 flags.config_path.c_str());
+    for (const auto& e : config.errors) atlas::LogToStderr(atlas::LogPriority::kErr, e.ToString());
+    atlas::LogToStderr(atlas::LogPriority::kErr,
+                       "configuration " + flags.config_path + " rejected (exit 78)");
     return atlas::kExitConfigError;
   }
   std::fprintf(stderr, "atlasd: configuration %s\n", flags.config_path.c_str());
