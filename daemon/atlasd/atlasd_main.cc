@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "daemon/atlasd/atlas_export.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
@@ -43,6 +44,7 @@ options:
   --quiet                no health line
   --debug-stall-on-usr1  test hook: SIGUSR1 stalls the loop thread for 5 s (the watchdog
                          pings stop); never enable it in production
+  --version              the version (also printed at start-up and in the health message)
   -h, --help             this text
 
 signals: SIGTERM/SIGINT stop (STOPPING=1, exits within a second), SIGHUP reloads the
@@ -75,6 +77,9 @@ int main(int argc, char** argv) {
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;
+    } else if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlasd").c_str(), stdout);
+      return 0;
     } else if (a == "--check-config") {
       std::string file;
       if (!value(&file)) return Usage("--check-config needs a FILE");
@@ -100,6 +105,7 @@ int main(int argc, char** argv) {
       return Usage("unknown argument '" + a + "'");
     }
   }
+  atlas::LogToStderr(atlas::LogPriority::kInfo, std::string("version ") + atlas::AtlasVersion());
   if (flags.config_path.empty())
     flags.config_path =
         Exists("/etc/atlasd/atlasd.toml") ? "/etc/atlasd/atlasd.toml" : "config/atlasd.toml";

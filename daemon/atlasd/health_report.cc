@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "core/common/version.h"
 #include "daemon/lcm_out/lcm_convert.h"
 
 namespace atlas {
@@ -86,6 +87,7 @@ atlas::health_t MakeHealthMessage(const HealthInputs& in) {
                 static_cast<double>(h.resident_memory_bytes) / 1e6);
   status += buf;
   h.status = status;
+  h.version = AtlasVersion();
   return h;
 }
 

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "core/common/version.h"
 #include "core/testing/atlas_test_world.h"
 #include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/fake_step_sink.h"
@@ -47,6 +48,7 @@ TEST(HealthReport, CountsScanMatchesAndFallbacks) {
     in.step_budget_ms = 10.0;
     const health_t h = MakeHealthMessage(in);
     EXPECT_EQ(h.steps, scans + 1);
+    EXPECT_EQ(h.version, AtlasVersion());
     if (enabled) {
       EXPECT_EQ(h.scan_matches, scans - 1);
       EXPECT_EQ(h.scan_match_fallbacks, 1);

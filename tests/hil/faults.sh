@@ -30,3 +30,10 @@ for d in laser odometry sonar; do
   grep -qE "^atlasd: $d .*: running" "$WORK/atlasd.err" || fail "no '$d ...: running' on stderr"
 done
 pass "each driver said on stderr when it ran"
+# The version, at start-up and in the health message, is --version's.
+version=$("$ATLASD" --version)
+version=${version#atlasd }
+grep -qxF "atlasd: version $version" "$WORK/atlasd.err" || fail "no 'atlasd: version $version' on stderr"
+[ "$(summary_value "$S" health.version)" = "$version" ] ||
+  fail "health.version '$(summary_value "$S" health.version)', --version says '$version'"
+pass "version $version at start-up and in health"

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/config/config_loader.h"
 #include "formats/pose_file.h"
@@ -92,6 +93,7 @@ Options:
   --max-hypotheses N   live hypotheses (default 4)
   --skip-bad-lines     count malformed log lines instead of stopping at the first
   --quiet              no progress on stderr
+  --version            the version
   -h, --help           this text
 
 Exit status: 0 done, 1 the log could not be read or the output not written (or a sweep scored
@@ -167,6 +169,10 @@ int Main(int argc, char** argv) {
       if (v == nullptr) error = a + " needs a value";
       return v != nullptr && IntegerArgument(a, v, lo, hi, out, error);
     };
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-replay").c_str(), stdout);
+      return 0;
+    }
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       std::fputs(kOdometryNoiseHelp, stdout);
