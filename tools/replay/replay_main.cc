@@ -20,6 +20,7 @@
 #include "replay/replay_run.h"
 #include "replay/replay_source.h"
 #include "sim/reference_odometry.h"
+#include "tools/replay/progress.h"
 #include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {
@@ -257,7 +258,13 @@ int Main(int argc, char** argv) {
   if (stat(log_path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) log_path += "/run.clf";
 
   if (!quiet) std::fprintf(stderr, "atlas-replay: reading %s\n", log_path.c_str());
-  const ReplaySource source = ReadReplaySource(log_path, log_options, RawChannels(channels));
+  ProgressMeter meter(quiet ? nullptr : stderr, "atlas-replay", isatty(STDERR_FILENO) != 0);
+  meter.Begin("reading", "MB", 1e6);
+  const ReplaySource source = ReadReplaySource(
+      log_path, log_options, RawChannels(channels), [&](int64_t done, int64_t total) {
+        meter.Update(static_cast<double>(done), static_cast<double>(total));
+      });
+  meter.Finish();
   if (!source.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", source.error.c_str());
     return 1;
@@ -269,14 +276,8 @@ int Main(int argc, char** argv) {
                  log_path.c_str());
     return 1;
   }
-  const bool tty = isatty(STDERR_FILENO) != 0;
-  const auto start = std::chrono::steady_clock::now();
   auto progress = [&](int64_t done, int64_t total) {
-    if (quiet) return;
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "%satlas-replay: %lld/%lld scans, %.1f s%s", tty ? "\r" : "",
-                 static_cast<long long>(done), static_cast<long long>(total), s, tty ? "" : "\n");
+    meter.Update(static_cast<double>(done), static_cast<double>(total));
   };
   std::vector<TruthSample> reference;
   std::vector<carmen::CarmenEvent> synthesized;
@@ -305,11 +306,14 @@ int Main(int argc, char** argv) {
   if (sweep)
     return Sweep(corrected ? synthesized : source.carmen.events, options, sweep_range, out_dir,
                  quiet, log_path);
+  // Called every 50 scans; the meter prints when due.
+  meter.Begin("replaying", "scans", 1);
   ReplayResult r = corrected || !reference.empty()
                        ? RunReplay(corrected ? synthesized : source.carmen.events, options, out_dir,
-                                   progress, 1000, reference)
-                       : RunReplay(source.events, options, out_dir, progress, 1000);
-  if (!quiet && tty) std::fputc('\n', stderr);
+                                   progress, 50, reference)
+                       : RunReplay(source.events, options, out_dir, progress, 50);
+  meter.Update(static_cast<double>(r.summary.scans), static_cast<double>(r.summary.scans));
+  meter.Finish();
   if (!r.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", r.error.c_str());
     return 1;
