@@ -165,6 +165,7 @@ TEST(LcmTypes, HealthRoundTrip) {
   h.overruns = 2;
   h.resident_memory_bytes = int64_t{3} << 30;
   h.status = "ok: 12 frames";
+  h.version = "0.1.0 (git 990180e)";
   atlas::driver_health_t laser{};
   laser.name = "laser";
   laser.device = "/dev/ttyUSB0";
@@ -184,6 +185,7 @@ TEST(LcmTypes, HealthRoundTrip) {
   EXPECT_FLOAT_EQ(out.step_time_p99_us, 1900.0f);
   EXPECT_EQ(out.resident_memory_bytes, int64_t{3} << 30);
   EXPECT_EQ(out.status, "ok: 12 frames");
+  EXPECT_EQ(out.version, "0.1.0 (git 990180e)");
   ASSERT_EQ(out.num_drivers, 2);
   EXPECT_EQ(out.drivers[0].state, 4);
   EXPECT_EQ(out.drivers[0].bad_crc, 7);

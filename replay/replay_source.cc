@@ -18,7 +18,8 @@ bool BeginsWithLcmSyncWord(const std::string& path) {
   return read && b[0] == 0xED && b[1] == 0xA1 && b[2] == 0xDA && b[3] == 0x01;
 }
 
-void ReadLcm(const std::string& path, const LcmRawChannels& ch, ReplaySource* out) {
+void ReadLcm(const std::string& path, const LcmRawChannels& ch,
+             const carmen::ReadProgress& progress, ReplaySource* out) {
   LcmLogReader log;
   if (!log.Open(path)) {
     out->error = log.error();
@@ -26,6 +27,7 @@ void ReadLcm(const std::string& path, const LcmRawChannels& ch, ReplaySource* ou
   }
   LcmLogEvent e;
   while (log.Next(&e)) {
+    if (progress && log.events() % 4096 == 0) progress(log.bytes_read(), log.size());
     if (atlas::odometry_t m; e.channel == ch.odometry && log.Decode(e, &m)) {
       out->events.push_back(FromOdometryMessage(m));
     } else if (atlas::laser_scan_t m; e.channel == ch.laser && log.Decode(e, &m)) {
@@ -34,6 +36,7 @@ void ReadLcm(const std::string& path, const LcmRawChannels& ch, ReplaySource* ou
       out->events.push_back(FromSonarMessage(m));
     }
   }
+  if (progress) progress(log.bytes_read(), log.size());
   out->lcm_events = log.events();
   out->problems = log.Problems();
 }
@@ -41,14 +44,15 @@ void ReadLcm(const std::string& path, const LcmRawChannels& ch, ReplaySource* ou
 }  // namespace
 
 ReplaySource ReadReplaySource(const std::string& path, const carmen::CarmenLogOptions& carmen,
-                              const LcmRawChannels& channels) {
+                              const LcmRawChannels& channels,
+                              const carmen::ReadProgress& progress) {
   ReplaySource out;
   out.lcm = BeginsWithLcmSyncWord(path);
   if (out.lcm) {
-    ReadLcm(path, channels, &out);
+    ReadLcm(path, channels, progress, &out);
     return out;
   }
-  carmen::CarmenReadResult read = carmen::ReadCarmenLog(path, carmen);
+  carmen::CarmenReadResult read = carmen::ReadCarmenLog(path, carmen, progress);
   if (!read.ok()) {
     out.error = read.error;
     return out;

@@ -29,8 +29,10 @@ struct ReplaySource {
   std::string error;  // nothing could be read ("PATH: why")
 };
 
+// `progress` (optional): bytes of the file read so far and its size, now and then.
 ReplaySource ReadReplaySource(const std::string& path, const carmen::CarmenLogOptions& carmen,
-                              const LcmRawChannels& channels);
+                              const LcmRawChannels& channels,
+                              const carmen::ReadProgress& progress = {});
 
 // The raw channels of atlasd's configuration (lcm.channels.raw_*).
 LcmRawChannels RawChannels(const LcmChannels& channels);

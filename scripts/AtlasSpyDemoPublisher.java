@@ -132,6 +132,7 @@ public class AtlasSpyDemoPublisher {
         health.dominant_frame_id = 3;
         health.resident_memory_bytes = 24L << 20;
         health.status = "frame 3, q 0.87, 4 frames, step p99 0.9 ms";
+        health.version = "demo";
         lcm.publish("ATLAS_HEALTH", health);
       }
 

@@ -143,6 +143,9 @@ class StepLoop {
   int64_t scan_matches() const { return scan_matches_; }
   int64_t scan_match_fallbacks() const { return scan_match_fallbacks_; }
   bool laser_silent() const { return laser_silent_; }
+  // The pose last reported to the sink: the dominant one after a step, moved by the odometry
+  // while the laser is away (what ATLAS_POSE carries; the health line shows it too).
+  const DominantOutput& published_pose() const { return dead_reckoned_; }
   Time last_scan_stamp() const { return last_scan_stamp_; }
   const Atlas& atlas() const { return *atlas_; }
   StepTimeSummary TakePeriod();

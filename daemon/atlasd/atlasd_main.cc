@@ -6,10 +6,12 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "daemon/atlasd/atlas_export.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
 #include "daemon/atlasd/replay.h"
+#include "daemon/notify/stderr_log.h"
 #include "formats/config/config_loader.h"
 
 namespace {
@@ -42,6 +44,7 @@ options:
   --quiet                no health line
   --debug-stall-on-usr1  test hook: SIGUSR1 stalls the loop thread for 5 s (the watchdog
                          pings stop); never enable it in production
+  --version              the version (also printed at start-up and in the health message)
   -h, --help             this text
 
 signals: SIGTERM/SIGINT stop (STOPPING=1, exits within a second), SIGHUP reloads the
@@ -74,6 +77,9 @@ int main(int argc, char** argv) {
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;
+    } else if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlasd").c_str(), stdout);
+      return 0;
     } else if (a == "--check-config") {
       std::string file;
       if (!value(&file)) return Usage("--check-config needs a FILE");
@@ -99,15 +105,16 @@ int main(int argc, char** argv) {
       return Usage("unknown argument '" + a + "'");
     }
   }
+  atlas::LogToStderr(atlas::LogPriority::kInfo, std::string("version ") + atlas::AtlasVersion());
   if (flags.config_path.empty())
     flags.config_path =
         Exists("/etc/atlasd/atlasd.toml") ? "/etc/atlasd/atlasd.toml" : "config/atlasd.toml";
   atlas::ConfigResult config =
       atlas::LoadConfigFile(flags.config_path, atlas::ValidateDerivedOptions);
   if (!config.ok()) {
-    for (const auto& e : config.errors) std::fprintf(stderr, "%s\n", e.ToString().c_str());
-    std::fprintf(stderr, "atlasd: configuration %s rejected (exit 78)\n",
-                 flags.config_path.c_str());
+    for (const auto& e : config.errors) atlas::LogToStderr(atlas::LogPriority::kErr, e.ToString());
+    atlas::LogToStderr(atlas::LogPriority::kErr,
+                       "configuration " + flags.config_path + " rejected (exit 78)");
     return atlas::kExitConfigError;
   }
   std::fprintf(stderr, "atlasd: configuration %s\n", flags.config_path.c_str());

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/version.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "formats/config/config_loader.h"
 
@@ -17,6 +18,7 @@ constexpr const char* kHelp =
     "(for a file name that starts with '-').\n"
     "\n"
     "options:\n"
+    "  --version   the version\n"
     "  -h, --help  this text\n"
     "\n"
     "Exit status: 0 when every file is valid, 78 (EX_CONFIG) otherwise, 2 on a bad command line\n"
@@ -36,6 +38,10 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (!options_done && (a == "-h" || a == "--help")) {
       std::fputs(kHelp, stdout);
+      return 0;
+    }
+    if (!options_done && a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-check-config").c_str(), stdout);
       return 0;
     }
     if (!options_done && a == "--") {

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "core/common/version.h"
 #include "daemon/lcm_out/lcm_convert.h"
 
 namespace atlas {
@@ -81,11 +82,14 @@ atlas::health_t MakeHealthMessage(const HealthInputs& in) {
                   100.0 * static_cast<double>(h.scan_matches) / static_cast<double>(tried));
     status += buf;
   }
+  // The pose published last (dead-reckoned while the laser is away), not the atlas's own.
+  const DominantOutput& p = loop.published_pose();
   std::snprintf(buf, sizeof(buf), " | pose f%d (%.2f, %.2f, %.2f) q %.2f | rss %.1f MB",
-                h.dominant_frame_id, d.pose.mean.x, d.pose.mean.y, d.pose.mean.theta, d.q,
+                p.valid ? p.frame : -1, p.pose.mean.x, p.pose.mean.y, p.pose.mean.theta, p.q,
                 static_cast<double>(h.resident_memory_bytes) / 1e6);
   status += buf;
   h.status = status;
+  h.version = AtlasVersion();
   return h;
 }
 

@@ -15,6 +15,7 @@
 #include "daemon/atlasd/loop_thread.h"
 #include "daemon/lcm_out/multicast_route.h"
 #include "daemon/notify/service_notifier.h"
+#include "daemon/notify/stderr_log.h"
 #include "formats/config/config_loader.h"
 
 namespace atlas {
@@ -28,8 +29,8 @@ constexpr int kExitSoftware = 70;
 void QueueReload(const std::string& config_path, LoopShared* shared) {
   ConfigResult r = LoadConfigFile(config_path, ValidateDerivedOptions);
   if (!r.ok()) {
-    std::fprintf(stderr, "atlasd: reload refused, the running configuration stays:\n");
-    for (const auto& e : r.errors) std::fprintf(stderr, "  %s\n", e.ToString().c_str());
+    LogToStderr(LogPriority::kWarning, "reload refused, the running configuration stays:");
+    for (const auto& e : r.errors) LogToStderr(LogPriority::kWarning, "  " + e.ToString());
     return;
   }
   std::lock_guard<std::mutex> lock(shared->mutex);
@@ -42,7 +43,7 @@ void QueueReload(const std::string& config_path, LoopShared* shared) {
 int RunLiveDaemon(const DaemonOptions& options, const LiveFlags& flags) {
   const Time start = Now();
   if (std::string e = ValidateDerivedOptions(options); !e.empty()) {
-    std::fprintf(stderr, "atlasd: configuration rejected:\n%s", e.c_str());
+    LogToStderr(LogPriority::kErr, "configuration rejected: " + e);
     return kExitConfigError;
   }
   // Signals are handled by the main thread only (sigtimedwait); block them before any thread.
@@ -52,10 +53,10 @@ int RunLiveDaemon(const DaemonOptions& options, const LiveFlags& flags) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   if (options.scheduling.mlockall && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
-    std::fprintf(stderr,
-                 "atlasd: warning: scheduling.mlockall refused (%s); memory may be paged out "
-                 "(raise LimitMEMLOCK or grant CAP_IPC_LOCK)\n",
-                 std::strerror(errno));
+    LogToStderr(LogPriority::kWarning, std::string("scheduling.mlockall refused (") +
+                                           std::strerror(errno) +
+                                           "); memory may be paged out (raise LimitMEMLOCK or "
+                                           "grant CAP_IPC_LOCK)");
 
   // A robot may boot before its network: wait (stoppable) for a route to the LCM group, as a
   // missing device is waited for, instead of failing the start.
@@ -64,10 +65,11 @@ int RunLiveDaemon(const DaemonOptions& options, const LiveFlags& flags) {
       options.lcm.url, RouteWaitOptions{},
       [&notifier](int error, Duration waited) {
         if (waited == Duration::zero())
-          std::fprintf(stderr,
-                       "atlasd: no route to lcm.url's multicast group (%s); waiting for one "
-                       "(ip route add 224.0.0.0/4 dev IFACE, or the network's .network file)\n",
-                       std::strerror(error));
+          LogToStderr(LogPriority::kWarning,
+                      std::string("no route to lcm.url's multicast group (") +
+                          std::strerror(error) +
+                          "); waiting for one (ip route add 224.0.0.0/4 dev IFACE, or the "
+                          "network's .network file)");
         notifier.Status(std::string("waiting for a multicast route for LCM: ") +
                         std::strerror(error));
         notifier.ExtendTimeout(std::chrono::seconds(5));
@@ -99,10 +101,12 @@ int RunLiveDaemon(const DaemonOptions& options, const LiveFlags& flags) {
     const Time now = Now();
     if (sig == SIGTERM || sig == SIGINT) break;
     if (shared.loop_failed.load(std::memory_order_acquire)) {
-      std::fprintf(stderr,
-                   "atlasd: exiting: the atlas is saved up to its last checkpoint (%.1f s or "
-                   "less ago), from which the next start resumes\n",
-                   options.state.save_period_s);
+      char b[160];
+      std::snprintf(b, sizeof(b),
+                    "exiting: the atlas is saved up to its last checkpoint (%.1f s or less "
+                    "ago), from which the next start resumes",
+                    options.state.save_period_s);
+      LogToStderr(LogPriority::kErr, b);
       exit_code = kExitSoftware;
       break;
     }
@@ -118,7 +122,7 @@ int RunLiveDaemon(const DaemonOptions& options, const LiveFlags& flags) {
       if (ReadyNow(shared.loop_running.load(), loop.Drivers(), now, ready_deadline, &all)) {
         ready = true;
         notifier.Ready();
-        if (!all) std::fprintf(stderr, "atlasd: ready without every device (see health)\n");
+        if (!all) LogToStderr(LogPriority::kWarning, "ready without every device (see health)");
       }
     }
     const bool healthy = HeartbeatFresh(now, shared.heartbeat_ns.load(std::memory_order_acquire),

@@ -13,6 +13,7 @@
 #include "daemon/atlasd/live_timing.h"
 #include "daemon/atlasd/reload.h"
 #include "daemon/lcm_out/lcm_convert.h"
+#include "daemon/notify/stderr_log.h"
 
 namespace atlas {
 namespace {
@@ -23,20 +24,18 @@ void ApplyScheduling(const SchedulingOptions& s) {
     p.sched_priority = s.priority;
     const int policy = s.policy == SchedPolicy::kFifo ? SCHED_FIFO : SCHED_RR;
     if (int e = pthread_setschedparam(pthread_self(), policy, &p); e != 0)
-      std::fprintf(stderr,
-                   "atlasd: warning: scheduling.policy/priority refused (%s); the loop runs "
-                   "with the default policy (grant CAP_SYS_NICE or LimitRTPRIO to allow it)\n",
-                   std::strerror(e));
+      LogToStderr(LogPriority::kWarning,
+                  std::string("scheduling.policy/priority refused (") + std::strerror(e) +
+                      "); the loop runs with the default policy (grant CAP_SYS_NICE or "
+                      "LimitRTPRIO to allow it)");
   }
   if (!s.cpu_affinity.empty()) {
     cpu_set_t set;
     CPU_ZERO(&set);
     for (int c : s.cpu_affinity) CPU_SET(c, &set);
     if (int e = pthread_setaffinity_np(pthread_self(), sizeof(set), &set); e != 0)
-      std::fprintf(stderr,
-                   "atlasd: warning: scheduling.cpu_affinity refused (%s); the loop may run on "
-                   "any CPU\n",
-                   std::strerror(e));
+      LogToStderr(LogPriority::kWarning, std::string("scheduling.cpu_affinity refused (") +
+                                             std::strerror(e) + "); the loop may run on any CPU");
   }
 }
 
@@ -65,10 +64,8 @@ bool LoopThread::Start(Time start) {
   start_ = start;
   lcm_ = std::make_unique<lcm::LCM>(options_.lcm.url);
   if (!lcm_->good()) {
-    std::fprintf(stderr,
-                 "atlasd: cannot open LCM at lcm.url = \"%s\" (is there a multicast route? see "
-                 "docs/atlasd.md)\n",
-                 options_.lcm.url.c_str());
+    LogToStderr(LogPriority::kErr, "cannot open LCM at lcm.url = \"" + options_.lcm.url +
+                                       "\" (is there a multicast route? see docs/atlasd.md)");
     return false;
   }
   publisher_ = std::make_unique<AtlasPublisher>(lcm_.get(), options_.lcm.channels);
@@ -83,16 +80,22 @@ bool LoopThread::Start(Time start) {
   loop_options.stamp_resolution = kUtimeResolution;
   loop_ = std::make_unique<StepLoop>(loop_options, ToMapperSettings(options_), atlas_.get());
 
-  odometry_ = std::make_unique<OdometryReader>(ToOdometryReaderOptions(options_));
+  // Each driver's state changes, once each, with their reason (DriverLog).
+  const DriverLogSink log = [](const DriverLogLine& l) { LogToStderr(l.priority, l.text); };
+  OdometryReaderOptions oo = ToOdometryReaderOptions(options_);
+  oo.reconnect.log = log;
+  odometry_ = std::make_unique<OdometryReader>(oo);
   odometry_->Start();
   if (options_.laser.enabled) {
     LaserReaderOptions lo = ToLaserReaderOptions(options_);
     lo.on_scan = [this] { shared_->SignalRange(); };
+    lo.reconnect.log = log;
     laser_ = std::make_unique<LaserReader>(lo);
     laser_->Start();
   }
   if (options_.sonar.enabled) {
     SonarReaderOptions so = ToSonarReaderOptions(options_);
+    so.reconnect.log = log;
     // Readings the maps do not use are drained with the scans (republished when asked).
     if (options_.localmap.sensors != RangeSensors::kLaser)
       so.on_reading = [this] { shared_->SignalRange(); };
@@ -186,9 +189,9 @@ void LoopThread::ApplyReload(const DaemonOptions& loaded) {
 // unusable (the daemon then maps without saving, and says so).
 bool LoopThread::OpenStore() {
   const StoreOpenResult opened = store_.Open(options_.state.directory);
-  std::fprintf(stderr, "atlasd: %s\n", opened.message.c_str());
+  LogToStderr(opened.ok() ? LogPriority::kInfo : LogPriority::kWarning, opened.message);
   if (!opened.ok()) {
-    std::fprintf(stderr, "atlasd: warning: the atlas will NOT be saved (the reason is above)\n");
+    LogToStderr(LogPriority::kWarning, "the atlas will NOT be saved (the reason is above)");
     return false;
   }
   const ResumeResult resumed = ResumeFromStore(&store_, atlas_.get());
@@ -216,7 +219,7 @@ void LoopThread::Run() {
   try {
     RunSteps();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "atlasd: the step loop stopped: %s\n", e.what());
+    LogToStderr(LogPriority::kErr, std::string("the step loop stopped: ") + e.what());
     shared_->loop_running.store(false);
     shared_->loop_failed.store(true, std::memory_order_release);
     return;

@@ -45,11 +45,13 @@ RouteWaitResult WaitForMulticastRoute(
     const std::function<bool(Duration)>& sleep) {
   const std::optional<uint32_t> group = LcmMulticastGroup(url);
   if (!group) return RouteWaitResult::kNotNeeded;
-  const Time first = Now();
+  std::optional<Time> first;  // of the first failed lookup: its report says zero
   for (;;) {
     const int error = options.route_error(*group);
     if (error == 0) return RouteWaitResult::kRouted;
-    waiting(error, Now() - first);
+    const Time now = Now();
+    if (!first) first = now;
+    waiting(error, now - *first);
     if (!sleep(options.poll_period)) return RouteWaitResult::kStopped;
   }
 }

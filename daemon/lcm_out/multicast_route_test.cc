@@ -41,9 +41,13 @@ TEST(WaitForMulticastRoute, WaitsUntilTheRouteAppearsSayingWhy) {
     return e;
   };
   std::vector<int> reported;
-  std::vector<Duration> slept;
+  std::vector<Duration> waited, slept;
   const RouteWaitResult r = WaitForMulticastRoute(
-      "udpm://239.255.76.67:7667?ttl=1", o, [&](int e, Duration) { reported.push_back(e); },
+      "udpm://239.255.76.67:7667?ttl=1", o,
+      [&](int e, Duration w) {
+        reported.push_back(e);
+        waited.push_back(w);
+      },
       [&](Duration d) {
         slept.push_back(d);
         return true;
@@ -52,6 +56,10 @@ TEST(WaitForMulticastRoute, WaitsUntilTheRouteAppearsSayingWhy) {
   EXPECT_EQ(asked, (std::vector<uint32_t>{0xEFFF4C43u, 0xEFFF4C43u, 0xEFFF4C43u}));
   EXPECT_EQ(reported, (std::vector<int>{ENETUNREACH, ENETUNREACH}));
   EXPECT_EQ(slept, (std::vector<Duration>{o.poll_period, o.poll_period}));
+  // The first report is at zero (atlasd says the reason on stderr then, once).
+  ASSERT_EQ(waited.size(), 2u);
+  EXPECT_EQ(waited[0], Duration::zero());
+  EXPECT_GE(waited[1], Duration::zero());
 }
 
 TEST(WaitForMulticastRoute, StopsWhenToldTo) {

@@ -28,7 +28,7 @@ Duration BackoffDelay(const ReconnectOptions& options, int failures) {
 }
 
 DeviceReader::DeviceReader(std::string device, const ReconnectOptions& options)
-    : health_(std::move(device)), reconnect_(options) {}
+    : health_(device), reconnect_(options), log_(device) {}
 
 DeviceReader::~DeviceReader() { Stop(); }
 
@@ -41,8 +41,10 @@ void DeviceReader::Start() {
     try {
       Loop();
     } catch (const std::exception& e) {
-      health_.SetError(std::string("the reader stopped: ") + e.what());
+      const std::string why = std::string("the reader stopped: ") + e.what();
+      health_.SetError(why);
       health_.SetState(DriverState::kFailed);
+      Say(log_.GaveUp(why));
     }
   });
 }
@@ -68,9 +70,14 @@ bool DeviceReader::SleepFor(Duration d) {
 }
 
 bool DeviceReader::TrackSilence(bool got_data, Time now) {
+  if (health_.messages.load(std::memory_order_relaxed) > session_start_messages_)
+    Say(log_.Delivering());
   if (got_data || last_data_ == Time{}) {
     last_data_ = now;
-    if (stalled_) health_.SetState(DriverState::kRunning);
+    if (stalled_) {
+      health_.SetState(DriverState::kRunning);
+      Say(log_.Resumed());
+    }
     stalled_ = false;
     return false;
   }
@@ -79,7 +86,9 @@ bool DeviceReader::TrackSilence(bool got_data, Time now) {
     stalled_ = true;
     health_.stalls.fetch_add(1, std::memory_order_relaxed);
     health_.SetState(DriverState::kStalled);
-    health_.SetError("no data for " + std::to_string(ToSeconds(silent)).substr(0, 4) + " s");
+    const std::string why = "no data for " + std::to_string(ToSeconds(silent)).substr(0, 4) + " s";
+    health_.SetError(why);
+    Say(log_.Stalled(why));
   }
   return silent >= reconnect_.reopen_after_silence;
 }
@@ -88,10 +97,15 @@ void DeviceReader::Loop() {
   if (reconnect_.realtime_priority > 0) {
     sched_param p{};
     p.sched_priority = reconnect_.realtime_priority;
-    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0)
-      health_.SetError("SCHED_FIFO priority " + std::to_string(reconnect_.realtime_priority) +
-                       " refused (" + strerror(err) + "): running at normal priority");
+    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0) {
+      const std::string why = "SCHED_FIFO priority " +
+                              std::to_string(reconnect_.realtime_priority) + " refused (" +
+                              strerror(err) + "): running at normal priority";
+      health_.SetError(why);
+      ReportCondition(LogPriority::kWarning, why);
+    }
   }
+  Say(log_.Connecting());
   int failures = 0;  // consecutive attempts without data (see BackoffDelay)
   bool ever_connected = false;
   while (!Stopping()) {
@@ -105,8 +119,10 @@ void DeviceReader::Loop() {
       health_.SetError(error);
       if (reconnect_.max_attempts > 0 && failures >= reconnect_.max_attempts) {
         health_.SetState(DriverState::kFailed);
+        Say(log_.GaveUp(error + " (" + std::to_string(failures) + " attempts)"));
         return;
       }
+      Say(log_.AttemptFailed(error));
       if (!BackoffSleep(BackoffDelay(reconnect_, failures))) break;
       continue;
     }
@@ -114,6 +130,7 @@ void DeviceReader::Loop() {
     ever_connected = true;
     last_data_ = Time{};
     stalled_ = false;
+    session_start_messages_ = messages_before;
     health_.SetState(DriverState::kRunning);
     const SessionEnd end = ReadUntilGone(&error);
     Disconnect();
@@ -121,6 +138,10 @@ void DeviceReader::Loop() {
     health_.disconnects.fetch_add(1, std::memory_order_relaxed);
     health_.SetError(error);
     health_.SetState(DriverState::kReconnecting);
+    // A session that ended before its first message was checked here is no loss (said once
+    // per reason, as a failed open).
+    if (health_.messages.load(std::memory_order_relaxed) > messages_before) Say(log_.Delivering());
+    Say(log_.Lost(error));
     // Only a session that delivered data starts the backoff again from initial_backoff; one
     // that opened and died at once is a failure like a failed open, so the backoff grows.
     if (health_.messages.load(std::memory_order_relaxed) > messages_before) failures = 0;
@@ -128,6 +149,7 @@ void DeviceReader::Loop() {
     if (!BackoffSleep(BackoffDelay(reconnect_, failures))) break;
   }
   health_.SetState(DriverState::kStopped);
+  Say(log_.Stopped());
 }
 
 }  // namespace atlas

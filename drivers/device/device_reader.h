@@ -18,6 +18,7 @@
 
 #include "core/common/time.h"
 #include "drivers/device/driver_health.h"
+#include "drivers/device/driver_log.h"
 #include "drivers/device/gap_resync.h"
 #include "drivers/serial/serial_port.h"
 
@@ -37,6 +38,9 @@ struct ReconnectOptions {
   // does not delay the arrival stamps. Needs CAP_SYS_NICE (or an rtprio limit); when it is
   // refused the thread runs normally and last_error says so.
   int realtime_priority = 0;
+  // Where the reader says each change of its state, once, with the reason (DriverLog); called
+  // from the reader thread. May be empty (nothing is said; the health still has it all).
+  DriverLogSink log;
   std::string Validate() const;
 };
 
@@ -78,6 +82,10 @@ class DeviceReader {
   // Silence bookkeeping for ReadUntilGone: call on every read with or without data. Returns
   // true when the silence has lasted reopen_after_silence (the session should end as gone).
   bool TrackSilence(bool got_data, Time now);
+  // A condition of the device or its link (DriverLog::Condition), said once per change.
+  void ReportCondition(LogPriority priority, std::string_view text) {
+    Say(log_.Condition(priority, text));
+  }
 
   // The session loop of a serial device (laser, sonar): polls `port`, feeds every byte to
   // `decoder` (and records it in `resync`), hands what the decoder finds to
@@ -133,6 +141,9 @@ class DeviceReader {
 
  private:
   void Loop();
+  void Say(const std::optional<DriverLogLine>& line) {
+    if (line && reconnect_.log) reconnect_.log(*line);
+  }
 
   std::thread thread_;
   std::atomic<bool> stop_{false};
@@ -140,6 +151,8 @@ class DeviceReader {
   std::condition_variable sleep_cv_;
   Time last_data_{};
   bool stalled_ = false;
+  DriverLog log_;  // reader thread only
+  uint64_t session_start_messages_ = 0;
 };
 
 }  // namespace atlas

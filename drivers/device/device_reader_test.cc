@@ -137,6 +137,48 @@ TEST(DeviceReaderTest, BackoffGrowsWhileSessionsBringNoData) {
   EXPECT_EQ(h.messages, 1u);
 }
 
+// The lines a reader says, collected from its thread.
+class LogLines {
+ public:
+  DriverLogSink Sink() {
+    return [this](const DriverLogLine& l) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      lines_.push_back(l);
+    };
+  }
+  std::vector<DriverLogLine> lines() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lines_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<DriverLogLine> lines_;
+};
+
+TEST(DeviceReaderTest, AFlappingDeviceSaysEachChangeOnceNotEachRetry) {
+  LogLines log;
+  ReconnectOptions o;
+  o.initial_backoff = milliseconds(5);
+  o.max_backoff = milliseconds(80);
+  o.log = log.Sink();
+  FlappingDevice d(o, /*deliver_in=*/4);
+  d.Start();
+  const Time deadline = Now() + std::chrono::seconds(5);
+  while (d.delays().size() < 8 && Now() < deadline) std::this_thread::sleep_for(milliseconds(1));
+  d.Stop();
+  const std::string down = "CAN can0: interface is down (ENETDOWN)";
+  const std::vector<DriverLogLine> want = {
+      {LogPriority::kInfo, "flapping: connecting"},
+      {LogPriority::kErr, "flapping: " + down + "; retrying"},
+      {LogPriority::kNotice, "flapping: running after 3 failed attempts"},
+      {LogPriority::kWarning, "flapping: lost (" + down + "); reconnecting"},
+      {LogPriority::kErr, "flapping: " + down + "; retrying"},
+      {LogPriority::kInfo, "flapping: stopped"},
+  };
+  EXPECT_EQ(log.lines(), want);
+}
+
 // A session that throws (what is left once no input can: out of memory) stops that reader,
 // said in its health, and leaves the process running.
 class ThrowingDevice final : public DeviceReader {
@@ -167,7 +209,9 @@ TEST(DeviceReaderTest, AnExceptionStopsOnlyThatReaderAndSaysSo) {
 // A device that is not there: the reader keeps trying with backoff, says why, and stops
 // promptly.
 TEST(DeviceReaderTest, MissingDeviceIsRetriedAndReported) {
+  LogLines log;
   LaserReaderOptions o;
+  o.reconnect.log = log.Sink();
   o.device = "/nonexistent/laser";
   o.reconnect.initial_backoff = milliseconds(5);
   o.reconnect.max_backoff = milliseconds(20);
@@ -183,6 +227,12 @@ TEST(DeviceReaderTest, MissingDeviceIsRetriedAndReported) {
   EXPECT_NE(h.last_error.find("ENOENT"), std::string::npos) << h.last_error;
   r.Stop();
   EXPECT_EQ(r.Health().state, DriverState::kStopped);
+  // Said once with its reason, not once per retry.
+  const std::vector<DriverLogLine> lines = log.lines();
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[1].priority, LogPriority::kErr);
+  EXPECT_NE(lines[1].text.find("ENOENT"), std::string::npos) << lines[1].text;
+  EXPECT_EQ(lines[2].text, "laser /nonexistent/laser: stopped");
 }
 
 TEST(DeviceReaderTest, GivesUpAfterTheAttemptBudget) {

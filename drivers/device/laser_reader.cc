@@ -195,14 +195,16 @@ void LaserReader::HandleTelegram(const sick::TelegramView& t, Time stamp) {
   }
   health_.CountMessage(stamp);
   if (info.unit != options_.unit) {
-    health_.SetDeviceStatus(info.unit == sick::Unit::kMillimetre
-                                ? "scans in mm, laser.unit says cm"
-                                : "scans in cm, laser.unit says mm");
+    const char* mismatch = info.unit == sick::Unit::kMillimetre ? "scans in mm, laser.unit says cm"
+                                                                : "scans in cm, laser.unit says mm";
+    health_.SetDeviceStatus(mismatch);
+    ReportCondition(LogPriority::kWarning, mismatch);
   } else if (info.status.level() != sick::StatusLevel::kOk || info.status.pollution()) {
     char b[64];
     std::snprintf(b, sizeof(b), "scanner status 0x%02X%s", info.status.raw,
                   info.status.pollution() ? " (window dirty)" : "");
     health_.SetDeviceStatus(b);
+    ReportCondition(LogPriority::kWarning, b);
   }
   queue_.Push(std::move(scan_));
   if (options_.on_scan) options_.on_scan();

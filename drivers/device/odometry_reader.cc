@@ -64,6 +64,14 @@ void OdometryReader::HandleFrame(const CanReadResult& r) {
                       m.system.vehicle_state, m.system.control_mode, m.system.battery_volts(),
                       m.system.fault_bits);
         health_.SetDeviceStatus(b);
+        // Said when the state, mode or faults change (not the battery voltage).
+        if (!have_system_ || m.system.vehicle_state != last_system_.vehicle_state ||
+            m.system.control_mode != last_system_.control_mode ||
+            m.system.fault_bits != last_system_.fault_bits)
+          ReportCondition(m.system.fault_bits != 0 || m.system.vehicle_state != 0
+                              ? LogPriority::kWarning
+                              : LogPriority::kInfo,
+                          b);
         last_system_ = m.system;
         have_system_ = true;
       }
@@ -104,6 +112,7 @@ DeviceReader::SessionEnd OdometryReader::ReadUntilGone(std::string* error) {
         // the health; the silence rule below still reopens after reopen_after_silence, with
         // a backoff that grows while no frame comes (DeviceReader).
         health_.SetError(r.error + "; waiting for it to come up");
+        ReportCondition(LogPriority::kWarning, r.error + "; waiting for it to come up");
         break;
       case CanRead::kGone:
       case CanRead::kError:

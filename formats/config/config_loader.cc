@@ -433,15 +433,26 @@ ConfigResult LoadFromTable(const toml::table& root, const std::string& file,
   TomlReader reader(root, file, &result.errors);
   config::VisitOptions(reader, result.options);
   reader.Finish();
-  if (!result.ok()) return result;  // cross-field rules only make sense on valid fields
+  // Every rule between keys whose values were read without error is checked in the same run,
+  // so that one --check-config lists every problem.
+  std::vector<std::string> bad_keys;
+  for (const ConfigError& e : result.errors) bad_keys.push_back(e.key);
+  const auto usable = [&](const std::string& key) {
+    for (const std::string& b : bad_keys)
+      if (b.empty() || key == b || key.rfind(b + ".", 0) == 0) return false;
+    return true;
+  };
+  const size_t read_errors = result.errors.size();
   const auto report = [&](const std::string& key, const std::string& message) {
     const toml::node_view<const toml::node> n = root.at_path(key);
     const toml::source_region where = n ? n.node()->source() : toml::source_region{};
     result.errors.push_back(ConfigError{file, static_cast<int>(where.begin.line),
                                         static_cast<int>(where.begin.column), key, message});
   };
-  config::CrossCheck(result.options, report);
-  if (!result.ok() || !derived) return result;
+  config::CrossCheck(result.options, report, usable);
+  // The modules' own checks, unless a rule between keys is broken (they would say it again).
+  // A key with an error keeps its default, which no derived problem is blamed on.
+  if (result.errors.size() > read_errors || !derived) return result;
   // What the modules (atlas, local maps, loop, device readers) refuse although the file's own
   // ranges allow it: named at the keys that cause it, else at the file.
   for (const std::string& problem : Lines(derived(result.options))) {
@@ -545,31 +556,44 @@ std::string CheckAbsolutePath(const std::string& s) {
 }
 
 void CrossCheck(const DaemonOptions& o,
-                const std::function<void(const std::string&, const std::string&)>& report) {
-  if (o.laser.angular_resolution_deg < 0.5 && o.laser.angular_range_deg != 100) {
+                const std::function<void(const std::string&, const std::string&)>& report,
+                const std::function<bool(const std::string&)>& usable) {
+  const auto read = [&](std::initializer_list<std::string> keys) {
+    if (!usable) return true;
+    for (const std::string& k : keys)
+      if (!usable(k)) return false;
+    return true;
+  };
+  if (read({"laser.angular_resolution_deg", "laser.angular_range_deg"}) &&
+      o.laser.angular_resolution_deg < 0.5 && o.laser.angular_range_deg != 100) {
     report("laser.angular_resolution_deg", "0.25 degrees needs laser.angular_range_deg = 100");
   }
-  if (o.laser.unit == sick::Unit::kMillimetre && o.laser.max_range_m > 8.191) {
+  if (read({"laser.unit", "laser.max_range_m"}) && o.laser.unit == sick::Unit::kMillimetre &&
+      o.laser.max_range_m > 8.191) {
     report("laser.max_range_m", "with unit \"mm\" the scanner measures at most 8.191 m");
   }
-  if (o.sonar.enabled && o.laser.enabled && o.sonar.device == o.laser.device) {
+  if (read({"sonar.enabled", "laser.enabled", "sonar.device", "laser.device"}) && o.sonar.enabled &&
+      o.laser.enabled && o.sonar.device == o.laser.device) {
     report("sonar.device", "is the same device as laser.device");
   }
-  if (o.localmap.sensors != RangeSensors::kLaser && !o.sonar.enabled) {
+  if (read({"localmap.sensors", "sonar.enabled"}) &&
+      o.localmap.sensors != RangeSensors::kLaser && !o.sonar.enabled) {
     report("localmap.sensors", "maps with the sonar: needs sonar.enabled = true");
   }
-  if (o.localmap.sensors == RangeSensors::kBoth && !o.laser.enabled) {
+  if (read({"localmap.sensors", "laser.enabled"}) && o.localmap.sensors == RangeSensors::kBoth &&
+      !o.laser.enabled) {
     report("localmap.sensors", "\"both\" maps with the laser too: needs laser.enabled = true");
   }
   const bool realtime = o.scheduling.policy != SchedPolicy::kOther;
-  if (realtime && o.scheduling.priority < 1) {
+  const bool scheduling = read({"scheduling.policy", "scheduling.priority"});
+  if (scheduling && realtime && o.scheduling.priority < 1) {
     report("scheduling.priority", "must be 1..99 with policy \"fifo\" or \"rr\"");
-  } else if (!realtime && o.scheduling.priority != 0) {
+  } else if (scheduling && !realtime && o.scheduling.priority != 0) {
     report("scheduling.priority", "must be 0 with policy \"other\"");
   }
   std::set<int> cpus;
   for (int c : o.scheduling.cpu_affinity) {
-    if (!cpus.insert(c).second) {
+    if (read({"scheduling.cpu_affinity"}) && !cpus.insert(c).second) {
       report("scheduling.cpu_affinity", "lists CPU " + std::to_string(c) + " twice");
     }
   }
@@ -581,7 +605,9 @@ void CrossCheck(const DaemonOptions& o,
       {"raw_laser", &c.raw_laser}, {"raw_sonar", &c.raw_sonar}};
   for (size_t i = 0; i < std::size(channels); ++i) {
     for (size_t j = 0; j < i; ++j) {
-      if (*channels[i].second == *channels[j].second) {
+      if (read({std::string("lcm.channels.") + channels[i].first,
+                std::string("lcm.channels.") + channels[j].first}) &&
+          *channels[i].second == *channels[j].second) {
         report(std::string("lcm.channels.") + channels[i].first,
                "is the same channel as lcm.channels." + std::string(channels[j].first));
       }

@@ -238,6 +238,38 @@ x = 1
   EXPECT_EQ(line_of["nonsense"], 6);
 }
 
+// One run lists every problem: the rules between keys and the modules' checks are checked
+// beside values out of range, except the rules that read a key whose value was refused.
+TEST(ConfigLoader, RulesBetweenKeysAreCheckedInTheRunThatFindsRangeErrors) {
+  const ConfigResult r = LoadConfigString(
+      "[laser]\nunit = \"mm\"\nmax_range_m = 20\nbaud = 1\n[scheduling]\npolicy = \"other\"\n"
+      "priority = 5\n",
+      "test.toml");
+  std::map<std::string, int> line_of;
+  for (const ConfigError& e : r.errors) line_of[e.key] = e.line;
+  EXPECT_EQ(r.errors.size(), 3u);
+  EXPECT_EQ(line_of["laser.baud"], 4);
+  EXPECT_EQ(line_of["laser.max_range_m"], 3);
+  EXPECT_EQ(line_of["scheduling.priority"], 7);
+  // The unit is refused: the range rule that reads it is not checked against a guess.
+  ExpectOneError(LoadConfigString("[laser]\nunit = \"inch\"\nmax_range_m = 20\n", "test.toml"),
+                 "laser.unit", 2, "must be one of");
+  // A section that is not a table: none of its keys is used by a rule.
+  ExpectOneError(
+      LoadConfigString("laser = 3\n[sonar]\nenabled = true\n[localmap]\nsensors = \"both\"\n",
+                       "test.toml"),
+      "laser", 1, "expected a table");
+  // The modules' checks too.
+  const DerivedCheck odd = [](const DaemonOptions& o) -> std::string {
+    return o.atlas.max_hypotheses % 2 != 0 ? "atlas: max_hypotheses must be even\n" : "";
+  };
+  const ConfigResult d =
+      LoadConfigString("[laser]\nbaud = 1\n[atlas]\nmax_hypotheses = 7\n", "test.toml", odd);
+  ASSERT_EQ(d.errors.size(), 2u);
+  EXPECT_EQ(d.errors[0].key, "laser.baud");
+  EXPECT_EQ(d.errors[1].key, "atlas.max_hypotheses");
+}
+
 TEST(ConfigLoader, InvalidTomlGivesThePosition) {
   const ConfigResult r = LoadConfigString("[laser]\nbaud = = 3\n", "test.toml");
   ASSERT_EQ(r.errors.size(), 1u);

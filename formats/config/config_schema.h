@@ -172,9 +172,12 @@ void VisitOptions(V& v, DaemonOptions& o) {
 }
 
 // Rules between keys. report(key, message) is called once per broken rule, naming the key
-// whose value should change.
+// whose value should change. A rule runs only when every key it reads is usable(key) (the
+// loader passes the keys without an error of their own, so that a file with a value out of
+// range still has its other rules checked in the same run; default: every key).
 void CrossCheck(
     const DaemonOptions& o,
-    const std::function<void(const std::string& key, const std::string& message)>& report);
+    const std::function<void(const std::string& key, const std::string& message)>& report,
+    const std::function<bool(const std::string& key)>& usable = {});
 
 }  // namespace atlas::config

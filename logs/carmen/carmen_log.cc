@@ -1,5 +1,6 @@
 #include "logs/carmen/carmen_log.h"
 
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -229,7 +230,8 @@ std::string GzipReadError(const std::string& path, int64_t complete_lines, int z
 
 }  // namespace
 
-CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& options) {
+CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& options,
+                               const ReadProgress& progress) {
   CarmenReadResult result;
   if (std::string bad = options.Validate(); !bad.empty()) {
     result.status = ReadStatus::kBadOptions;
@@ -245,6 +247,8 @@ CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& 
     return result;
   }
   gzbuffer(f, 1 << 17);
+  struct stat st {};
+  const int64_t file_size = stat(path.c_str(), &st) == 0 ? static_cast<int64_t>(st.st_size) : 0;
   CarmenLogBuilder builder(options, path);
   std::vector<char> chunk(1 << 16);
   std::string line;
@@ -276,7 +280,9 @@ CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& 
       }
     }
     if (ends_line) finish_line();
+    if (progress && ends_line && line_number % 4096 == 0) progress(gzoffset(f), file_size);
   }
+  if (progress) progress(file_size, file_size);
   int zerr = Z_OK;
   const char* zmsg = gzerror(f, &zerr);
   const bool read_failed = !stopped && zerr != Z_OK && zerr != Z_STREAM_END;

@@ -22,6 +22,7 @@
 // how often it occurs are reported to help spot such a clamp.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -131,6 +132,10 @@ class CarmenLogBuilder {
 };
 
 // Reads a CARMEN log file, plain or gzip-compressed.
-CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& options);
+// `progress`, when set, is called now and then (every few thousand lines) with the bytes of the
+// file read so far (of the compressed file for a .gz) and the file's size.
+using ReadProgress = std::function<void(int64_t bytes_read, int64_t bytes_total)>;
+CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenLogOptions& options,
+                               const ReadProgress& progress = {});
 
 }  // namespace atlas::carmen

@@ -61,6 +61,9 @@ class LcmLogReader {
   const std::string& problem() const { return problem_; }
   bool truncated() const { return truncated_; }
   int64_t events() const { return events_; }
+  // Bytes of the file read so far, and its size (for progress).
+  int64_t bytes_read() const { return pos_; }
+  int64_t size() const { return size_; }
   // Events that Decode() could not decode, by channel.
   const std::map<std::string, int64_t>& undecodable() const { return undecodable_; }
   int64_t undecodable_total() const;

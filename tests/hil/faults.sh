@@ -25,3 +25,15 @@ steps=$(summary_value "$S" health.last_steps)
 gap=$(summary_value "$S" pose.max_gap_s)
 awk -v g="$gap" 'BEGIN { exit !(g < 0.5) }' || fail "ATLAS_POSE stopped for $gap s"
 pass "garbage, CRC errors and odometry jumps counted in health; $steps steps, max pose gap $gap s"
+# Each driver's state changes on stderr (DriverLog).
+for d in laser odometry sonar; do
+  grep -qE "^atlasd: $d .*: running" "$WORK/atlasd.err" || fail "no '$d ...: running' on stderr"
+done
+pass "each driver said on stderr when it ran"
+# The version, at start-up and in the health message, is --version's.
+version=$("$ATLASD" --version)
+version=${version#atlasd }
+grep -qxF "atlasd: version $version" "$WORK/atlasd.err" || fail "no 'atlasd: version $version' on stderr"
+[ "$(summary_value "$S" health.version)" = "$version" ] ||
+  fail "health.version '$(summary_value "$S" health.version)', --version says '$version'"
+pass "version $version at start-up and in health"

@@ -99,6 +99,27 @@ stop_logger() {
   wait "$LOGGER_PID" || true
 }
 
+# start_notify_listener: a fake systemd notify socket at $WORK/notify.sock (give it to atlasd
+# as NOTIFY_SOCKET); each notification goes to $WORK/notify.log as "SECONDS LINE".
+start_notify_listener() {
+  python3 - "$WORK/notify.sock" "$WORK/notify.log" <<'PY' &
+import socket, sys, time
+s = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
+s.bind(sys.argv[1])
+t0 = time.monotonic()
+with open(sys.argv[2], "w", buffering=1) as f:
+    while True:
+        data = s.recv(4096).decode(errors="replace")
+        for line in data.split("\n"):
+            if line:
+                f.write("%.3f %s\n" % (time.monotonic() - t0, line))
+PY
+  PIDS+=($!)
+  local i
+  for i in $(seq 50); do [ -S "$WORK/notify.sock" ] && return 0; sleep 0.1; done
+  fail "the fake notify socket did not appear"
+}
+
 # start_atlasd CONFIG [args...]
 start_atlasd() {
   local config=$1

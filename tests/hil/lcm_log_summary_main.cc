@@ -25,7 +25,7 @@ Prints key=value lines about an lcm-logger file recorded from atlasd (default ch
   events.CHANNEL            messages per channel
   pose.count, pose.max_gap_s (largest gap between consecutive ATLAS_POSE receive times)
   health.count, health.laser_fault_seen (a status with LASER FAULT), health.last_steps,
-  health.max_overruns, health.dropped_scans,
+  health.max_overruns, health.dropped_scans, health.version (atlasd's, in the last message),
   health.<driver>.<counter> (last value: bad_crc garbage_bytes truncated discontinuities
                              disconnects reconnects), health.<driver>.states (states seen, in order)
   undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH events that did not decode (left out)
@@ -145,6 +145,7 @@ int main(int argc, char** argv) {
               "\nhealth.dropped_scans=%" PRId64 "\n",
               last.steps, max_overruns, last.dropped_scans);
   std::printf("health.num_frames=%d\n", last.num_frames);
+  std::printf("health.version=%s\n", last.version.c_str());
   for (const auto& d : last.drivers) {
     const char* n = d.name.c_str();
     std::printf("health.%s.bad_crc=%" PRId64 "\nhealth.%s.garbage_bytes=%" PRId64

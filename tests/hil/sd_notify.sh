@@ -7,21 +7,7 @@ source "$(dirname "$0")/hil_lib.sh"
 need_multicast
 need_dataset
 write_config "$WORK/atlasd.toml" 2
-python3 - "$WORK/notify.sock" "$WORK/notify.log" <<'PY' &
-import socket, sys, time
-s = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
-s.bind(sys.argv[1])
-t0 = time.monotonic()
-with open(sys.argv[2], "w", buffering=1) as f:
-    while True:
-        data = s.recv(4096).decode(errors="replace")
-        for line in data.split("\n"):
-            if line:
-                f.write("%.3f %s\n" % (time.monotonic() - t0, line))
-PY
-PIDS+=($!)
-for i in $(seq 50); do [ -S "$WORK/notify.sock" ] && break; sleep 0.1; done
-[ -S "$WORK/notify.sock" ] || fail "the fake notify socket did not appear"
+start_notify_listener
 start_fakedev --speed 2
 NOTIFY_SOCKET="$WORK/notify.sock" WATCHDOG_USEC=1000000 \
   bash -c 'export WATCHDOG_PID=$$; exec "$@"' atlasd "$ATLASD" --config "$WORK/atlasd.toml" \

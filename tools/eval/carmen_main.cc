@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "formats/pose_file.h"
 #include "logs/carmen/carmen_log.h"
 #include "sim/reference_odometry.h"
@@ -51,6 +52,7 @@ Synthesised odometry (with --corrected and --dump-odometry):
 Other:
   -o FILE              output file for the dump modes (default stdout)
   --json               --count as JSON lines, one object per LOG
+  --version            the version
   -h, --help           this text
 
 Exit status: 0 done, 1 a log could not be read, is truncated or corrupt, or has no CARMEN
@@ -137,6 +139,10 @@ int Main(int argc, char** argv) {
   };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-carmen").c_str(), stdout);
+      return 0;
+    }
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       std::fputs(kOdometryNoiseHelp, stdout);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "core/eval/reference_score.h"
 #include "core/eval/relations_metric.h"
 #include "formats/replay_dir.h"
@@ -57,6 +58,7 @@ Options:
   --json               print a JSON object instead of text
   --errors FILE        relations scoring: write each matched relation's error to FILE, one
                        row "t1 t2 translation_m rotation_deg" in the relations' order
+  --version            the version
   -h, --help           this text
 
 Input files are checked as they are read: a malformed line, a value out of range (|t| > 4e9 s,
@@ -200,6 +202,10 @@ int Main(int argc, char** argv) {
       (void)name;
       return argv[++i];
     };
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-eval").c_str(), stdout);
+      return 0;
+    }
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;

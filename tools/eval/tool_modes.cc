@@ -3,10 +3,16 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/common/version.h"
+
 namespace atlas::eval {
 
 int RunToolMode(int argc, char** argv, const char* tool, const char* usage,
                 const std::vector<ToolMode>& modes) {
+  if (argc >= 2 && std::strcmp(argv[1], "--version") == 0) {
+    std::fputs(VersionLine(tool).c_str(), stdout);
+    return 0;
+  }
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
     std::fputs(usage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "drivers/fake/fake_agilex_base.h"
 #include "drivers/fake/fake_lms.h"
 #include "drivers/fake/fake_p2os.h"
@@ -60,6 +61,7 @@ fault injection (applied to --fault-device, default all):
   --drop-after S --drop-for T   close the device after S s for T s, then recreate it
   --stall-after S --stall-for T send nothing from S s for T s
                          (S >= 0, T >= 0.001, at most 1e6 s; each pair goes together)
+  --version              the version
   -h, --help             this text
 
 Exits when the whole log has been played (or on SIGINT / SIGTERM).
@@ -107,6 +109,10 @@ int main(int argc, char** argv) {
     };
     constexpr int64_t kIntMax = std::numeric_limits<int>::max();
     constexpr double kLongest = 1e6;  // seconds, for the fault times and the progress period
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-fakedev").c_str(), stdout);
+      return 0;
+    }
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;

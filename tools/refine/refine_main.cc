@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "core/eval/atlas_relations.h"
 #include "formats/replay_dir.h"
 #include "formats/text_rows.h"
@@ -27,6 +28,7 @@ DIR/global_refined.tsv (or --out FILE). atlas-replay --refine does the same at t
 Options:
   --out FILE           output trajectory file (default DIR/global_refined.tsv)
   --max-iterations N   solver iterations (default 100)
+  --version            the version
   -h, --help           this text
 
 Frames that the edges do not connect to frame 0 cannot be placed: their trajectory rows are
@@ -47,6 +49,10 @@ int Main(int argc, char** argv) {
   RefineOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-refine").c_str(), stdout);
+      return 0;
+    }
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       return 0;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "core/eval/atlas_relations.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/render/atlas_drawing.h"
@@ -52,6 +53,7 @@ options:
   --fit-odometry     fit the view to the odometry too (by default it is clipped to the world)
   --route-graph      draw the world's route graph (dashed green)
   --title TEXT       title line (default: a summary of the run)
+  --version          the version
   --help             this text
 
 Input files are checked as they are read: a malformed line (also in run.clf: a line that is
@@ -197,6 +199,10 @@ int main(int argc, char** argv) {
   AtlasRequest atlas_req;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-render").c_str(), stdout);
+      return 0;
+    }
     if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       return 0;

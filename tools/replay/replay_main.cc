@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "formats/config/config_loader.h"
 #include "formats/config/mapper_config.h"
 #include "formats/pose_file.h"
@@ -19,6 +20,7 @@
 #include "replay/replay_run.h"
 #include "replay/replay_source.h"
 #include "sim/reference_odometry.h"
+#include "tools/replay/progress.h"
 #include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {
@@ -92,6 +94,7 @@ Options:
   --max-hypotheses N   live hypotheses (default 4)
   --skip-bad-lines     count malformed log lines instead of stopping at the first
   --quiet              no progress on stderr
+  --version            the version
   -h, --help           this text
 
 Exit status: 0 done, 1 the log could not be read or the output not written (or a sweep scored
@@ -167,6 +170,10 @@ int Main(int argc, char** argv) {
       if (v == nullptr) error = a + " needs a value";
       return v != nullptr && IntegerArgument(a, v, lo, hi, out, error);
     };
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-replay").c_str(), stdout);
+      return 0;
+    }
     if (a == "-h" || a == "--help") {
       std::fputs(kHelp, stdout);
       std::fputs(kOdometryNoiseHelp, stdout);
@@ -251,7 +258,13 @@ int Main(int argc, char** argv) {
   if (stat(log_path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) log_path += "/run.clf";
 
   if (!quiet) std::fprintf(stderr, "atlas-replay: reading %s\n", log_path.c_str());
-  const ReplaySource source = ReadReplaySource(log_path, log_options, RawChannels(channels));
+  ProgressMeter meter(quiet ? nullptr : stderr, "atlas-replay", isatty(STDERR_FILENO) != 0);
+  meter.Begin("reading", "MB", 1e6);
+  const ReplaySource source = ReadReplaySource(
+      log_path, log_options, RawChannels(channels), [&](int64_t done, int64_t total) {
+        meter.Update(static_cast<double>(done), static_cast<double>(total));
+      });
+  meter.Finish();
   if (!source.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", source.error.c_str());
     return 1;
@@ -263,14 +276,8 @@ int Main(int argc, char** argv) {
                  log_path.c_str());
     return 1;
   }
-  const bool tty = isatty(STDERR_FILENO) != 0;
-  const auto start = std::chrono::steady_clock::now();
   auto progress = [&](int64_t done, int64_t total) {
-    if (quiet) return;
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "%satlas-replay: %lld/%lld scans, %.1f s%s", tty ? "\r" : "",
-                 static_cast<long long>(done), static_cast<long long>(total), s, tty ? "" : "\n");
+    meter.Update(static_cast<double>(done), static_cast<double>(total));
   };
   std::vector<TruthSample> reference;
   std::vector<carmen::CarmenEvent> synthesized;
@@ -299,11 +306,14 @@ int Main(int argc, char** argv) {
   if (sweep)
     return Sweep(corrected ? synthesized : source.carmen.events, options, sweep_range, out_dir,
                  quiet, log_path);
+  // Called every 50 scans; the meter prints when due.
+  meter.Begin("replaying", "scans", 1);
   ReplayResult r = corrected || !reference.empty()
                        ? RunReplay(corrected ? synthesized : source.carmen.events, options, out_dir,
-                                   progress, 1000, reference)
-                       : RunReplay(source.events, options, out_dir, progress, 1000);
-  if (!quiet && tty) std::fputc('\n', stderr);
+                                   progress, 50, reference)
+                       : RunReplay(source.events, options, out_dir, progress, 50);
+  meter.Update(static_cast<double>(r.summary.scans), static_cast<double>(r.summary.scans));
+  meter.Finish();
   if (!r.error.empty()) {
     std::fprintf(stderr, "atlas-replay: %s\n", r.error.c_str());
     return 1;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/common/parse_number.h"
+#include "core/common/version.h"
 #include "sim/building_generator.h"
 #include "sim/building_kinds.h"
 #include "sim/carmen_writer.h"
@@ -61,6 +62,7 @@ options:
   --right-scale-error E   right wheel radius error, relative (default -0.0002)
   --track-width-error E   track width error, relative (default 0.002)
   --quiet                 no progress output
+  --version               the version
   --help                  this text
 )";
 
@@ -143,6 +145,10 @@ int main(int argc, char** argv) {
   BuildingKind kind = BuildingKind::kOffice;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--version") {
+      std::fputs(atlas::VersionLine("atlas-sim").c_str(), stdout);
+      return 0;
+    }
     if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       std::fputs(kOdometryNoiseHelp, stdout);
