@@ -68,7 +68,9 @@ class ReplayMitCsail : public ::testing::Test {
 // files, and only a's summary carries its figures.
 TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   ReplayOptions options;
-  options.max_scans = 300;
+  // With atlasd's settings (the defaults) the first Genesis comes at scan 320: 500 scans make
+  // three frames, so that refinement has edges to work on.
+  options.max_scans = 500;
   const std::string a = TempDir(), b = TempDir();
   ASSERT_FALSE(a.empty());
   ASSERT_FALSE(b.empty());
@@ -80,8 +82,8 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   options.refine = nullptr;
   const ReplayResult rb = RunReplay(read_.log.events, options, b);
   ASSERT_TRUE(rb.error.empty()) << rb.error;
-  EXPECT_EQ(progress_calls, 3);
-  EXPECT_EQ(ra.summary.scans, 300);
+  EXPECT_EQ(progress_calls, 5);
+  EXPECT_EQ(ra.summary.scans, 500);
   EXPECT_GE(ra.summary.frames, 1);
 
   // Deterministic: everything but the measured step times is byte-identical.
@@ -101,7 +103,7 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
   const auto traj = Rows(ReadAll(a + "/trajectory.tsv"));
   const auto graph = Rows(ReadAll(a + "/graph.tsv"));
   const auto global = Rows(ReadAll(a + "/global.tsv"));
-  EXPECT_EQ(ta.size(), 300u);
+  EXPECT_EQ(ta.size(), 500u);
   EXPECT_GT(traj.size(), 250u);
   EXPECT_EQ(global.size(), traj.size());  // the graph is connected: every frame is placed
   EXPECT_EQ(static_cast<int>(graph.size()), ra.summary.edges);
@@ -142,7 +144,7 @@ TEST_F(ReplayMitCsail, FilesWellFormedAndRunDeterministic) {
     EXPECT_TRUE(IsFiniteNumber(p[1]) && IsFiniteNumber(p[2])) << p[1] << " " << p[2];
   }
   const std::string json = ReadAll(a + "/summary.json");
-  EXPECT_NE(json.find("\"scans\": 300"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"scans\": 500"), std::string::npos) << json;
   EXPECT_NE(json.find("\"frames\": " + std::to_string(ra.summary.frames)), std::string::npos);
 
   // The refinement's figures: every frame placed or counted as not connected, at least one
