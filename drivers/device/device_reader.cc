@@ -138,8 +138,8 @@ void DeviceReader::Loop() {
     health_.disconnects.fetch_add(1, std::memory_order_relaxed);
     health_.SetError(error);
     health_.SetState(DriverState::kReconnecting);
-    // A session that ended before its first message was checked here is no loss (said once
-    // per reason, as a failed open).
+    // A session that delivered is said lost; one that ended before its first message is a
+    // failed attempt, said once per reason like a failed open (DriverLog::Lost).
     if (health_.messages.load(std::memory_order_relaxed) > messages_before) Say(log_.Delivering());
     Say(log_.Lost(error));
     // Only a session that delivered data starts the backoff again from initial_backoff; one
