@@ -512,13 +512,7 @@ bool Atlas::WithinReach(const LocalMap& map, const UncertainPose& seed) const {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(seed.cov.topLeftCorner<2, 2>());
   const double reach =
       options_.traversal_reach + 3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
-  for (const MapLine& l : map.Lines()) {
-    const Vec2 d = l.endpoint_b - l.endpoint_a;
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - l.endpoint_a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    if ((l.endpoint_a + t * d - p).norm() <= reach) return true;
-  }
-  return false;
+  return map.Reaches(p, reach);
 }
 
 const SelfMatch& Atlas::SelfMatchOf(FrameId f) {
