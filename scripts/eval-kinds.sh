@@ -19,7 +19,7 @@
 # Environment: SEEDS (default 1..20), KINDS (default every kind, office first), LENGTH_KM
 # (default 0.5), ODOMETRY_NOISE (default | realistic, default default), JOBS (default 2),
 # ATLAS_BIN (directory of atlas-sim, atlas-replay, atlas-eval, atlas-render; default
-# <repo>/build/release/bin, built if missing).
+# <repo>/build/release/bin, built if missing), CONFIG (default <repo>/config/atlasd.toml).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
 script_usage "${BASH_SOURCE[0]}" out "$@"
@@ -30,6 +30,7 @@ KINDS=${KINDS:-office curved clutter glass corridor hall campus people}
 LENGTH_KM=${LENGTH_KM:-0.5}
 ODOMETRY_NOISE=${ODOMETRY_NOISE:-default}
 JOBS=${JOBS:-2}
+CONFIG=${CONFIG:-$ROOT/config/atlasd.toml}
 source "$ROOT/scripts/release-bin.sh"
 BIN=$(release_bin atlas-sim atlas-replay atlas-eval atlas-render)
 mkdir -p "$OUT"
@@ -39,7 +40,7 @@ one_run() {
   mkdir -p "$dir"
   "$BIN/atlas-sim" --quiet --kind "$kind" --seed "$seed" --length-km "$LENGTH_KM" \
     --odometry-noise "$ODOMETRY_NOISE" --sonar none --out "$dir/sim"
-  "$BIN/atlas-replay" --quiet --config "$ROOT/config/atlasd.toml" \
+  "$BIN/atlas-replay" --quiet --config "$CONFIG" \
     --reference "$dir/sim/truth.tsv" --out "$dir" "$dir/sim" >"$dir/replay.txt"
   "$ROOT/scripts/relations-from-reference.py" "$dir/reference.tsv" "$dir/all.relations" \
     --travel 1.0 --revisit-seconds 60

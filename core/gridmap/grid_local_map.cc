@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/atlas/byte_image.h"
@@ -13,24 +14,30 @@ namespace {
 constexpr uint32_t kMagic = 0x44524741;  // "AGRD"
 constexpr uint32_t kVersion = 1;
 
+uint64_t NewMapId() {
+  static std::atomic<uint64_t> next{1};
+  return next++;
+}
+
 Mat3 Symmetric(const Mat3& m) { return 0.5 * (m + m.transpose()); }
 
 }  // namespace
 
-std::string GridBootstrapOptions::Validate() const {
+std::string GridSearchOptions::Validate() const {
   if (!(min_linear_window > 0.0 && max_linear_window >= min_linear_window))
-    return "bootstrap linear window: need 0 < min <= max";
+    return "linear window: need 0 < min <= max";
   if (!(min_angular_window > 0.0 && max_angular_window >= min_angular_window))
-    return "bootstrap angular window: need 0 < min <= max";
-  if (max_points < 1 || max_nodes < 1) return "bootstrap: max_points and max_nodes must be >= 1";
+    return "angular window: need 0 < min <= max";
+  if (max_points < 1 || max_nodes < 1) return "max_points and max_nodes must be >= 1";
   if (!(min_score >= 0.0 && min_score <= 1.0) || !(min_margin >= 0.0))
-    return "bootstrap: min_score in [0, 1], min_margin >= 0";
+    return "min_score in [0, 1], min_margin >= 0";
   return "";
 }
 
 std::string GridLocalMapOptions::Validate() const {
   if (std::string e = grid.Validate(); !e.empty()) return e;
-  if (std::string e = bootstrap.Validate(); !e.empty()) return e;
+  if (std::string e = bootstrap.Validate(); !e.empty()) return "bootstrap: " + e;
+  if (std::string e = match.Validate(); !e.empty()) return "match: " + e;
   if (std::string e = odometry.Validate(); !e.empty()) return "odometry: " + e;
   if (max_scans < 1) return "max_scans: must be at least 1";
   if (!(max_extent > 0.0)) return "max_extent: must be positive";
@@ -47,6 +54,7 @@ std::string GridLocalMapOptions::Validate() const {
 
 GridLocalMap::GridLocalMap(const GridLocalMapOptions& options)
     : options_(options),
+      id_(NewMapId()),
       grid_(options.grid.grid),
       inserter_(options.grid.grid),
       aligner_(options.grid.alignment) {}
@@ -104,7 +112,8 @@ int GridLocalMap::ExplainedPoints(const std::vector<Vec2>& points, const Pose2& 
 ScanUpdate GridLocalMap::Update(const LaserScan& scan, bool allow_new_features) {
   last_matched_ = false;
   last_alignment_ = AlignmentResult{};
-  const std::vector<Vec2> points = AlignmentPoints(scan);
+  last_points_ = AlignmentPoints(scan);
+  const std::vector<Vec2>& points = last_points_;
   ScanUpdate out;
   out.observations = static_cast<int>(points.size());
   if (grid_.known_cells() > 0) {
@@ -152,12 +161,12 @@ void GridLocalMap::Insert(const LaserScan& scan) {
   inserted_.push_back(Inserted{x_, cov});
 }
 
-Mat3 GridLocalMap::GridCovarianceNearRobot() const {
+Mat3 GridLocalMap::GridCovarianceNear(const Vec2& p) const {
   const Inserted* nearest = nullptr;
   const Inserted* surest = nullptr;
   double best = 0.0;
   for (const Inserted& s : inserted_) {
-    const double d = std::hypot(s.pose.x - x_.x, s.pose.y - x_.y);
+    const double d = std::hypot(s.pose.x - p.x(), s.pose.y - p.y());
     if (nearest == nullptr || d < best) {
       nearest = &s;
       best = d;
@@ -170,7 +179,7 @@ Mat3 GridLocalMap::GridCovarianceNearRobot() const {
 }
 
 UncertainPose GridLocalMap::RobotPose() const {
-  return UncertainPose{x_, Symmetric(p_rel_ + GridCovarianceNearRobot())};
+  return UncertainPose{x_, Symmetric(p_rel_ + GridCovarianceNear(Vec2(x_.x, x_.y)))};
 }
 
 void GridLocalMap::ResetRobotPose(const UncertainPose& pose) {
@@ -261,6 +270,7 @@ bool GridLocalMap::Deserialize(const std::string& bytes) {
     }
     grid.AddKnownCells(known);
   }
+  id_ = NewMapId();
   x_ = x;
   p_rel_ = Symmetric(p);
   full_ = full == 1;

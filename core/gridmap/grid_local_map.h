@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/grid/grid_options.h"
@@ -45,16 +46,17 @@
 
 namespace atlas {
 
-// w of eq. 12 for grid frames (grid_map_bootstrapper.h).
-struct GridBootstrapOptions {
-  double min_linear_window = 0.3;   // metres either side, at least
+// A search for points in a frame's grid (dense_search.h): w of eq. 12
+// (grid_map_bootstrapper.h) and map-matching (grid_map_matcher.h) each have one.
+struct GridSearchOptions {
+  double min_linear_window = 0.3;   // metres either side, at least (3 sigma of the prior)
   double max_linear_window = 2.0;   // metres either side, at most
   double min_angular_window = 0.1;  // radians either side, at least
   double max_angular_window = 0.35;
-  int max_points = 600;        // Z's returns searched for (evenly subsampled)
+  int max_points = 600;        // points searched for (evenly subsampled)
   int64_t max_nodes = 400000;  // branch-and-bound work bound
   double min_score = 0.4;      // mean cell probability of the best placement
-  double min_margin = 0.05;    // best minus runner-up outside its peak
+  double min_margin = 0.05;    // best minus runner-up outside its peak (Condition 2)
   std::string Validate() const;
 };
 
@@ -70,7 +72,15 @@ struct GridLocalMapOptions {
     g.grid.miss_probability = 0.4;
     return g;
   }();
-  GridBootstrapOptions bootstrap;
+  GridSearchOptions bootstrap;
+  GridSearchOptions match = [] {
+    GridSearchOptions m;
+    m.min_linear_window = 0.5;
+    m.max_linear_window = 3.0;
+    m.max_angular_window = 0.5;
+    m.max_nodes = 200000;
+    return m;
+  }();
   OdometryNoiseOptions odometry;
   int max_scans = 40;                // scans a frame's grid holds (its capacity)
   double max_extent = 6.0;           // metres from the frame's origin where scans are inserted
@@ -112,10 +122,19 @@ class GridLocalMap final : public LocalMap {
   const AlignmentResult& LastAlignment() const { return last_alignment_; }
   // Whether the last Update's measurement was used (aligned and inside the gate).
   bool LastUpdateMatched() const { return last_matched_; }
+  // The last Update's scan as aligned (AlignmentPoints, robot frame; not serialised).
+  const std::vector<Vec2>& LastScanPoints() const { return last_points_; }
   // The robot frame's returns of `scan` used for alignment (subsampled), as Update takes them.
   std::vector<Vec2> AlignmentPoints(const LaserScan& scan) const;
   // Points of `points` (robot frame) that fall on or next to an occupied cell from `robot`.
   int ExplainedPoints(const std::vector<Vec2>& points, const Pose2& robot) const;
+  // The covariance of the grid's cells near `p` (frame): Condition 1 above.
+  Mat3 GridCovarianceNear(const Vec2& p) const;
+  // Changes whenever the grid does (an id per map lineage and the scans inserted), for caches
+  // of what is computed from the grid.
+  std::pair<uint64_t, int> Revision() const {
+    return {id_, static_cast<int>(inserted_.size()) + (full_ ? 1 << 20 : 0)};
+  }
 
  private:
   struct Inserted {
@@ -123,11 +142,10 @@ class GridLocalMap final : public LocalMap {
     Mat3 cov = Mat3::Zero();  // marginal robot covariance in the frame when inserted
   };
   void PredictWith(const Pose2& u, const Mat3& q);
-  // The covariance of the grid near the robot: that of the nearest inserted scan's pose.
-  Mat3 GridCovarianceNearRobot() const;
   void Insert(const LaserScan& scan);
 
   GridLocalMapOptions options_;
+  uint64_t id_;
   Pose2 x_;
   Mat3 p_rel_ = Mat3::Zero();  // robot relative to the grid near it
   bool full_ = false;
@@ -137,6 +155,7 @@ class GridLocalMap final : public LocalMap {
   ScanAligner aligner_;
   AlignmentResult last_alignment_;
   bool last_matched_ = false;
+  std::vector<Vec2> last_points_;
   RangeScan scratch_;
 };
 

@@ -561,6 +561,9 @@ void CrossCheck(const DaemonOptions& o,
   if (o.localmap.sensors == LocalMapSensors::kBoth && !o.laser.enabled) {
     report("localmap.sensors", "\"both\" maps with the laser too: needs laser.enabled = true");
   }
+  if (o.localmap.kind == LocalMapKind::kGrid && o.localmap.sensors != LocalMapSensors::kLaser) {
+    report("localmap.kind", "\"grid\" maps with the laser alone: needs sensors = \"laser\"");
+  }
   const bool realtime = o.scheduling.policy != SchedPolicy::kOther;
   if (realtime && o.scheduling.priority < 1) {
     report("scheduling.priority", "must be 1..99 with policy \"fifo\" or \"rr\"");

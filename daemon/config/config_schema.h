@@ -37,6 +37,8 @@ inline constexpr EnumNames<LocalMapSensors, 3> kLocalMapSensorsNames{
     {{"laser", LocalMapSensors::kLaser},
      {"sonar", LocalMapSensors::kSonar},
      {"both", LocalMapSensors::kBoth}}};
+inline constexpr EnumNames<LocalMapKind, 2> kLocalMapKindNames{
+    {{"lines", LocalMapKind::kLines}, {"grid", LocalMapKind::kGrid}}};
 inline constexpr EnumNames<SchedPolicy, 3> kSchedPolicyNames{{{"other", SchedPolicy::kOther},
                                                               {"fifo", SchedPolicy::kFifo},
                                                               {"rr", SchedPolicy::kRoundRobin}}};
@@ -113,6 +115,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
   });
   v.Section("localmap", [&] {
     v.Enum("sensors", o.localmap.sensors, kLocalMapSensorsNames);
+    v.Enum("kind", o.localmap.kind, kLocalMapKindNames);
     v.Bool("sonar_bootstrap", o.localmap.sonar_bootstrap);
   });
   v.Section("scan_match", [&] {
