@@ -9,6 +9,20 @@
 
 namespace atlas {
 
+const PrecomputationGridStack& PrecomputedGrids::Of(const GridLocalMap& map) {
+  for (const Cached& c : cache_) {
+    if (c.revision == map.Revision()) return *c.grids;
+  }
+  Cached fresh{map.Revision(), std::make_unique<PrecomputationGridStack>(map.Grid(), depth_)};
+  if (cache_.size() < kCached) {
+    cache_.push_back(std::move(fresh));
+    return *cache_.back().grids;
+  }
+  Cached& slot = cache_[next_++ % kCached];
+  slot = std::move(fresh);
+  return *slot.grids;
+}
+
 std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max) {
   const size_t n = points.size(), m = static_cast<size_t>(std::max(max, 0));
   if (n <= m) return points;
@@ -53,9 +67,9 @@ DenseResult SearchAndRefine(const PrecomputationGridStack& grids, const Probabil
   out.outcome = DenseOutcome::kFound;
   out.pose = a.pose;
   out.pose.cov /= map.information_scale;
-  out.pose.cov.diagonal() +=
-      Vec3(map.min_sigma_xy * map.min_sigma_xy, map.min_sigma_xy * map.min_sigma_xy,
-           map.min_sigma_theta * map.min_sigma_theta);
+  const double xy = std::max(map.min_sigma_xy, o.min_sigma_xy);
+  const double th = std::max(map.min_sigma_theta, o.min_sigma_theta);
+  out.pose.cov.diagonal() += Vec3(xy * xy, xy * xy, th * th);
   return out;
 }
 

@@ -15,6 +15,8 @@
 //  - kFound.
 
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/grid/precomputation_grid.h"
@@ -30,6 +32,24 @@ struct DenseResult {
   double score = 0.0;
   double margin = 0.0;
   int64_t nodes = 0;
+};
+
+// The precomputed grids of the last few maps searched in, by GridLocalMap::Revision (not
+// thread-safe: the Atlas steps on one thread).
+class PrecomputedGrids {
+ public:
+  explicit PrecomputedGrids(int depth) : depth_(depth) {}
+  const PrecomputationGridStack& Of(const GridLocalMap& map);
+
+ private:
+  static constexpr size_t kCached = 6;
+  struct Cached {
+    std::pair<uint64_t, int> revision;
+    std::unique_ptr<PrecomputationGridStack> grids;
+  };
+  int depth_;
+  std::vector<Cached> cache_;
+  size_t next_ = 0;
 };
 
 // At most `max` of `points`, evenly spread over the sequence.

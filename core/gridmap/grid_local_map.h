@@ -57,6 +57,9 @@ struct GridSearchOptions {
   int64_t max_nodes = 400000;  // branch-and-bound work bound
   double min_score = 0.4;      // mean cell probability of the best placement
   double min_margin = 0.05;    // best minus runner-up outside its peak (Condition 2)
+  // Floors of the placement's standard deviations (at least GridLocalMapOptions::min_sigma_*).
+  double min_sigma_xy = 0.0;     // metres
+  double min_sigma_theta = 0.0;  // radians
   std::string Validate() const;
 };
 
@@ -68,17 +71,28 @@ struct GridLocalMapOptions {
   GridOptions grid = [] {
     GridOptions g;
     g.range.min_incidence = 0.35;
+    g.grid.max_cells = 512;  // 25.6 m: a frame's extent and the laser's reach indoors
     g.grid.hit_probability = 0.7;
     g.grid.miss_probability = 0.4;
     return g;
   }();
-  GridSearchOptions bootstrap;
+  // Work bounds: a search of max_points points over max_nodes nodes takes a few milliseconds.
+  GridSearchOptions bootstrap = [] {
+    GridSearchOptions w;
+    w.max_points = 300;
+    w.max_nodes = 60000;
+    return w;
+  }();
   GridSearchOptions match = [] {
     GridSearchOptions m;
     m.min_linear_window = 0.5;
     m.max_linear_window = 3.0;
     m.max_angular_window = 0.5;
-    m.max_nodes = 200000;
+    m.max_points = 250;
+    m.max_nodes = 40000;
+    m.min_margin = 0.08;
+    m.min_sigma_xy = 0.1;
+    m.min_sigma_theta = 0.03;
     return m;
   }();
   OdometryNoiseOptions odometry;

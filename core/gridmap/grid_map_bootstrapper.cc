@@ -20,10 +20,9 @@ PoseBootstrap GridMapBootstrapper::Solve(const LocalMap& map, const LocalMap& fr
   }
   const std::vector<Vec2> points = EvenSubsample(all, options_.bootstrap.max_points);
   if (static_cast<int>(points.size()) < options_.grid.alignment.min_points) return out;
-  const PrecomputationGridStack grids(frame->Grid(), options_.grid.search.depth);
   const DenseResult r =
-      SearchAndRefine(grids, frame->Grid(), points, UncertainPose{map.RobotPose().mean, seed.cov},
-                      options_.bootstrap, options_);
+      SearchAndRefine(grids_.Of(*frame), frame->Grid(), points,
+                      UncertainPose{map.RobotPose().mean, seed.cov}, options_.bootstrap, options_);
   switch (r.outcome) {
     case DenseOutcome::kFound:
       out.outcome = BootstrapOutcome::kSolved;

@@ -16,6 +16,7 @@
 //  - kSolved: the refined pose with its covariance (over information_scale, plus the floors).
 
 #include "core/atlas/hypothesis.h"
+#include "core/gridmap/dense_search.h"
 #include "core/gridmap/grid_local_map.h"
 
 namespace atlas {
@@ -31,6 +32,7 @@ class GridMapBootstrapper : public PoseBootstrapper {
 
  private:
   GridLocalMapOptions options_;
+  mutable PrecomputedGrids grids_{options_.grid.search.depth};
 };
 
 }  // namespace atlas

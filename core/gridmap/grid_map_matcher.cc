@@ -12,21 +12,6 @@ constexpr double kPriorGateChi2 = 16.27;  // 3 dof, 99.9 %
 
 }  // namespace
 
-const PrecomputationGridStack& GridMapMatcher::GridsOf(const GridLocalMap& map) const {
-  for (const Cached& c : cache_) {
-    if (c.revision == map.Revision()) return *c.grids;
-  }
-  Cached fresh{map.Revision(),
-               std::make_unique<PrecomputationGridStack>(map.Grid(), options_.grid.search.depth)};
-  if (cache_.size() < kCached) {
-    cache_.push_back(std::move(fresh));
-    return *cache_.back().grids;
-  }
-  Cached& slot = cache_[next_++ % kCached];
-  slot = std::move(fresh);
-  return *slot.grids;
-}
-
 MapMatch GridMapMatcher::Match(const LocalMap& a_map, const LocalMap& b_map,
                                const UncertainPose* prior) const {
   MapMatch m;
@@ -38,7 +23,7 @@ MapMatch GridMapMatcher::Match(const LocalMap& a_map, const LocalMap& b_map,
   const UncertainPose robot_a = a->RobotPose();
   const UncertainPose robot_b_prior = Compose(Inverse(*prior), robot_a);
   const DenseResult r =
-      SearchAndRefine(GridsOf(*b), b->Grid(), points, robot_b_prior, options_.match, options_);
+      SearchAndRefine(grids_.Of(*b), b->Grid(), points, robot_b_prior, options_.match, options_);
   m.hypotheses = static_cast<int>(std::min<int64_t>(r.nodes, 1 << 30));
   switch (r.outcome) {
     case DenseOutcome::kWorkBound:

@@ -10,6 +10,8 @@
 // Condition 2: the best placement must lead the runner-up outside its peak by min_margin
 // (kAmbiguous, kRepetitive otherwise), and t must lie inside the prior's gate (chi-square 3
 // dof 99.9 % with both covariances; kOutsidePrior otherwise).
+// The placement found gets at least match.min_sigma_* (the frames' grids are less consistent
+// than GridCovarianceNear says: measured in docs/journal/dense-frames.md).
 //
 // Not done yet (docs/journal/dense-frames.md): frames without a prior (after a restart) are
 // not matched (kTooFewLines), B's correlation with itself is not looked at, nor is either
@@ -20,7 +22,7 @@
 #include <vector>
 
 #include "core/atlas/map_matcher.h"
-#include "core/grid/precomputation_grid.h"
+#include "core/gridmap/dense_search.h"
 #include "core/gridmap/grid_local_map.h"
 
 namespace atlas {
@@ -31,18 +33,8 @@ class GridMapMatcher : public MapMatcher {
   MapMatch Match(const LocalMap& a, const LocalMap& b, const UncertainPose* prior) const override;
 
  private:
-  const PrecomputationGridStack& GridsOf(const GridLocalMap& map) const;
-
   GridLocalMapOptions options_;
-  // Precomputed grids of the frames searched in last, by revision (Atlas steps are
-  // single-threaded); at most kCached.
-  static constexpr size_t kCached = 6;
-  struct Cached {
-    std::pair<uint64_t, int> revision;
-    std::unique_ptr<PrecomputationGridStack> grids;
-  };
-  mutable std::vector<Cached> cache_;
-  mutable size_t next_ = 0;
+  mutable PrecomputedGrids grids_{options_.grid.search.depth};
 };
 
 }  // namespace atlas
