@@ -62,47 +62,6 @@ for name in $LOGS; do
 done
 wait
 
-python3 - "$OUT" "$ODOMETRY_NOISE" "$CONFIG" "$LOGS" $SEEDS <<'PY'
-import json, os, statistics, sys
-out, noise, config, logs, seeds = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4].split(), sys.argv[5:]
-def load(path):
-    try:
-        return json.load(open(path))
-    except (OSError, ValueError):
-        return None
-print("corrected logs, %d seeds each, odometry noise %s, %s; relations metric, the atlas along "
-      "its Dijkstra paths, dead reckoning beside it" % (len(seeds), noise, config))
-hdr = ("log", "seeds", "atlas m", "atlas deg", "odo m", "odo deg", "ok", "ret atlas m",
-       "ret odo m", "false", "joined", "step ms", "max ms")
-print("%-13s %5s %8s %9s %7s %7s %5s %11s %9s %5s %11s %7s %7s" % hdr)
-for name in logs:
-    rows, ok, false, joined, returns, ret, med, mx = [], 0, 0, 0, 0, [], [], []
-    for s in seeds:
-        d = os.path.join(out, name, "seed-" + s)
-        a, o = load(os.path.join(d, "all.json")), load(os.path.join(d, "all_odometry.json"))
-        summary = load(os.path.join(d, "summary.json"))
-        if not a or not o or not summary:
-            continue
-        rows.append((a["translation_m"]["mean"], a["rotation_deg"]["mean"],
-                     o["translation_m"]["mean"], o["rotation_deg"]["mean"]))
-        ok += a["translation_m"]["mean"] <= o["translation_m"]["mean"]
-        false += summary.get("false_closures_chi2", 0)
-        med.append(summary["step_cpu_ns_median"] * 1e-6)
-        mx.append(summary["step_cpu_ns_max"] * 1e-6)
-        ra, ro = load(os.path.join(d, "returns.json")), load(os.path.join(d, "returns_odometry.json"))
-        if ra and ro:
-            ret.append((ra["translation_m"]["mean"], ro["translation_m"]["mean"]))
-            errors = [l.split() for l in open(os.path.join(d, "returns_errors.tsv"))
-                      if not l.startswith("#")]
-            returns += sum(1 for _ in open(os.path.join(d, "returns.relations")))
-            joined += sum(1 for e in errors if len(e) > 4 and e[4] != "chain")
-    if not rows:
-        print("%-13s %5s" % (name, "none"))
-        continue
-    mean = lambda k, v: sum(r[k] for r in v) / len(v)
-    print("%-13s %5d %8.3f %9.2f %7.3f %7.2f %5s %11s %9s %5d %11s %7.2f %7.2f" % (
-        name, len(rows), mean(0, rows), mean(1, rows), mean(2, rows), mean(3, rows),
-        "%d/%d" % (ok, len(rows)),
-        "%.3f" % mean(0, ret) if ret else "-", "%.3f" % mean(1, ret) if ret else "-",
-        false, "%d/%d" % (joined, returns), statistics.median(med), max(mx)))
-PY
+echo "corrected logs, odometry noise $ODOMETRY_NOISE, $CONFIG; relations metric, the atlas" \
+  "along its Dijkstra paths, dead reckoning beside it"
+"$ROOT/scripts/relations-summary.py" "$OUT" "$LOGS" $SEEDS

@@ -11,14 +11,6 @@
 namespace atlas {
 namespace {
 
-FakeLaserOptions FrontLaser() {
-  FakeLaserOptions o;
-  o.beams = 181;
-  o.max_range = 30.0;
-  o.range_sigma = 0.01;
-  return o;
-}
-
 // An odometry noise model that covers the biased odometry of the drives below (a few per cent
 // of the distance and 0.05 rad per metre).
 GridLocalMapOptions GenerousOdometry() {

@@ -10,13 +10,6 @@
 namespace atlas {
 namespace {
 
-FakeLaserOptions FrontLaser() {
-  FakeLaserOptions o;
-  o.beams = 181;
-  o.max_range = 30.0;
-  return o;
-}
-
 // A frame's grid made along a straight drive through `walls` (world = frame).
 GridLocalMap FrameAlong(const std::vector<sim::Wall>& walls, const Pose2& start, double step,
                         int steps) {
