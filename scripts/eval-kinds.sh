@@ -8,10 +8,11 @@
 # apart, and returns (the nearest earlier pose within 1.5 m, at least 60 s and 20 m of travel
 # earlier). The atlas's relations are composed along its Dijkstra paths (atlas-eval --atlas);
 # dead reckoning of the same odometry on the same relations beside them.
-# One line per kind: mean error over all relations (atlas, odometry; the seeds where the atlas
-# is no worse), mean error on the returns (atlas, odometry), false closures (chi2 3 dof >
-# 14.16), returns joined (same frame, neighbouring frames or a map-match edge) of all returns
-# (a return whose frames the atlas never connected is scored by neither mean, but counted).
+# One line per kind (scripts/relations-summary.py): mean error over all relations (atlas,
+# odometry; the seeds where the atlas is no worse), mean error on the returns (atlas,
+# odometry), false closures (chi2 3 dof > 14.16), returns joined (same frame, neighbouring
+# frames or a map-match edge) of all returns (a return whose frames the atlas never connected
+# is scored by neither mean, but counted), step CPU time (median of medians, largest max).
 # Pictures of the first seed per kind: OUT/K-world.png (world, truth, odometry, scans) and
 # OUT/K-atlas.png (the atlas's whole run).
 #
@@ -19,7 +20,7 @@
 # Environment: SEEDS (default 1..20), KINDS (default every kind, office first), LENGTH_KM
 # (default 0.5), ODOMETRY_NOISE (default | realistic, default default), JOBS (default 2),
 # ATLAS_BIN (directory of atlas-sim, atlas-replay, atlas-eval, atlas-render; default
-# <repo>/build/release/bin, built if missing).
+# <repo>/build/release/bin, built if missing), CONFIG (default <repo>/config/atlasd.toml).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
 script_usage "${BASH_SOURCE[0]}" out "$@"
@@ -30,6 +31,7 @@ KINDS=${KINDS:-office curved clutter glass corridor hall campus people}
 LENGTH_KM=${LENGTH_KM:-0.5}
 ODOMETRY_NOISE=${ODOMETRY_NOISE:-default}
 JOBS=${JOBS:-2}
+CONFIG=${CONFIG:-$ROOT/config/atlasd.toml}
 source "$ROOT/scripts/release-bin.sh"
 BIN=$(release_bin atlas-sim atlas-replay atlas-eval atlas-render)
 mkdir -p "$OUT"
@@ -39,7 +41,7 @@ one_run() {
   mkdir -p "$dir"
   "$BIN/atlas-sim" --quiet --kind "$kind" --seed "$seed" --length-km "$LENGTH_KM" \
     --odometry-noise "$ODOMETRY_NOISE" --sonar none --out "$dir/sim"
-  "$BIN/atlas-replay" --quiet --config "$ROOT/config/atlasd.toml" \
+  "$BIN/atlas-replay" --quiet --config "$CONFIG" \
     --reference "$dir/sim/truth.tsv" --out "$dir" "$dir/sim" >"$dir/replay.txt"
   "$ROOT/scripts/relations-from-reference.py" "$dir/reference.tsv" "$dir/all.relations" \
     --travel 1.0 --revisit-seconds 60
@@ -76,48 +78,8 @@ for kind in $KINDS; do
     --title "$kind, seed $first: the atlas (Dijkstra projection from frame 0)" || true
 done
 
-python3 - "$OUT" "$ODOMETRY_NOISE" "$KINDS" $SEEDS <<'PY'
-import json, os, sys
-out, noise, kinds, seeds = sys.argv[1], sys.argv[2], sys.argv[3].split(), sys.argv[4:]
-def load(path):
-    try:
-        return json.load(open(path))
-    except (OSError, ValueError):
-        return None
-print("building kinds, %d seeds each, odometry noise %s, shipped configuration; relations "
-      "metric, the atlas along its Dijkstra paths, dead reckoning beside it" % (len(seeds), noise))
-print("all: pose pairs 1 m apart and the returns; returns: pairs >= 60 s apart within 1.5 m; "
-      "ok: seeds where the atlas's mean over all relations is at most dead reckoning's")
-hdr = ("kind", "seeds", "atlas m", "atlas deg", "odo m", "odo deg", "ok", "ret atlas m",
-       "ret odo m", "false", "joined")
-print("%-9s %5s %8s %9s %7s %7s %5s %11s %9s %5s %11s" % hdr)
-for kind in kinds:
-    rows, ok, false, joined, returns = [], 0, 0, 0, 0
-    ret = []
-    for s in seeds:
-        d = os.path.join(out, kind, "seed-" + s)
-        a, o = load(os.path.join(d, "all.json")), load(os.path.join(d, "all_odometry.json"))
-        summary = load(os.path.join(d, "summary.json"))
-        if not a or not o or not summary:
-            continue
-        rows.append((a["translation_m"]["mean"], a["rotation_deg"]["mean"],
-                     o["translation_m"]["mean"], o["rotation_deg"]["mean"]))
-        ok += a["translation_m"]["mean"] <= o["translation_m"]["mean"]
-        false += summary.get("false_closures_chi2", 0)
-        ra, ro = load(os.path.join(d, "returns.json")), load(os.path.join(d, "returns_odometry.json"))
-        if ra and ro:
-            ret.append((ra["translation_m"]["mean"], ro["translation_m"]["mean"]))
-            errors = [l.split() for l in open(os.path.join(d, "returns_errors.tsv"))
-                      if not l.startswith("#")]
-            returns += sum(1 for _ in open(os.path.join(d, "returns.relations")))
-            joined += sum(1 for e in errors if len(e) > 4 and e[4] != "chain")
-    if not rows:
-        print("%-9s %5s" % (kind, "none"))
-        continue
-    mean = lambda k, v: sum(r[k] for r in v) / len(v)
-    print("%-9s %5d %8.3f %9.2f %7.3f %7.2f %5s %11s %9s %5d %11s" % (
-        kind, len(rows), mean(0, rows), mean(1, rows), mean(2, rows), mean(3, rows),
-        "%d/%d" % (ok, len(rows)),
-        "%.3f" % mean(0, ret) if ret else "-", "%.3f" % mean(1, ret) if ret else "-",
-        false, "%d/%d" % (joined, returns)))
-PY
+echo "building kinds, odometry noise $ODOMETRY_NOISE, $CONFIG; relations metric, the atlas" \
+  "along its Dijkstra paths, dead reckoning beside it"
+echo "all: pose pairs 1 m apart and the returns; returns: pairs >= 60 s apart within 1.5 m;" \
+  "ok: seeds where the atlas's mean over all relations is at most dead reckoning's"
+"$ROOT/scripts/relations-summary.py" "$OUT" "$KINDS" $SEEDS

@@ -490,6 +490,7 @@ void Atlas::RememberTried(FrameId a, FrameId b) {
 }
 
 bool Atlas::SpendSearchOnSelfMatch(FrameId a, FrameId b) {
+  if (matcher_) return false;  // the matcher has no self-matches to cache
   for (FrameId f : {a, b}) {
     if (CachedSelfMatchOf(f) != nullptr) continue;
     SelfMatchOf(f);
@@ -504,13 +505,7 @@ bool Atlas::WithinReach(const LocalMap& map, const UncertainPose& seed) const {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(seed.cov.topLeftCorner<2, 2>());
   const double reach =
       options_.traversal_reach + 3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
-  for (const MapLine& l : map.Lines()) {
-    const Vec2 d = l.endpoint_b - l.endpoint_a;
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - l.endpoint_a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    if ((l.endpoint_a + t * d - p).norm() <= reach) return true;
-  }
-  return false;
+  return map.Reaches(p, reach);
 }
 
 const SelfMatch& Atlas::SelfMatchOf(FrameId f) {
@@ -564,14 +559,20 @@ void Atlas::MatchMaps(int d) {
   match_cursor_ += static_cast<uint64_t>(advance);
 }
 
-void Atlas::MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior) {
+MapMatch Atlas::MatchWithLines(FrameId dom_frame, FrameId other, const UncertainPose* prior) {
   const SelfMatch& self_a = SelfMatchOf(dom_frame);
   const SelfMatch self_a_copy = self_a;  // the cache may evict it while matching b
   const SelfMatch& self_b = SelfMatchOf(other);
-  const MapMatch m = atlas::MatchMaps(
-      graph_.Frame(dom_frame).map->Lines(), self_a_copy, graph_.Frame(other).map->Lines(), self_b,
-      prior, options_.match, options_.points.enabled ? &graph_.Frame(dom_frame).points : nullptr,
-      options_.points.enabled ? &graph_.Frame(other).points : nullptr);
+  return atlas::MatchMaps(graph_.Frame(dom_frame).map->Lines(), self_a_copy,
+                          graph_.Frame(other).map->Lines(), self_b, prior, options_.match,
+                          options_.points.enabled ? &graph_.Frame(dom_frame).points : nullptr,
+                          options_.points.enabled ? &graph_.Frame(other).points : nullptr);
+}
+
+void Atlas::MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior) {
+  const MapMatch m =
+      matcher_ ? matcher_->Match(*graph_.Frame(dom_frame).map, *graph_.Frame(other).map, prior)
+               : MatchWithLines(dom_frame, other, prior);
   stats_.match_hypotheses += m.hypotheses;
   stats_.match_by_points += m.by_points ? 1 : 0;
   ++stats_.match_reasons[static_cast<int>(m.reason)];

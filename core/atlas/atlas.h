@@ -38,6 +38,7 @@
 #include "core/atlas/frame_components.h"
 #include "core/atlas/hypothesis.h"
 #include "core/atlas/map_match.h"
+#include "core/atlas/map_matcher.h"
 
 namespace atlas {
 
@@ -155,6 +156,9 @@ class Atlas {
   Atlas(const AtlasOptions& options, MapFactory factory,
         std::shared_ptr<const PoseBootstrapper> bootstrapper);
 
+  // Map-matching by `matcher` instead of the line matcher (map_matcher.h); null: the lines.
+  void SetMapMatcher(std::shared_ptr<const MapMatcher> matcher) { matcher_ = std::move(matcher); }
+
   // One step: `odometry_delta` is the motion since the previous measurement (robot frame at the
   // previous measurement; ignored on the very first step), `scan` the new scan.
   const StepStats& Step(const Pose2& odometry_delta, const LaserScan& scan);
@@ -235,6 +239,7 @@ class Atlas {
   // Matches the dominant map with frame `other` (prior: its projected pose, or none) and adds
   // the edge when accepted.
   void MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior);
+  MapMatch MatchWithLines(FrameId dom_frame, FrameId other, const UncertainPose* prior);
   FrameId AddFrame(std::unique_ptr<LocalMap> map);
   // A new frame without edges, robot at exactly zero, one mature hypothesis in it.
   FrameId StartUnconnectedFrame();
@@ -257,6 +262,7 @@ class Atlas {
   AtlasOptions options_;
   MapFactory factory_;
   std::shared_ptr<const PoseBootstrapper> bootstrapper_;
+  std::shared_ptr<const MapMatcher> matcher_;
   AtlasGraph graph_;
   FrameComponents components_;
   uint64_t resume_cursor_ = 0;

@@ -30,6 +30,8 @@ std::string RangeScanOptions::Validate() const {
     return "grid range: need 0 <= min_range < max_range (finite)";
   if (!(no_return_free_range >= 0.0) || !(no_return_free_range <= max_range))
     return "grid range: no_return_free_range must be 0 to max_range";
+  if (!(min_incidence >= 0.0 && min_incidence < 1.5))
+    return "grid range: min_incidence must be 0 to 1.5 rad";
   return "";
 }
 

@@ -27,6 +27,12 @@ struct RangeScanOptions {
   double max_range = 60.0;  // metres; returns at or beyond it count as "no return"
   // A beam without a return marks free space up to this many metres only (0: not at all).
   double no_return_free_range = 5.0;
+  // A return whose surface (through it and either neighbouring return) meets the beam at less
+  // than this angle is not used at all, neither hit nor ray (0: every return is used). At
+  // grazing incidence the returns sample a wall more sparsely than the cells and the ray crosses
+  // the wall's cells, so the grid's texture along the wall would be the beams' pattern, which a
+  // scan matches best from where it was inserted (a robot "sticking" along a corridor).
+  double min_incidence = 0.0;  // radians
   std::string Validate() const;
 };
 

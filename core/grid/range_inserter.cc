@@ -31,12 +31,36 @@ void RangeScanFromLaser(const LaserScan& scan, const Pose2& robot, const RangeSc
   out->origin = Vec2(sensor.pose.x, sensor.pose.y);
   out->returns.clear();
   out->misses.clear();
-  for (size_t i = 0; i < scan.ranges.size(); ++i) {
+  const size_t n = scan.ranges.size();
+  const auto usable = [&](size_t i) {
+    return IsReturn(scan.ranges[i]) && scan.ranges[i] < options.max_range;
+  };
+  const auto endpoint = [&](size_t i) {
+    const double a = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+    return Vec2(scan.ranges[i] * std::cos(a), scan.ranges[i] * std::sin(a));
+  };
+  const double min_sin = std::sin(options.min_incidence);
+  // Whether the surface through return i and a neighbouring return j meets the beam at
+  // min_incidence or more.
+  const auto steep = [&](const Vec2& p, const Vec2& direction, size_t j) {
+    const Vec2 t = endpoint(j) - p;
+    const double len = t.norm();
+    return len > 0.0 && std::abs(direction.x() * t.y() - direction.y() * t.x()) >= min_sin * len;
+  };
+  for (size_t i = 0; i < n; ++i) {
     const double r = scan.ranges[i];
     const double a = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
     const Vec2 direction(std::cos(a), std::sin(a));
-    if (IsReturn(scan.ranges[i]) && r < options.max_range) {
-      if (r >= options.min_range) out->returns.push_back(sensor.Apply(r * direction));
+    if (usable(i)) {
+      if (r < options.min_range) continue;
+      if (options.min_incidence > 0.0) {
+        const bool left = i > 0 && usable(i - 1), right = i + 1 < n && usable(i + 1);
+        const Vec2 p = r * direction;
+        if ((left || right) && !(left && steep(p, direction, i - 1)) &&
+            !(right && steep(p, direction, i + 1)))
+          continue;
+      }
+      out->returns.push_back(sensor.Apply(r * direction));
     } else if (options.no_return_free_range > 0.0) {
       out->misses.push_back(sensor.Apply(options.no_return_free_range * direction));
     }

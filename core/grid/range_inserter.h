@@ -28,7 +28,7 @@ struct RangeScan {
 // The usable beams of `scan` from the robot at `robot` (submap frame): returns in
 // [min_range, max_range) become RangeScan::returns; beams without a return or at or beyond
 // max_range become misses at no_return_free_range (none when it is 0); shorter returns are
-// dropped.
+// dropped, and so are returns at grazing incidence (RangeScanOptions::min_incidence).
 void RangeScanFromLaser(const LaserScan& scan, const Pose2& robot, const RangeScanOptions& options,
                         RangeScan* out);
 

@@ -147,3 +147,38 @@ TEST(RangeInserter, ARoomIsMappedWithWallsOccupiedAndTheFloorFree) {
 
 }  // namespace
 }  // namespace atlas
+
+namespace atlas {
+namespace {
+
+// A wall 1 m to the side, scanned by a 181-beam front laser: with min_incidence 20 degrees the
+// returns beyond 1 / sin(20 deg) = 2.9 m along it (grazing) are left out, the others kept; a
+// lone post's return (no neighbouring return) is kept whatever its incidence.
+TEST(RangeScanFromLaser, GrazingReturnsAreLeftOutWithMinIncidence) {
+  FakeLaserOptions laser;
+  laser.beams = 181;
+  laser.range_sigma = 0.0;
+  FakeWallScanner scanner({{Vec2(-1, 1), Vec2(30, 1)}}, laser, 1);
+  const LaserScan scan = scanner.Scan(Pose2{});
+  RangeScanOptions all, steep;
+  steep.min_incidence = 0.35;
+  RangeScan a, s;
+  RangeScanFromLaser(scan, Pose2{}, all, &a);
+  RangeScanFromLaser(scan, Pose2{}, steep, &s);
+  ASSERT_GT(a.returns.size(), s.returns.size());
+  double farthest = 0.0;
+  for (const Vec2& p : s.returns) farthest = std::max(farthest, p.x());
+  EXPECT_LT(farthest, 1.0 / std::sin(0.35) + 0.1);
+  EXPECT_GT(farthest, 2.5);
+  int near = 0;
+  for (const Vec2& p : a.returns) near += p.x() < 2.5 ? 1 : 0;
+  EXPECT_GE(static_cast<int>(s.returns.size()), near);
+  // Beams that were dropped are neither hits nor misses.
+  EXPECT_EQ(s.misses.size(), a.misses.size());
+  FakeWallScanner post({{Vec2(5.0, -0.01), Vec2(5.0, 0.01)}}, laser, 1);
+  RangeScanFromLaser(post.Scan(Pose2{}), Pose2{}, steep, &s);
+  EXPECT_EQ(s.returns.size(), 1u);
+}
+
+}  // namespace
+}  // namespace atlas

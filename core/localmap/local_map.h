@@ -13,6 +13,7 @@
 // - New features are added only while Complexity() < Capacity() (Section I-A, map capacity).
 // - No I/O, no exceptions; data-dependent outcomes are typed results.
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -81,6 +82,18 @@ class LocalMap {
 
   // Read access to the features with their marginal covariances.
   virtual std::vector<MapLine> Lines() const = 0;
+
+  // Whether `point` (map-frame) lies within `reach` metres of what the map holds, so that a
+  // robot there could see it (traversal, Section III-E). Default: of one of Lines()' segments.
+  virtual bool Reaches(const Vec2& point, double reach) const {
+    for (const MapLine& l : Lines()) {
+      const Vec2 d = l.endpoint_b - l.endpoint_a;
+      const double len2 = d.squaredNorm();
+      const double t = len2 > 0 ? std::clamp((point - l.endpoint_a).dot(d) / len2, 0.0, 1.0) : 0.0;
+      if ((l.endpoint_a + t * d - point).norm() <= reach) return true;
+    }
+    return false;
+  }
 
   // A self-contained byte image of the map, and its inverse. Deserialize returns false (and
   // leaves the map unchanged) on bytes that are not a valid image.

@@ -1,6 +1,8 @@
 #include "core/mapper/mapper_factory.h"
 
 #include "core/atlas/line_map_bootstrapper.h"
+#include "core/gridmap/grid_map_bootstrapper.h"
+#include "core/gridmap/grid_map_matcher.h"
 #include "core/localmap/line_ekf_map.h"
 #include "core/localmap/localmap_options.h"
 #include "core/sonar/sonar_local_map.h"
@@ -22,6 +24,16 @@ LocalMapOptions ToLocalMapOptions(const MapperSettings& s) {
   o.quality.max_sigma_y = s.max_sigma_y;
   o.quality.max_sigma_theta = s.max_sigma_theta;
   return o;
+}
+
+GridLocalMapOptions ToGridMapOptions(const MapperSettings& s) {
+  GridLocalMapOptions o;
+  o.odometry = s.odometry;
+  return o;
+}
+
+bool GridFrames(const MapperSettings& s) {
+  return s.grid_frames && s.sensors == RangeSensors::kLaser;
 }
 
 AtlasOptions ToAtlasOptions(const MapperSettings& s) {
@@ -49,6 +61,11 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
     // Condition 2 with the frames' points (docs/design.md, "Points: structure beyond the lines").
     o.points.enabled = true;
   }
+  if (GridFrames(s)) {
+    // Grids are map-matched by GridMapMatcher, once they hold a few scans; no lines, no points.
+    o.points.enabled = false;
+    o.min_match_lines = std::max(o.match.min_support, 5);
+  }
   return o;
 }
 
@@ -68,6 +85,9 @@ std::string ValidateMapperSettings(const MapperSettings& s) {
     if (s.sonar_ring.empty()) return "sonar local map: the sonar ring has no transducer";
     if (std::string e = ToSonarMapOptions(s).Validate(); !e.empty()) return "sonar local map: " + e;
   }
+  if (s.grid_frames && s.sensors != RangeSensors::kLaser)
+    return "grid local map: maps with the laser alone";
+  if (std::string e = ToGridMapOptions(s).Validate(); !e.empty()) return "grid local map: " + e;
   if (std::string e = ToAtlasOptions(s).Validate(); !e.empty()) return "atlas: " + e;
   if (std::string e = s.scan_match.Validate(); !e.empty()) return e;
   return "";
@@ -75,6 +95,14 @@ std::string ValidateMapperSettings(const MapperSettings& s) {
 
 std::unique_ptr<Atlas> MakeAtlas(const MapperSettings& s) {
   const LocalMapOptions map_options = ToLocalMapOptions(s);
+  if (GridFrames(s)) {
+    const GridLocalMapOptions grid = ToGridMapOptions(s);
+    auto atlas = std::make_unique<Atlas>(
+        ToAtlasOptions(s), [grid]() { return std::make_unique<GridLocalMap>(grid); },
+        std::make_shared<GridMapBootstrapper>(grid));
+    atlas->SetMapMatcher(std::make_shared<GridMapMatcher>(grid));
+    return atlas;
+  }
   if (s.sensors == RangeSensors::kLaser) {
     return std::make_unique<Atlas>(
         ToAtlasOptions(s), [map_options]() { return std::make_unique<LineEkfMap>(map_options); },

@@ -61,6 +61,9 @@ struct MapperSettings {
   // sonar extent gap of 1.5 m, w gives fewer false loop closures and a consistent robot pose
   // more often than without it (docs/design.md, "Sonar local maps").
   bool sonar_bootstrap = true;
+  // With the laser alone: map-frames hold probability grids (core/gridmap/grid_local_map.h)
+  // instead of line EKF maps; core/gridmap's defaults with the odometry noise above.
+  bool grid_frames = false;
   // Scan-to-scan matching before each laser step (StepLoop; on by default).
   ScanMatchOptions scan_match;
 };

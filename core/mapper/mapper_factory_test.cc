@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include "core/gridmap/grid_local_map.h"
 #include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_wall_scanner.h"
+#include "core/testing/grid_scenes.h"
 
 namespace atlas {
 namespace {
@@ -33,6 +36,27 @@ TEST(MapperFactory, LaserAtlasSeedsWhereTheRobotReturnsAndTheSonarAtlasDoesNot) 
   EXPECT_LE(o.return_q, o.q_traverse);
   EXPECT_EQ(o.return_far_radius, 0.0);
   EXPECT_FALSE(o.points.enabled);
+}
+
+// localmap.kind = "grid": the frames hold probability grids (no lines, no points) and the
+// laser atlas's Genesis and return band stay; grids need the laser alone.
+TEST(AtlasFactory, GridFramesHoldGridsWithTheLaserAlone) {
+  MapperSettings s;
+  s.grid_frames = true;
+  EXPECT_EQ(ValidateMapperSettings(s), "");
+  std::unique_ptr<Atlas> atlas = MakeAtlas(s);
+  EXPECT_FALSE(atlas->Options().points.enabled);
+  EXPECT_GT(atlas->Options().genesis_cov_scale, 1.0);
+  FakeWallScanner scanner(RoomWalls(), FrontLaser(), 1);
+  atlas->Step(Pose2{}, scanner.Scan(Pose2{}));
+  atlas->Step(Pose2{0.3, 0.0, 0.0}, scanner.Scan(Pose2{0.3, 0.0, 0.0}));
+  const auto* map = dynamic_cast<const GridLocalMap*>(atlas->Graph().Frame(0).map.get());
+  ASSERT_NE(map, nullptr);
+  EXPECT_EQ(map->Complexity(), 2);
+  EXPECT_TRUE(map->LastUpdateMatched()) << ToString(map->LastAlignment().outcome);
+  s.sensors = RangeSensors::kSonar;
+  s.sonar_ring = FakeSonarRing24();
+  EXPECT_NE(ValidateMapperSettings(s), "");
 }
 
 }  // namespace

@@ -80,6 +80,15 @@ inline FakeLaserOptions FullCircleLaser(int beams = 361, double max_range = 30.0
   return o;
 }
 
+// A 180-degree laser looking ahead, as the simulator's and the logs' scanners.
+inline FakeLaserOptions FrontLaser(int beams = 181, double max_range = 30.0) {
+  FakeLaserOptions o;
+  o.beams = beams;
+  o.max_range = max_range;
+  o.range_sigma = 0.01;
+  return o;
+}
+
 // A grid of `walls` from scans at `poses` (world = submap frame).
 inline ProbabilityGrid ScannedGrid(const std::vector<sim::Wall>& walls,
                                    const std::vector<Pose2>& poses, const GridOptions& options,

@@ -576,13 +576,17 @@ void CrossCheck(const DaemonOptions& o,
       o.laser.enabled && o.sonar.device == o.laser.device) {
     report("sonar.device", "is the same device as laser.device");
   }
-  if (read({"localmap.sensors", "sonar.enabled"}) &&
-      o.localmap.sensors != RangeSensors::kLaser && !o.sonar.enabled) {
+  if (read({"localmap.sensors", "sonar.enabled"}) && o.localmap.sensors != RangeSensors::kLaser &&
+      !o.sonar.enabled) {
     report("localmap.sensors", "maps with the sonar: needs sonar.enabled = true");
   }
   if (read({"localmap.sensors", "laser.enabled"}) && o.localmap.sensors == RangeSensors::kBoth &&
       !o.laser.enabled) {
     report("localmap.sensors", "\"both\" maps with the laser too: needs laser.enabled = true");
+  }
+  if (read({"localmap.kind", "localmap.sensors"}) && o.localmap.kind == LocalMapKind::kGrid &&
+      o.localmap.sensors != RangeSensors::kLaser) {
+    report("localmap.kind", "\"grid\" maps with the laser alone: needs sensors = \"laser\"");
   }
   const bool realtime = o.scheduling.policy != SchedPolicy::kOther;
   const bool scheduling = read({"scheduling.policy", "scheduling.priority"});

@@ -202,6 +202,15 @@ TEST(ConfigLoader, RangeSensorsChoosesLaserSonarOrBoth) {
       "test.toml");
   ASSERT_TRUE(without_w.ok());
   EXPECT_FALSE(without_w.options.localmap.sonar_bootstrap);
+  // localmap.kind: lines (the default) or grids, with the laser alone.
+  EXPECT_EQ(DaemonOptions{}.localmap.kind, LocalMapKind::kLines);
+  const ConfigResult grid = LoadConfigString("[localmap]\nkind = \"grid\"\n", "test.toml");
+  ASSERT_TRUE(grid.ok()) << grid.errors[0].ToString();
+  EXPECT_EQ(grid.options.localmap.kind, LocalMapKind::kGrid);
+  ExpectOneError(LoadConfigString("[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\n"
+                                  "kind = \"grid\"\n",
+                                  "test.toml"),
+                 "localmap.kind", 5, "needs sensors = \"laser\"");
   // An unknown value is rejected with the key, the line and the accepted values.
   ExpectOneError(LoadConfigString("\n[localmap]\nsensors = \"radar\"\n", "test.toml"),
                  "localmap.sensors", 3, "must be one of \"laser\", \"sonar\", \"both\"");

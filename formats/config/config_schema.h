@@ -36,6 +36,8 @@ inline constexpr EnumNames<SonarRing, 2> kSonarRingNames{
 inline constexpr EnumNames<RangeSensors, 3> kRangeSensorsNames{{{"laser", RangeSensors::kLaser},
                                                                 {"sonar", RangeSensors::kSonar},
                                                                 {"both", RangeSensors::kBoth}}};
+inline constexpr EnumNames<LocalMapKind, 2> kLocalMapKindNames{
+    {{"lines", LocalMapKind::kLines}, {"grid", LocalMapKind::kGrid}}};
 inline constexpr EnumNames<SchedPolicy, 3> kSchedPolicyNames{{{"other", SchedPolicy::kOther},
                                                               {"fifo", SchedPolicy::kFifo},
                                                               {"rr", SchedPolicy::kRoundRobin}}};
@@ -112,6 +114,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
   });
   v.Section("localmap", [&] {
     v.Enum("sensors", o.localmap.sensors, kRangeSensorsNames);
+    v.Enum("kind", o.localmap.kind, kLocalMapKindNames);
     v.Bool("sonar_bootstrap", o.localmap.sonar_bootstrap);
   });
   v.Section("scan_match", [&] {

@@ -69,11 +69,17 @@ struct SonarOptions {
   int queue_capacity = 32;
 };
 
+// What a laser map-frame holds: ten lines in an EKF (core/localmap/line_ekf_map.h) or a
+// probability grid of its scans (core/gridmap/grid_local_map.h; docs/design.md, "Dense frames").
+enum class LocalMapKind { kLines, kGrid };
+
 struct LocalMapConfig {
   // Which range sensors the local maps use: the laser alone (line EKF, core/localmap), the
   // sonar ring alone, or both in one EKF (core/sonar SonarLocalMap). "sonar" and "both" need
   // sonar.enabled, "both" also laser.enabled.
   RangeSensors sensors = RangeSensors::kLaser;
+  // With the laser alone: "lines" or "grid".
+  LocalMapKind kind = LocalMapKind::kLines;
   // With the sonar alone: the sonar w of eq. 12 (core/sonar/sonar_map_bootstrapper.h) solves
   // traversal juveniles' poses from their readings (the default); false: they keep their seeded
   // pose (docs/design.md, "Sonar local maps").

@@ -40,6 +40,7 @@ MapperSettings ToMapperSettings(const DaemonOptions& o) {
   s.sensors = o.localmap.sensors;
   if (s.sensors != RangeSensors::kLaser) s.sonar_ring = SonarRingOf(o.sonar.ring);
   s.sonar_bootstrap = o.localmap.sonar_bootstrap;
+  s.grid_frames = o.localmap.kind == LocalMapKind::kGrid;
   s.scan_match.enabled = o.scan_match.enabled;
   s.scan_match.max_range = o.scan_match.max_range_m;
   s.scan_match.point_sigma = o.scan_match.point_sigma_m;

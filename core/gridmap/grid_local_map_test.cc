@@ -1,0 +1,165 @@
+#include "core/gridmap/grid_local_map.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "core/testing/fake_wall_scanner.h"
+#include "core/testing/grid_scenes.h"
+
+namespace atlas {
+namespace {
+
+// An odometry noise model that covers the biased odometry of the drives below (a few per cent
+// of the distance and 0.05 rad per metre).
+GridLocalMapOptions GenerousOdometry() {
+  GridLocalMapOptions o;
+  o.odometry.xy_var_per_m = 0.003;
+  o.odometry.theta_var_per_m = 0.003;
+  o.odometry.theta_var_per_rad = 0.01;
+  return o;
+}
+
+// Drives `map` along `truth` (world = frame, starting at truth[0]) with odometry whose
+// translation is scaled by `scale` and whose heading drifts by `turn_bias` per step.
+Pose2 Drive(GridLocalMap* map, const std::vector<sim::Wall>& walls, const std::vector<Pose2>& truth,
+            double scale, double turn_bias, Pose2* dead_reckoned) {
+  FakeWallScanner scanner(walls, FrontLaser(), 7);
+  map->ResetRobotPose(UncertainPose{truth[0], Mat3::Zero()});
+  *dead_reckoned = truth[0];
+  map->Update(scanner.Scan(truth[0]), true);
+  for (size_t k = 1; k < truth.size(); ++k) {
+    Pose2 u = Between(truth[k - 1], truth[k]);
+    u = Pose2{u.x * scale, u.y * scale, u.theta + turn_bias};
+    *dead_reckoned = Compose(*dead_reckoned, u);
+    map->Predict(u);
+    map->Update(scanner.Scan(truth[k]), true);
+  }
+  return map->RobotPose().mean;
+}
+
+TEST(GridLocalMap, AlignsEveryScanAndBeatsBiasedOdometryInARoom) {
+  const std::vector<sim::Wall> walls = RoomWalls();
+  std::vector<Pose2> truth;
+  for (int k = 0; k <= 60; ++k) truth.push_back(Pose2{-3.5 + 0.1 * k, 0.02 * k, 0.01 * k});
+  GridLocalMap map(GenerousOdometry());
+  Pose2 odometry;
+  const Pose2 end = Drive(&map, walls, truth, 1.08, 0.004, &odometry);
+  const Pose2& t = truth.back();
+  // Dead reckoning ends 0.5 m and 14 degrees off; the grid keeps the robot within 5 cm.
+  EXPECT_GT(std::hypot(odometry.x - t.x, odometry.y - t.y), 0.4);
+  EXPECT_NEAR(end.x, t.x, 0.05);
+  EXPECT_NEAR(end.y, t.y, 0.05);
+  EXPECT_NEAR(WrapAngle(end.theta - t.theta), 0.0, 0.01);
+  EXPECT_TRUE(map.LastUpdateMatched());
+  const ScanUpdate u = map.Update(FakeWallScanner(walls, FrontLaser(), 9).Scan(t), false);
+  EXPECT_GT(u.observations, 100);
+  EXPECT_GT(u.matched, 0.9 * u.observations);
+  // The covariance comes from the match: centimetres, not the odometry's decimetres.
+  const Mat3 cov = map.RobotPose().cov;
+  EXPECT_LT(std::sqrt(cov(0, 0)), 0.05);
+  EXPECT_GT(cov.determinant(), 0.0);
+}
+
+// Driving 4 m along a featureless corridor with odometry 10 % long and turning 0.003 rad per
+// step.
+struct CorridorDrive {
+  Pose2 end, odometry;
+  Mat3 cov;
+};
+CorridorDrive DriveTheCorridor() {
+  std::vector<Pose2> truth;
+  for (int k = 0; k <= 40; ++k) truth.push_back(Pose2{0.1 * k, 0.0, 0.0});
+  GridLocalMapOptions o = GenerousOdometry();
+  o.max_extent = 100.0;
+  GridLocalMap map(o);
+  CorridorDrive d;
+  d.end = Drive(&map, LongCorridorWalls(), truth, 1.1, 0.003, &d.odometry);
+  d.cov = map.RobotPose().cov;
+  return d;
+}
+
+TEST(GridLocalMap, TheCorridorsWallsFixTheCrossAxisAndTheHeading) {
+  const CorridorDrive d = DriveTheCorridor();
+  EXPECT_GT(std::abs(d.odometry.y), 0.1);
+  EXPECT_NEAR(d.end.y, 0.0, 0.03);
+  EXPECT_NEAR(d.end.theta, 0.0, 0.01);
+}
+
+// Known limitation (docs/journal/dense-frames.md): along the corridor the pose should follow
+// the odometry (4.4 m for 4 m) with a growing variance; the aligner reports the length as
+// unconstrained only at some steps, and at the others the grid holds the scan back towards
+// the poses it was inserted from (3.5 m at the end, 13 sigma off).
+TEST(GridLocalMap, DISABLED_TheCorridorsLengthTakesTheOdometryWithItsNoise) {
+  const CorridorDrive d = DriveTheCorridor();
+  EXPECT_NEAR(d.end.x, d.odometry.x, 0.1);
+  EXPECT_GT(d.cov(0, 0), 25.0 * d.cov(1, 1));
+}
+
+TEST(GridLocalMap, IsBoundedByScanCountAndExtent) {
+  const std::vector<sim::Wall> walls = LongCorridorWalls();
+  FakeWallScanner scanner(walls, FrontLaser(), 3);
+  GridLocalMapOptions o;
+  o.insert_min_distance = 0.15;  // every second scan
+  o.max_scans = 5;
+  o.max_extent = 100.0;
+  GridLocalMap by_count(o);
+  o.max_scans = 1000;
+  o.max_extent = 1.0;
+  GridLocalMap by_extent(o);
+  for (int k = 0; k <= 30; ++k) {
+    for (GridLocalMap* m : {&by_count, &by_extent}) {
+      if (k > 0) m->Predict(Pose2{0.1, 0.0, 0.0});
+      m->Update(scanner.Scan(Pose2{0.1 * k, 0.0, 0.0}), true);
+    }
+    if (k == 4) {
+      EXPECT_EQ(by_count.Complexity(), 3);  // at 0, 0.2 and 0.4 m
+      EXPECT_LT(by_extent.Complexity(), by_extent.Capacity());
+    }
+  }
+  EXPECT_EQ(by_count.Complexity(), by_count.Capacity());
+  EXPECT_EQ(by_extent.Complexity(), by_extent.Capacity());
+  // Scans inserted up to 1 m from the origin: within 1.5 m of 2.2 m, not of 3.5 m.
+  EXPECT_TRUE(by_extent.Reaches(Vec2(2.2, 0.0), 1.5));
+  EXPECT_FALSE(by_extent.Reaches(Vec2(3.5, 0.0), 1.5));
+}
+
+TEST(GridLocalMap, AJuvenilesUpdateLeavesTheGridAlone) {
+  const std::vector<sim::Wall> walls = RoomWalls();
+  FakeWallScanner scanner(walls, FrontLaser(), 4);
+  GridLocalMap map;
+  map.Update(scanner.Scan(Pose2{}), true);
+  const int cells = map.Grid().known_cells();
+  ASSERT_GT(cells, 0);
+  map.Predict(Pose2{1.0, 0.0, 0.3});
+  map.Update(scanner.Scan(Pose2{1.0, 0.0, 0.3}), false);
+  EXPECT_EQ(map.Grid().known_cells(), cells);
+  EXPECT_EQ(map.Complexity(), 1);
+  EXPECT_TRUE(map.LastUpdateMatched()) << ToString(map.LastAlignment().outcome);
+}
+
+TEST(GridLocalMap, SerializesAndRefusesOtherBytes) {
+  const std::vector<sim::Wall> walls = RoomWalls();
+  std::vector<Pose2> truth;
+  for (int k = 0; k <= 20; ++k) truth.push_back(Pose2{-2.0 + 0.1 * k, 0.0, 0.05 * k});
+  GridLocalMap map;
+  Pose2 odometry;
+  Drive(&map, walls, truth, 1.0, 0.0, &odometry);
+  const std::string image = map.Serialize();
+  GridLocalMap copy;
+  ASSERT_TRUE(copy.Deserialize(image));
+  EXPECT_EQ(copy.Grid().known_cells(), map.Grid().known_cells());
+  EXPECT_EQ(copy.Complexity(), map.Complexity());
+  EXPECT_NEAR(copy.RobotPose().mean.x, map.RobotPose().mean.x, 1e-12);
+  // The same cells hold the same values: both score a scan alike.
+  const std::vector<Vec2> points =
+      map.AlignmentPoints(FakeWallScanner(walls, FrontLaser(), 6).Scan(truth.back()));
+  EXPECT_EQ(copy.ExplainedPoints(points, truth.back()), map.ExplainedPoints(points, truth.back()));
+  EXPECT_FALSE(copy.Deserialize(image.substr(0, image.size() - 1)));
+  EXPECT_FALSE(copy.Deserialize("not a map"));
+  EXPECT_EQ(copy.Serialize(), copy.Serialize());
+}
+
+}  // namespace
+}  // namespace atlas
