@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "core/common/parse_number.h"
-#include "daemon/atlasd/odometry_track.h"
+#include "core/mapper/odometry_track.h"
 
 namespace atlas::replay {
 namespace {

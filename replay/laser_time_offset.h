@@ -1,6 +1,6 @@
 #pragma once
 // Calibration of the laser time offset (StepLoopOptions::laser_time_offset,
-// daemon/atlasd/step_loop.h: a scan was taken at its stamp + offset) without ground truth, from
+// core/mapper/step_loop.h: a scan was taken at its stamp + offset) without ground truth, from
 // the atlas's own heading corrections.
 //
 // Between two consecutive scans localised in the same map-frame the odometry predicts the

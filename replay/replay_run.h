@@ -1,7 +1,7 @@
 #pragma once
 // The one replay run of `atlas-replay` and `atlasd --replay`: the events of a log (a CARMEN log
 // or an lcm-logger file, replay_source.h) through the same StepLoop as atlasd's live loop
-// (odometry interpolated to each scan's stamp, daemon/atlasd/step_loop.h), every scan or sonar
+// (odometry interpolated to each scan's stamp, core/mapper/step_loop.h), every scan or sonar
 // reading the maps use (MapperSettings::sensors) stepped at once, and the output files of
 // docs/formats.md ("Replay output"):
 //   trajectory.tsv  timestamp frame x y theta            (dominant pose in its own frame)
@@ -37,8 +37,8 @@
 #include <string>
 #include <vector>
 
-#include "daemon/atlasd/atlas_factory.h"
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/mapper_factory.h"
+#include "core/mapper/step_loop.h"
 #include "formats/trajectory_tsv.h"
 #include "logs/carmen/carmen_log.h"
 #include "replay/closure_check.h"

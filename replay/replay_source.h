@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/common/sensor_types.h"
-#include "daemon/config/daemon_options.h"
+#include "formats/config/daemon_options.h"
 #include "logs/carmen/carmen_log.h"
 #include "replay/replay_run.h"
 

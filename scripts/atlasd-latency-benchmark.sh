@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs atlasd's whole-path latency benchmark (daemon/atlasd/atlasd_latency_benchmark.cc: last
+# Runs atlasd's whole-path latency benchmark (tests/latency/atlasd_latency_benchmark.cc: last
 # byte of a laser telegram on a pty -> ATLAS_POSE received by an LCM subscriber) inside a private
 # network namespace, so that its LCM multicast never leaves the machine: lo only, multicast on,
 # a route for 224.0.0.0/4 on lo, LCM_DEFAULT_URL udpm with ttl=0. Takes minutes (ATLAS_LATENCY_SECONDS
@@ -11,16 +11,16 @@
 # Arguments go to the benchmark binary (Google Benchmark flags). Needs root for the real-time
 # variants (SCHED_FIFO); without root the namespace is made in a user namespace (unshare -r)
 # and the real-time settings are refused (atlasd says so on stderr). -h, --help: this text (the
-# benchmark's own flags: ATLAS_BUILD_DIR/bin/atlas_daemon_benchmark --help).
+# benchmark's own flags: ATLAS_BUILD_DIR/bin/atlasd_latency_benchmark --help).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
 script_usage "${BASH_SOURCE[0]}" any "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${ATLAS_BUILD_DIR:-$ROOT/build/release}
-BIN=$BUILD/bin/atlas_daemon_benchmark
+BIN=$BUILD/bin/atlasd_latency_benchmark
 if [ ! -x "$BIN" ]; then
   echo "atlasd-latency-benchmark: $BIN not found: build it with" >&2
-  echo "  cmake --build $BUILD --target atlas_daemon_benchmark   (or set ATLAS_BUILD_DIR)" >&2
+  echo "  cmake --build $BUILD --target atlasd_latency_benchmark   (or set ATLAS_BUILD_DIR)" >&2
   exit 1
 fi
 userns=()

@@ -33,7 +33,8 @@ mkdir -p "$OUT"
 # [noise.odometry]); the scans are real, so the lines get the real laser's noise
 # (config/atlasd.toml [noise.laser]: walls that are not straight, floors on the line sigmas).
 # With the simulator's laser model the fit gate dropped most real walls (aces: 257 of 440 scans
-# without a line). The atlas keeps replay's defaults (capacity 10, 4 hypotheses).
+# without a line). The atlas: capacity 10, 4 hypotheses, the other [atlas] keys the shipped
+# file's.
 NOISE=$OUT/noise.toml
 {
   sed -n '/^\[noise.odometry\]/,/^\[/p' "$ROOT/config/noise-simulator.toml" | sed '$d'

@@ -112,15 +112,26 @@ std::vector<Wall> CarveWalls(const std::vector<Shape>& shapes, double cell) {
   const int nx = static_cast<int>(std::ceil((bounds.max.x() - origin.x()) / cell)) + 3;
   const int ny = static_cast<int>(std::ceil((bounds.max.y() - origin.y()) / cell)) + 3;
   auto point = [&](int i, int j) { return Vec2(origin.x() + i * cell, origin.y() + j * cell); };
-  std::vector<double> f(static_cast<size_t>(nx + 1) * (ny + 1));
+  std::vector<double> f(static_cast<size_t>(nx + 1) * (ny + 1), 1e9);
   auto value = [&](int i, int j) -> double& { return f[static_cast<size_t>(j) * (nx + 1) + i]; };
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) {
-      double d = 1e9;
-      for (const Shape& s : shapes) d = std::min(d, s.Distance(point(i, j)));
-      // Never exactly zero, so that every crossing lies strictly inside an edge.
-      value(i, j) = d == 0.0 ? 1e-12 : d;
-    }
+  // Each shape only near itself: a vertex farther than 3 cells from a shape is not inside it, and
+  // the shape cannot be the nearest to a vertex next to a boundary, so the signs and every
+  // crossing are those of the minimum over all shapes.
+  for (const Shape& s : shapes) {
+    const Vec2 r(s.r + 3 * cell, s.r + 3 * cell);
+    const Vec2 b = s.type == Shape::kDisc ? s.a : s.b;
+    const Vec2 lo = (s.a.cwiseMin(b) - r - origin) / cell,
+               hi = (s.a.cwiseMax(b) + r - origin) / cell;
+    const int i0 = std::max(0, static_cast<int>(std::floor(lo.x())));
+    const int j0 = std::max(0, static_cast<int>(std::floor(lo.y())));
+    const int i1 = std::min(nx, static_cast<int>(std::ceil(hi.x())));
+    const int j1 = std::min(ny, static_cast<int>(std::ceil(hi.y())));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) value(i, j) = std::min(value(i, j), s.Distance(point(i, j)));
+  }
+  // Never exactly zero, so that every crossing lies strictly inside an edge.
+  for (double& d : f)
+    if (d == 0.0) d = 1e-12;
   // The crossing on the edge from vertex (i0, j0) to (i1, j1), always in that order, so that
   // two cells sharing an edge compute the same point.
   auto crossing = [&](int i0, int j0, int i1, int j1) -> Vec2 {

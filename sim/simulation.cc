@@ -17,11 +17,6 @@ uint64_t SubSeed(uint64_t seed, uint64_t part) {
 
 }  // namespace
 
-Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f) {
-  return Pose2{a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
-               WrapAngle(a.theta + f * WrapAngle(b.theta - a.theta))};
-}
-
 std::string SimulationOptions::Validate() const {
   if (!(length_m > 0.0 && length_m <= 1e7)) return "length must be in (0, 10000] km";
   if (!(odometry_hz >= 1.0 && odometry_hz <= 1000.0)) return "odometry_hz must be in [1, 1000]";

@@ -58,9 +58,6 @@ struct SimulationSummary {
   std::string error;  // non-empty if the run could not start (e.g. no route in the world)
 };
 
-// The pose a fraction f in [0, 1] of the way from a to b (linear in x, y and wrapped theta).
-Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f);
-
 // Where a run starts: the corridor node of degree >= 2 nearest the middle of the world's
 // bounding box (so that there are loops on all sides), or -1 if the world has none.
 int StartNode(const World& world);

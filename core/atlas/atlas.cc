@@ -37,8 +37,6 @@ std::string AtlasOptions::Validate() const {
   if (max_refinements_per_step < 0) return "max_refinements_per_step must be non-negative";
   if (refine_interval_steps < 1) return "refine_interval_steps must be at least 1";
   if (!(refine_gate_chi2 > 0)) return "refine_gate_chi2 must be positive";
-  if (!(seed_cov_scale_without_w >= 1.0 && seed_cov_scale_without_w <= 100.0))
-    return "seed_cov_scale_without_w must lie in [1, 100]";
   if (!(capacity_explanation >= 0 && capacity_explanation <= 1))
     return "capacity_explanation must lie in [0, 1]";
   if (genesis_min_interval_steps < 0) return "genesis_min_interval_steps must be non-negative";
@@ -267,12 +265,7 @@ void Atlas::JudgeJuveniles() {
         JudgeJuvenile(h, best_mature, bootstrap_failed_[i] != 0, options_.lifecycle);
     if (v == JuvenileVerdict::kMature) {
       MapFrame& f = graph_.MutableFrame(h.frame);
-      if (bootstrapper_ || !options_.keep_frame_map_without_w) {
-        f.map = std::move(h.trial_map);
-      } else {
-        f.map->ResetRobotPose(h.trial_map->RobotPose());
-        h.trial_map.reset();
-      }
+      f.map = std::move(h.trial_map);
       h.state = HypothesisState::kMature;
       h.failing_steps = 0;
       h.z.clear();
@@ -452,7 +445,6 @@ void Atlas::Traverse(int d) {
     if (f.seed_cooldown_until > step_ || HasHypothesis(e.frame)) continue;
     // eq. 10-11: x_i* = T_i^d (+) x_d, T_i^d the pose of the dominant frame in frame i.
     UncertainPose seed = Compose(Inverse(e.pose), x_d);
-    if (!bootstrapper_) seed.cov *= options_.seed_cov_scale_without_w;
     if (returning && std::hypot(seed.mean.x, seed.mean.y) >
                          (far ? options_.return_far_radius : options_.return_radius))
       continue;

@@ -89,18 +89,6 @@ struct AtlasOptions {
   double refine_gate_chi2 = 16.27;
   // Whether edges made by map-matching are refined too (step 7).
   bool refine_map_match_edges = false;
-  // Step 2 without w: the trial map's features were updated from the seed x_i* of eq. 10-11,
-  // which comes from other frames and the edges but enters the EKF as independent of frame i's
-  // features, so adopting them fuses that seed into the frame's map at each re-entry. On:
-  // the frame keeps its own map and takes the juvenile's robot pose (with no correlation to
-  // the features, so later updates count the map's information twice instead). Off: on the
-  // simulator's sonar atlases it made the robot NEES worse (docs/design.md, "III-E. Traversal").
-  bool keep_frame_map_without_w = false;
-  // Without w: traversal seeds (eq. 10-11) get their covariance times this factor. The seed's
-  // correlation with frame i's map is unknown (dropped with the frames' independence); a factor
-  // 1/omega is the seed's side of covariance intersection (eq. 16-18) with weight omega. Not
-  // used by atlasd (docs/design.md, "III-E. Traversal"); 1 = the plain projection.
-  double seed_cov_scale_without_w = 1.0;
   // Genesis (III-C) puts the robot's covariance in the old frame on the new edge, times this
   // (our addition; 1 = the paper). The local maps' covariance there is optimistic: on the six
   // corrected logs (30 seeds) the edges of the Genesis chain lie at a median chi-square of

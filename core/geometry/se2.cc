@@ -31,6 +31,11 @@ Pose2 Between(const Pose2& a, const Pose2& b) {
   return Pose2{c * dx + s * dy, -s * dx + c * dy, WrapAngle(b.theta - a.theta)};
 }
 
+Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f) {
+  return Pose2{a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
+               WrapAngle(a.theta + f * WrapAngle(b.theta - a.theta))};
+}
+
 Mat3 ComposeJacobianA(const Pose2& a, const Pose2& b) {
   const double c = std::cos(a.theta), s = std::sin(a.theta);
   Mat3 j = Mat3::Identity();

@@ -55,6 +55,10 @@ Pose2 Compose(const Pose2& a, const Pose2& b);
 Pose2 Inverse(const Pose2& a);
 // a (-) b = (-)a (+) b: b expressed in the frame of a.
 Pose2 Between(const Pose2& a, const Pose2& b);
+// The pose a fraction f of the way from a to b: linear in x and y, the heading along the shorter
+// arc (wrapped); f in [0, 1] interpolates, f > 1 extrapolates. For odometry and ground truth
+// sampled densely enough that the motion between samples is nearly straight.
+Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f);
 
 // J1 = d(a (+) b)/da and J2 = d(a (+) b)/db.
 Mat3 ComposeJacobianA(const Pose2& a, const Pose2& b);

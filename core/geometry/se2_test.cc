@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <cmath>
 #include <functional>
 #include <random>
 
@@ -45,6 +46,29 @@ TEST(WrapAngle, StaysInHalfOpenInterval) {
     EXPECT_NEAR(std::cos(w), std::cos(a), 1e-9);
     EXPECT_NEAR(std::sin(w), std::sin(a), 1e-9);
   }
+}
+
+TEST(Se2, InterpolatePoseIsLinearAndTurnsTheShorterWay) {
+  // From heading 3.0 to -2.9: 2 pi - 5.9 = 0.38 rad counter-clockwise, across +-pi.
+  const Pose2 a{1.0, -2.0, 3.0};
+  const Pose2 b{3.0, 2.0, -2.9};
+  const Pose2 mid = InterpolatePose(a, b, 0.5);
+  EXPECT_NEAR(mid.x, 2.0, 1e-12);
+  EXPECT_NEAR(mid.y, 0.0, 1e-12);
+  EXPECT_NEAR(mid.theta, 0.05 - M_PI, 1e-12);  // 3.0 + 0.19, wrapped; not through 0
+  const Pose2 at_a = InterpolatePose(a, b, 0.0);
+  EXPECT_NEAR(at_a.x, 1.0, 1e-12);
+  EXPECT_NEAR(at_a.y, -2.0, 1e-12);
+  EXPECT_NEAR(at_a.theta, 3.0, 1e-12);
+  const Pose2 at_b = InterpolatePose(a, b, 1.0);
+  EXPECT_NEAR(at_b.x, 3.0, 1e-12);
+  EXPECT_NEAR(at_b.y, 2.0, 1e-12);
+  EXPECT_NEAR(at_b.theta, -2.9, 1e-12);
+  // Beyond b: extrapolated at the same rate.
+  const Pose2 past = InterpolatePose(a, b, 1.5);
+  EXPECT_NEAR(past.x, 4.0, 1e-12);
+  EXPECT_NEAR(past.y, 4.0, 1e-12);
+  EXPECT_NEAR(past.theta, M_PI - 5.85, 1e-12);
 }
 
 TEST(Se2, ComposeWithInverseIsIdentity) {

@@ -46,10 +46,10 @@
 namespace atlas {
 
 struct ScanMatchOptions {
-  bool enabled = false;
-  double min_range = 0.1;          // metres; shorter returns are not used
-  double max_range = 20.0;         // metres; longer returns are not used
-  double point_sigma = 0.03;       // metres, point-to-line residual noise
+  bool enabled = true;        // the StepLoop matches consecutive laser scans (scan_match.enabled)
+  double min_range = 0.1;     // metres; shorter returns are not used
+  double max_range = 20.0;    // metres; longer returns are not used
+  double point_sigma = 0.03;  // metres, point-to-line residual noise
   double information_scale = 0.3;  // the ICP Hessian's information is multiplied by this
   double huber_k = 2.0;            // Huber threshold in point_sigma
   // A reference point's normal: a fit over the neighbours within `normal_radius` among

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/atlas/atlas.h"
-#include "daemon/config/daemon_options.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

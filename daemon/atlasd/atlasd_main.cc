@@ -10,7 +10,7 @@
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
 #include "daemon/atlasd/replay.h"
-#include "daemon/config/config_loader.h"
+#include "formats/config/config_loader.h"
 
 namespace {
 

@@ -1,23 +1,22 @@
 #pragma once
-// DaemonOptions (the configuration file) -> the options of each part atlasd runs: the device
-// readers, the mapper and the step loop. One place, so that live runs and replay agree.
+// DaemonOptions (the configuration file) -> the options of the device readers atlasd runs; the
+// mapper's and the step loop's come from formats/config/mapper_config.h, shared with the
+// offline tools, so that live runs and replay agree.
 
-#include "daemon/atlasd/atlas_factory.h"
-#include "daemon/atlasd/step_loop.h"
-#include "daemon/config/daemon_options.h"
 #include "drivers/device/laser_reader.h"
 #include "drivers/device/odometry_reader.h"
 #include "drivers/device/sonar_reader.h"
+#include "formats/config/daemon_options.h"
+#include "formats/config/mapper_config.h"
 
 namespace atlas {
 
-MapperSettings ToMapperSettings(const DaemonOptions& o);
-StepLoopOptions ToStepLoopOptions(const DaemonOptions& o);
 LaserReaderOptions ToLaserReaderOptions(const DaemonOptions& o);
 OdometryReaderOptions ToOdometryReaderOptions(const DaemonOptions& o);
 SonarReaderOptions ToSonarReaderOptions(const DaemonOptions& o);
 
-// Every derived option set validated; empty when all are valid, else one line per problem.
+// Every derived option set validated (the mapper's, ValidateMapperOptions, and the enabled
+// readers'); empty when all are valid, else one line per problem.
 std::string ValidateDerivedOptions(const DaemonOptions& o);
 
 }  // namespace atlas

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
-#include "daemon/config/config_loader.h"
-#include "daemon/config/config_schema.h"
+#include "atlas_paths.h"
+#include "formats/config/config_loader.h"
+#include "formats/config/config_schema.h"
 
 namespace atlas {
 namespace {
@@ -31,50 +33,17 @@ TEST(DaemonSetup, DriverThreadsFollowTheLoopsRealTimePriority) {
   EXPECT_EQ(ValidateDerivedOptions(o), "");
 }
 
-// The configured noise reaches the local maps: sigmas after one unit of motion become the
-// model's variances per unit, the line floors reach the extraction.
-TEST(DaemonSetup, NoiseModelsReachTheMapper) {
-  DaemonOptions o;
-  o.odometry.track_width_m = 0.5;
-  o.noise.odometry.wheel_sigma_per_m = 0.02;
-  o.noise.odometry.translation_sigma_per_m = 0.03;
-  o.noise.odometry.translation_sigma_per_rad = 0.04;
-  o.noise.odometry.rotation_sigma_per_m = 0.05;
-  o.noise.odometry.rotation_sigma_per_rad = 0.06;
-  o.noise.odometry.wheel_scale_sigma = 0.001;
-  o.noise.odometry.track_width_sigma = 0.002;
-  o.noise.laser.range_sigma_m = 0.015;
-  o.noise.laser.wall_sigma_m = 0.025;
-  o.noise.laser.line_rho_sigma_min_m = 0.035;
-  o.noise.laser.line_alpha_sigma_min_deg = 2.0;
-  const MapperSettings s = ToMapperSettings(o);
-  EXPECT_DOUBLE_EQ(s.odometry.track_width, 0.5);
-  EXPECT_DOUBLE_EQ(s.odometry.wheel_var_per_m, 0.02 * 0.02);
-  EXPECT_DOUBLE_EQ(s.odometry.xy_var_per_m, 0.03 * 0.03);
-  EXPECT_DOUBLE_EQ(s.odometry.xy_var_per_rad, 0.04 * 0.04);
-  EXPECT_DOUBLE_EQ(s.odometry.theta_var_per_m, 0.05 * 0.05);
-  EXPECT_DOUBLE_EQ(s.odometry.theta_var_per_rad, 0.06 * 0.06);
-  EXPECT_DOUBLE_EQ(s.odometry.wheel_scale_sigma, 0.001);
-  EXPECT_DOUBLE_EQ(s.odometry.track_width_sigma, 0.002);
-  EXPECT_DOUBLE_EQ(s.laser_range_sigma_m, 0.015);
-  EXPECT_DOUBLE_EQ(s.wall_sigma_m, 0.025);
-  EXPECT_DOUBLE_EQ(s.line_rho_sigma_min_m, 0.035);
-  EXPECT_NEAR(s.line_alpha_sigma_min_rad, 2.0 * M_PI / 180.0, 1e-12);
-  EXPECT_EQ(ValidateMapperSettings(s), "");
-  // A larger rotation noise gives a larger heading variance for the same increment.
-  const Pose2 step{0.5, 0.0, 0.3};
-  const double before = OdometryIncrementNoise(step, s)(2, 2);
-  o.noise.odometry.rotation_sigma_per_rad = 0.2;
-  EXPECT_GT(OdometryIncrementNoise(step, ToMapperSettings(o))(2, 2), before);
-}
-
-// laser.time_offset_s reaches the step loop (seconds -> Duration, sign kept).
-TEST(DaemonSetup, LaserTimeOffsetReachesTheLoop) {
-  DaemonOptions o;
-  EXPECT_EQ(ToStepLoopOptions(o).laser_time_offset, Duration::zero());
-  o.laser.time_offset_s = -0.12;
-  EXPECT_EQ(ToStepLoopOptions(o).laser_time_offset, std::chrono::milliseconds(-120));
-  EXPECT_EQ(ValidateDerivedOptions(o), "");
+// Every shipped configuration file passes the checks atlasd makes, the device readers' included.
+TEST(DaemonSetup, EveryShippedFileIsValid) {
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(ATLAS_SOURCE_DIR "/config")) {
+    if (e.path().extension() != ".toml") continue;
+    ++files;
+    const ConfigResult r = LoadConfigFile(e.path().string(), ValidateDerivedOptions);
+    for (const ConfigError& err : r.errors) ADD_FAILURE() << err.ToString();
+    EXPECT_EQ(r.options.Validate(), "") << e.path();
+  }
+  EXPECT_GT(files, 0) << "no config/*.toml found";
 }
 
 // Sets the n-th end of the schema's ranges (both ends of a range, every allowed value of a list
@@ -140,9 +109,9 @@ class RangeEnd {
 TEST(DaemonSetup, EveryEndOfEveryConfigRangePassesTheDerivedOptions) {
   std::vector<DaemonOptions> bases(3);
   bases[1].sonar.enabled = true;
-  bases[1].localmap.sensors = LocalMapSensors::kSonar;
+  bases[1].localmap.sensors = RangeSensors::kSonar;
   bases[2].sonar.enabled = true;
-  bases[2].localmap.sensors = LocalMapSensors::kBoth;
+  bases[2].localmap.sensors = RangeSensors::kBoth;
   int checked = 0;
   for (const DaemonOptions& base : bases) {
     ASSERT_EQ(ValidateDerivedOptions(base), "");

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "atlas/health_t.hpp"
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/step_loop.h"
 #include "drivers/device/driver_health.h"
 
 namespace atlas {

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "core/testing/atlas_test_world.h"
+#include "core/testing/fake_step_sink.h"
 #include "core/testing/fake_wall_scanner.h"
-#include "daemon/atlasd/fake_step_sink.h"
 #include "sim/corridor.h"
 
 namespace atlas {

@@ -2,18 +2,9 @@
 
 #include <utility>
 
-#include "daemon/atlasd/step_loop.h"
-#include "daemon/lcm_out/lcm_convert.h"
+#include "core/mapper/step_loop.h"
 
 namespace atlas {
-namespace {
-
-template <typename T>
-void ToRawResolution(T* item) {
-  item->stamp = FromUtime(ToUtime(item->stamp));
-}
-
-}  // namespace
 
 InputDrain::InputDrain(SpscQueue<OdometrySample>* odometry, SpscQueue<SonarReading>* sonar,
                        SpscQueue<LaserScan>* laser)
@@ -25,19 +16,16 @@ InputDrain::InputDrain(SpscQueue<OdometrySample>* odometry, SpscQueue<SonarReadi
 void InputDrain::Drain(DrainTarget* target) {
   OdometrySample o;
   while (odometry_ && odometry_->Pop(&o)) {
-    ToRawResolution(&o);
     target->OnOdometry(o);
   }
   readings_.clear();
   scans_.clear();
   SonarReading s;
   while (sonar_ && readings_.size() < readings_.capacity() && sonar_->Pop(&s)) {
-    ToRawResolution(&s);
     readings_.push_back(std::move(s));
   }
   LaserScan scan;
   while (laser_ && scans_.size() < scans_.capacity() && laser_->Pop(&scan)) {
-    ToRawResolution(&scan);
     scans_.push_back(std::move(scan));
   }
   InStampOrder(

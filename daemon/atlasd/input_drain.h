@@ -2,9 +2,9 @@
 // One drain of the device queues by the live loop thread (live_daemon.h): the odometry first,
 // then the sonar readings and laser scans taken together, handed on in stamp order
 // (InStampOrder, step_loop.h: a scan before a reading of the same stamp), so that the loop
-// steps them, and a recording of the raw channels holds them, in that order. Every stamp is
-// rounded to the raw channels' resolution (whole microseconds, utime), so that `atlasd --replay`
-// of the republished channels feeds the StepLoop exactly what it had. At most one queue's
+// steps them, and a recording of the raw channels holds them, in that order. Stamps are handed
+// on as the drivers made them (the StepLoop truncates them to the raw channels' resolution:
+// StepLoopOptions::stamp_resolution). At most one queue's
 // capacity of readings and of scans per drain; the buffers are reserved at construction, so a
 // drain does not allocate.
 

@@ -4,9 +4,9 @@
 // loop thread's clock (docs/lcm.md).
 
 #include "core/atlas/atlas.h"
-#include "daemon/atlasd/step_loop.h"
-#include "daemon/config/daemon_options.h"
+#include "core/mapper/step_loop.h"
 #include "daemon/lcm_out/atlas_publisher.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

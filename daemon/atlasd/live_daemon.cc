@@ -13,9 +13,9 @@
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_timing.h"
 #include "daemon/atlasd/loop_thread.h"
-#include "daemon/config/config_loader.h"
 #include "daemon/lcm_out/multicast_route.h"
 #include "daemon/notify/service_notifier.h"
+#include "formats/config/config_loader.h"
 
 namespace atlas {
 namespace {

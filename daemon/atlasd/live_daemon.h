@@ -15,7 +15,7 @@
 
 #include <string>
 
-#include "daemon/config/daemon_options.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

@@ -12,6 +12,7 @@
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_timing.h"
 #include "daemon/atlasd/reload.h"
+#include "daemon/lcm_out/lcm_convert.h"
 
 namespace atlas {
 namespace {
@@ -76,8 +77,11 @@ bool LoopThread::Start(Time start) {
   atlas_ = MakeAtlas(ToMapperSettings(options_));
   OpenStore();
   last_checkpoint_ = Now();
-  loop_ = std::make_unique<StepLoop>(ToStepLoopOptions(options_), ToMapperSettings(options_),
-                                     atlas_.get());
+  // The loop steps the stamps a recording of the raw channels keeps, so that `atlasd --replay`
+  // of the recording steps what the live loop stepped (core/mapper/step_loop.h).
+  StepLoopOptions loop_options = ToStepLoopOptions(options_);
+  loop_options.stamp_resolution = kUtimeResolution;
+  loop_ = std::make_unique<StepLoop>(loop_options, ToMapperSettings(options_), atlas_.get());
 
   odometry_ = std::make_unique<OdometryReader>(ToOdometryReaderOptions(options_));
   odometry_->Start();
@@ -90,7 +94,7 @@ bool LoopThread::Start(Time start) {
   if (options_.sonar.enabled) {
     SonarReaderOptions so = ToSonarReaderOptions(options_);
     // Readings the maps do not use are drained with the scans (republished when asked).
-    if (options_.localmap.sensors != LocalMapSensors::kLaser)
+    if (options_.localmap.sensors != RangeSensors::kLaser)
       so.on_reading = [this] { shared_->SignalRange(); };
     sonar_ = std::make_unique<SonarReader>(so);
     sonar_->Start();
@@ -122,12 +126,12 @@ void LoopThread::OnOdometry(const OdometrySample& sample) {
 // localmap.sensors: the maps are stepped with the laser, the sonar, or both.
 void LoopThread::OnSonar(SonarReading& reading) {
   if (republish_raw_) publisher_->RawSonar(reading);
-  if (options_.localmap.sensors != LocalMapSensors::kLaser) loop_->AddSonar(std::move(reading));
+  if (options_.localmap.sensors != RangeSensors::kLaser) loop_->AddSonar(std::move(reading));
 }
 
 void LoopThread::OnScan(LaserScan& scan) {
   if (republish_raw_) publisher_->RawLaser(scan);
-  if (options_.localmap.sensors != LocalMapSensors::kSonar) loop_->AddScan(std::move(scan));
+  if (options_.localmap.sensors != RangeSensors::kSonar) loop_->AddScan(std::move(scan));
 }
 
 void LoopThread::PublishHealth(Time now) {

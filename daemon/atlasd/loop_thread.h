@@ -22,18 +22,18 @@
 #include <vector>
 
 #include "core/atlas/atlas.h"
+#include "core/mapper/step_loop.h"
 #include "daemon/atlasd/atlas_checkpoint.h"
 #include "daemon/atlasd/health_report.h"
 #include "daemon/atlasd/input_drain.h"
 #include "daemon/atlasd/lcm_sink.h"
 #include "daemon/atlasd/live_daemon.h"
-#include "daemon/atlasd/step_loop.h"
-#include "daemon/config/daemon_options.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 #include "daemon/store/atlas_store_writer.h"
 #include "drivers/device/laser_reader.h"
 #include "drivers/device/odometry_reader.h"
 #include "drivers/device/sonar_reader.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "daemon/atlasd/daemon_setup.h"
-#include "daemon/config/config_loader.h"
+#include "formats/config/config_loader.h"
 
 namespace atlas {
 namespace {

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "core/atlas/atlas.h"
-#include "daemon/atlasd/atlas_factory.h"
-#include "daemon/config/daemon_options.h"
+#include "core/mapper/mapper_factory.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

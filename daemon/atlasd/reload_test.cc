@@ -7,7 +7,7 @@
 
 #include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/daemon_setup.h"
-#include "daemon/config/config_loader.h"
+#include "formats/config/config_loader.h"
 #include "sim/corridor.h"
 
 namespace atlas {

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_step_sink.h"
 #include "core/testing/fake_wall_scanner.h"
 #include "daemon/atlasd/daemon_setup.h"
-#include "daemon/atlasd/fake_step_sink.h"
 #include "daemon/atlasd/input_drain.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 #include "formats/replay_dir.h"
@@ -76,8 +76,8 @@ class LiveDrainTarget final : public DrainTarget {
   LiveDrainTarget(AtlasPublisher* publisher, StepLoop* loop, const DaemonOptions& o, LiveRun* run)
       : publisher_(publisher),
         loop_(loop),
-        use_laser_(o.localmap.sensors != LocalMapSensors::kSonar),
-        use_sonar_(o.localmap.sensors != LocalMapSensors::kLaser),
+        use_laser_(o.localmap.sensors != RangeSensors::kSonar),
+        use_sonar_(o.localmap.sensors != RangeSensors::kLaser),
         run_(run) {}
   void OnOdometry(const OdometrySample& s) override {
     publisher_->RawOdometry(s);
@@ -210,7 +210,7 @@ std::string MakeTempDir() {
 
 // A sonar session's options: the B21 ring, the local maps on `sensors`, and a loop queue deep
 // enough that a loop that falls behind at times drops nothing.
-DaemonOptions SonarSessionOptions(LocalMapSensors sensors) {
+DaemonOptions SonarSessionOptions(RangeSensors sensors) {
   DaemonOptions o;
   o.sonar.enabled = true;
   o.sonar.ring = SonarRing::kB21_24;
@@ -219,7 +219,7 @@ DaemonOptions SonarSessionOptions(LocalMapSensors sensors) {
   return o;
 }
 
-class ReplayOfRawSonar : public ::testing::TestWithParam<LocalMapSensors> {};
+class ReplayOfRawSonar : public ::testing::TestWithParam<RangeSensors> {};
 
 // A session recorded with lcm.republish_raw (odometry, laser and sonar raw channels, in the
 // order the live loop republished them), replayed by `atlasd --replay` (RunReplay) with the
@@ -230,7 +230,7 @@ TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
   const DaemonOptions o = SonarSessionOptions(GetParam());
   ASSERT_EQ(ValidateDerivedOptions(o), "");
   const LiveRun live = RunLive(o, dir + "/session.lcm", 7);
-  const bool both = GetParam() == LocalMapSensors::kBoth;
+  const bool both = GetParam() == RangeSensors::kBoth;
   ASSERT_EQ(static_cast<int>(live.rows.size()), live.readings + (both ? live.scans : 0));
   // Live steps in the order added: stamp order, except for the late scans.
   int inversions = 0;
@@ -275,7 +275,7 @@ TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
 TEST(Replay, SaysWhereABadLogEnds) {
   const std::string dir = MakeTempDir();
   ASSERT_FALSE(dir.empty()) << std::strerror(errno);
-  const DaemonOptions o = SonarSessionOptions(LocalMapSensors::kSonar);
+  const DaemonOptions o = SonarSessionOptions(RangeSensors::kSonar);
   const LiveRun live = RunLive(o, dir + "/session.lcm", 7);
   const std::string bytes = FileText(dir + "/session.lcm");
   const size_t cut = bytes.size() - 5;
@@ -317,9 +317,9 @@ TEST(Replay, SaysWhereABadLogEnds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sensors, ReplayOfRawSonar,
-                         ::testing::Values(LocalMapSensors::kSonar, LocalMapSensors::kBoth),
+                         ::testing::Values(RangeSensors::kSonar, RangeSensors::kBoth),
                          [](const auto& info) {
-                           return info.param == LocalMapSensors::kSonar ? "Sonar" : "Both";
+                           return info.param == RangeSensors::kSonar ? "Sonar" : "Both";
                          });
 
 }  // namespace

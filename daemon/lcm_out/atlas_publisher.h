@@ -6,8 +6,8 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "atlas/health_t.hpp"
-#include "daemon/config/daemon_options.h"
 #include "daemon/lcm_out/lcm_convert.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

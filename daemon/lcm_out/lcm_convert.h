@@ -24,6 +24,8 @@
 
 namespace atlas {
 
+// utime: whole microseconds (ToUtime truncates, as Truncate(t, kUtimeResolution) does).
+inline constexpr Duration kUtimeResolution = std::chrono::microseconds(1);
 int64_t ToUtime(Time t);
 Time FromUtime(int64_t utime);
 

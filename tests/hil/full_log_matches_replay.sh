@@ -5,12 +5,11 @@
 # scores must agree within a small tolerance: the live path (ptys, CAN, threads, queues, LCM)
 # loses nothing.
 #
-# Same mapper on both sides: atlasd is configured with atlas-replay's defaults (map capacity
-# 10, 4 hypotheses, probation 8, sigmas 0.5/0.5/0.2, 24 frames projected, 1 match candidate,
-# range sigma 0.01 m, max range 8 m) and no scan is dropped
-# (loop.max_pending_scans = 64). The odometry track width stays atlasd's default 0.58 m, the
-# fake base's: the CAN wheel counters must be decoded with the width they were encoded with
-# (the maps' odometry noise model then uses 0.58 m where atlas-replay's uses 0.4 m).
+# Same mapper on both sides (one configuration file for both): map capacity 10, 4 hypotheses,
+# probation 8, sigmas 0.5/0.5/0.2, 24 frames projected, 1 match candidate, range sigma 0.01 m,
+# max range 8 m, and no scan is dropped (loop.max_pending_scans = 64). The odometry track
+# width stays atlasd's default 0.58 m, the fake base's: the CAN wheel counters must be decoded
+# with the width they were encoded with.
 #
 # Live stamps are this machine's monotonic arrival times. atlas-fakedev prints its clock
 # mapping ("playing: log_start L monotonic_start M speed S"): a live stamp t is log time

@@ -20,7 +20,7 @@ Pose2 InterpolateTruth(const std::vector<TruthSample>& truth, Time stamp) {
   const TruthSample& a = *(it - 1);
   const double span = ToSeconds(b.stamp - a.stamp);
   const double f = span > 0 ? ToSeconds(stamp - a.stamp) / span : 0.0;
-  return sim::InterpolatePose(a.pose, b.pose, f);
+  return InterpolatePose(a.pose, b.pose, f);
 }
 
 std::vector<Vec2> ScanPoints(const RunScan& scan, const Pose2& laser_pose) {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "core/common/parse_number.h"
-#include "daemon/atlasd/daemon_setup.h"
-#include "daemon/config/config_loader.h"
+#include "formats/config/config_loader.h"
+#include "formats/config/mapper_config.h"
 #include "formats/pose_file.h"
 #include "formats/text_rows.h"
 #include "replay/laser_time_offset.h"
@@ -141,7 +141,7 @@ int Main(int argc, char** argv) {
   // --config first, so that the other options override what it sets.
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) != "--config") continue;
-    const ConfigResult config = LoadConfigFile(argv[i + 1], ValidateDerivedOptions);
+    const ConfigResult config = LoadConfigFile(argv[i + 1], ValidateMapperOptions);
     if (!config.ok()) {
       std::fprintf(stderr, "atlas-replay: configuration rejected:\n");
       for (const ConfigError& e : config.errors)

@@ -19,7 +19,7 @@
 #include <string>
 #include <utility>
 
-#include "daemon/config/daemon_options.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas::config {
 
@@ -29,14 +29,13 @@ using StringCheck = std::string (*)(const std::string&);
 template <typename E, size_t N>
 using EnumNames = std::array<std::pair<const char*, E>, N>;
 
-inline constexpr EnumNames<LaserUnit, 2> kLaserUnitNames{
-    {{"cm", LaserUnit::kCentimetre}, {"mm", LaserUnit::kMillimetre}}};
+inline constexpr EnumNames<sick::Unit, 2> kLaserUnitNames{
+    {{"cm", sick::Unit::kCentimetre}, {"mm", sick::Unit::kMillimetre}}};
 inline constexpr EnumNames<SonarRing, 2> kSonarRingNames{
     {{"p3dx16", SonarRing::kP3dx16}, {"b21_24", SonarRing::kB21_24}}};
-inline constexpr EnumNames<LocalMapSensors, 3> kLocalMapSensorsNames{
-    {{"laser", LocalMapSensors::kLaser},
-     {"sonar", LocalMapSensors::kSonar},
-     {"both", LocalMapSensors::kBoth}}};
+inline constexpr EnumNames<RangeSensors, 3> kRangeSensorsNames{{{"laser", RangeSensors::kLaser},
+                                                                {"sonar", RangeSensors::kSonar},
+                                                                {"both", RangeSensors::kBoth}}};
 inline constexpr EnumNames<LocalMapKind, 2> kLocalMapKindNames{
     {{"lines", LocalMapKind::kLines}, {"grid", LocalMapKind::kGrid}}};
 inline constexpr EnumNames<SchedPolicy, 3> kSchedPolicyNames{{{"other", SchedPolicy::kOther},
@@ -114,7 +113,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
     });
   });
   v.Section("localmap", [&] {
-    v.Enum("sensors", o.localmap.sensors, kLocalMapSensorsNames);
+    v.Enum("sensors", o.localmap.sensors, kRangeSensorsNames);
     v.Enum("kind", o.localmap.kind, kLocalMapKindNames);
     v.Bool("sonar_bootstrap", o.localmap.sonar_bootstrap);
   });

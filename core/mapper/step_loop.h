@@ -13,7 +13,17 @@
 //   interpolated between the samples bracketing the stamp (OdometryTrack; extrapolated briefly
 //   when the scan is newer than every sample), using only the odometry that had arrived when
 //   the scan was added, so that a scan stepped late gives the same result as one stepped at
-//   once (live and replay agree). Ranges beyond max_range_m become kNoReturn.
+//   once (live and replay agree).
+// - Per-scan preprocessing is the loop's (and only the loop's): when a scan is added its stamp is
+//   truncated to `stamp_resolution` (below) and its ranges at or beyond max_range_m become
+//   kNoReturn; when it is stepped, the odometry is looked up at the time it was taken (stamp +
+//   laser_time_offset, below). Odometry samples and sonar readings have their stamps truncated
+//   the same way when added.
+// - Stamp resolution: the stamps of everything added are truncated to a whole multiple of
+//   `stamp_resolution` (zero: kept as given). The live daemon sets the resolution at which its
+//   recording of the raw inputs keeps stamps (the raw LCM channels: whole microseconds), so
+//   that a replay of that recording steps exactly the stamps the live loop stepped; the replay
+//   of a log keeps the log's stamps (zero).
 //   The step time is measured; a step longer than step_budget is an overrun (counted).
 //   The pose is reported to the sink (OnPose) as soon as the atlas has localised
 //   (Atlas::Localize), before map-matching and edge refinement (Atlas::MaintainGraph), so that
@@ -64,8 +74,8 @@
 #include <vector>
 
 #include "core/atlas/atlas.h"
-#include "daemon/atlasd/atlas_factory.h"
-#include "daemon/atlasd/odometry_track.h"
+#include "core/mapper/mapper_factory.h"
+#include "core/mapper/odometry_track.h"
 
 namespace atlas {
 
@@ -78,6 +88,8 @@ struct StepLoopOptions {
   size_t odometry_capacity = 512;
   // A scan was taken at its stamp + laser_time_offset (contract above); within +-1 s.
   Duration laser_time_offset = Duration::zero();
+  // Stamps added are truncated to a multiple of this (contract above); 0 to 1 s, 0: kept.
+  Duration stamp_resolution = Duration::zero();
   std::string Validate() const;
 };
 
@@ -137,6 +149,8 @@ class StepLoop {
 
  private:
   void DeadReckon(StepSink* sink);
+  // The preprocessing of a scan when it is added (contract above).
+  void PrepareScan(LaserScan* scan) const;
   // Atlas::Localize with the odometry increment, or with the scan-matched one (above).
   void LocalizeWithScan(const Pose2& delta, const LaserScan& scan);
 

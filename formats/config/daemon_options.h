@@ -14,6 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "core/sonar/sonar_options.h"
+#include "drivers/sick/lms_messages.h"
+
 namespace atlas {
 
 // A sensor's pose on the robot, in the robot (base) frame.
@@ -23,8 +26,6 @@ struct MountPose {
   double theta_deg = 0.0;
 };
 
-enum class LaserUnit { kCentimetre, kMillimetre };
-
 // SICK LMS-2xx on a serial line (docs/devices.md, section 1).
 struct LaserOptions {
   bool enabled = true;
@@ -32,12 +33,12 @@ struct LaserOptions {
   int baud = 500000;                    // 9600, 19200, 38400 or 500000
   int angular_range_deg = 180;          // 180 or 100
   double angular_resolution_deg = 1.0;  // 1.0, 0.5 or 0.25 (0.25 only with 100 degrees)
-  LaserUnit unit = LaserUnit::kMillimetre;
+  sick::Unit unit = sick::Unit::kMillimetre;
   double max_range_m = 8.0;
   MountPose mount{0.1, 0.0, 0.0};
   int queue_capacity = 8;  // scans between the reader thread and the loop
   // A scan was taken at its arrival stamp + time_offset_s (negative: before it), seconds: the
-  // loop looks the odometry up there (daemon/atlasd/step_loop.h says why). 0 on our robot
+  // loop looks the odometry up there (core/mapper/step_loop.h says why). 0 on our robot
   // until calibrated (docs/config.md, "Laser time offset"); mit-csail needs about -0.1.
   double time_offset_s = 0.0;
 };
@@ -68,17 +69,15 @@ struct SonarOptions {
   int queue_capacity = 32;
 };
 
-// Which range sensors the local maps use (core/sonar RangeSensors): the laser alone (line
-// EKF, core/localmap), the sonar ring alone, or both in one EKF (core/sonar SonarLocalMap).
-// "sonar" and "both" need sonar.enabled, "both" also laser.enabled.
-enum class LocalMapSensors { kLaser, kSonar, kBoth };
-
 // What a laser map-frame holds: ten lines in an EKF (core/localmap/line_ekf_map.h) or a
 // probability grid of its scans (core/gridmap/grid_local_map.h; docs/design.md, "Dense frames").
 enum class LocalMapKind { kLines, kGrid };
 
 struct LocalMapConfig {
-  LocalMapSensors sensors = LocalMapSensors::kLaser;
+  // Which range sensors the local maps use: the laser alone (line EKF, core/localmap), the
+  // sonar ring alone, or both in one EKF (core/sonar SonarLocalMap). "sonar" and "both" need
+  // sonar.enabled, "both" also laser.enabled.
+  RangeSensors sensors = RangeSensors::kLaser;
   // With the laser alone: "lines" or "grid".
   LocalMapKind kind = LocalMapKind::kLines;
   // With the sonar alone: the sonar w of eq. 12 (core/sonar/sonar_map_bootstrapper.h) solves

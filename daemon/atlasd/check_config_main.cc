@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "daemon/atlasd/daemon_setup.h"
-#include "daemon/config/config_loader.h"
+#include "formats/config/config_loader.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "daemon/atlasd/atlas_factory.h"
+#include "core/mapper/mapper_factory.h"
 
 #include "core/atlas/line_map_bootstrapper.h"
 #include "core/gridmap/grid_map_bootstrapper.h"

@@ -1,4 +1,4 @@
-#include "daemon/atlasd/odometry_track.h"
+#include "core/mapper/odometry_track.h"
 
 #include <gtest/gtest.h>
 

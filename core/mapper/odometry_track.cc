@@ -1,14 +1,9 @@
-#include "daemon/atlasd/odometry_track.h"
+#include "core/mapper/odometry_track.h"
 
 #include <algorithm>
 #include <cassert>
 
 namespace atlas {
-
-Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f) {
-  return Pose2{a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
-               WrapAngle(a.theta + f * WrapAngle(b.theta - a.theta))};
-}
 
 OdometryTrack::OdometryTrack(size_t capacity, Duration max_extrapolation)
     : ring_(std::max<size_t>(capacity, 2)), max_extrapolation_(max_extrapolation) {}

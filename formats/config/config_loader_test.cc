@@ -1,4 +1,4 @@
-#include "daemon/config/config_loader.h"
+#include "formats/config/config_loader.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "atlas_paths.h"
-#include "daemon/atlasd/daemon_setup.h"
+#include "formats/config/mapper_config.h"
 
 namespace atlas {
 namespace {
@@ -44,23 +44,13 @@ void ExpectOneError(const ConfigResult& r, const std::string& key, int line,
   EXPECT_THAT(r.errors[0].ToString(), HasSubstr(key));
 }
 
-TEST(ConfigLoader, EveryShippedFileIsValid) {
-  const auto files = ShippedConfigFiles();
-  ASSERT_FALSE(files.empty()) << "no config/*.toml found";
-  for (const auto& f : files) {
-    const ConfigResult r = LoadConfigFile(f.string(), ValidateDerivedOptions);
-    for (const ConfigError& e : r.errors) ADD_FAILURE() << e.ToString();
-    EXPECT_EQ(r.options.Validate(), "") << f;
-  }
-}
-
 TEST(ConfigLoader, ShippedFileSetsEveryKeyToItsDefault) {
   const std::string path = ATLAS_SOURCE_DIR "/config/atlasd.toml";
   const toml::table root = toml::parse_file(path);
   for (const auto& [key, value] : Dump(DaemonOptions{})) {
     EXPECT_TRUE(root.at_path(key)) << key << " is not in " << path;
   }
-  const ConfigResult r = LoadConfigFile(path, ValidateDerivedOptions);
+  const ConfigResult r = LoadConfigFile(path, ValidateMapperOptions);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(Dump(r.options), Dump(DaemonOptions{}))
       << "config/atlasd.toml says it shows the defaults of daemon_options.h";
@@ -126,7 +116,7 @@ mlockall = true
   EXPECT_EQ(o.laser.baud, 38400);
   EXPECT_EQ(o.laser.angular_range_deg, 100);
   EXPECT_DOUBLE_EQ(o.laser.angular_resolution_deg, 0.25);
-  EXPECT_EQ(o.laser.unit, LaserUnit::kCentimetre);
+  EXPECT_EQ(o.laser.unit, sick::Unit::kCentimetre);
   EXPECT_DOUBLE_EQ(o.laser.max_range_m, 30.0);
   EXPECT_DOUBLE_EQ(o.laser.time_offset_s, -0.12);
   EXPECT_DOUBLE_EQ(o.laser.mount.theta_deg, 90.0);
@@ -196,16 +186,16 @@ TEST(ConfigLoader, CrossFieldRulesNameKeyAndLine) {
 }
 
 // localmap.sensors: the local maps run on the laser, the sonar or both.
-TEST(ConfigLoader, LocalMapSensorsChoosesLaserSonarOrBoth) {
+TEST(ConfigLoader, RangeSensorsChoosesLaserSonarOrBoth) {
   const ConfigResult sonar =
       LoadConfigString("[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\n", "test.toml");
   ASSERT_TRUE(sonar.ok()) << sonar.errors[0].ToString();
-  EXPECT_EQ(sonar.options.localmap.sensors, LocalMapSensors::kSonar);
+  EXPECT_EQ(sonar.options.localmap.sensors, RangeSensors::kSonar);
   const ConfigResult both =
       LoadConfigString("[sonar]\nenabled = true\n[localmap]\nsensors = \"both\"\n", "test.toml");
   ASSERT_TRUE(both.ok()) << both.errors[0].ToString();
-  EXPECT_EQ(both.options.localmap.sensors, LocalMapSensors::kBoth);
-  EXPECT_EQ(DaemonOptions{}.localmap.sensors, LocalMapSensors::kLaser);
+  EXPECT_EQ(both.options.localmap.sensors, RangeSensors::kBoth);
+  EXPECT_EQ(DaemonOptions{}.localmap.sensors, RangeSensors::kLaser);
   EXPECT_TRUE(DaemonOptions{}.localmap.sonar_bootstrap);
   const ConfigResult without_w = LoadConfigString(
       "[sonar]\nenabled = true\n[localmap]\nsensors = \"sonar\"\nsonar_bootstrap = false\n",
@@ -234,7 +224,7 @@ TEST(ConfigLoader, LocalMapSensorsChoosesLaserSonarOrBoth) {
   // A change needs a restart (the maps are of another kind).
   DaemonOptions running, loaded;
   loaded.sonar.enabled = true;
-  loaded.localmap.sensors = LocalMapSensors::kSonar;
+  loaded.localmap.sensors = RangeSensors::kSonar;
   EXPECT_THAT(DiffForReload(running, loaded).needs_restart, testing::Contains("localmap.sensors"));
 }
 
@@ -265,7 +255,7 @@ TEST(ConfigLoader, InvalidTomlGivesThePosition) {
 }
 
 TEST(ConfigLoader, MissingFileIsAnErrorWithTheErrnoText) {
-  const ConfigResult r = LoadConfigFile("/nonexistent/atlasd.toml", ValidateDerivedOptions);
+  const ConfigResult r = LoadConfigFile("/nonexistent/atlasd.toml", ValidateMapperOptions);
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_THAT(r.errors[0].ToString(), HasSubstr("/nonexistent/atlasd.toml: cannot open"));
   EXPECT_THAT(r.errors[0].message, HasSubstr(std::strerror(ENOENT)));
@@ -275,13 +265,13 @@ TEST(ConfigLoader, MissingFileIsAnErrorWithTheErrnoText) {
 // A directory reads as empty text, which is valid TOML: it must not run on the defaults.
 TEST(ConfigLoader, DirectoryIsRefused) {
   const std::string dir = testing::TempDir();
-  const ConfigResult r = LoadConfigFile(dir, ValidateDerivedOptions);
+  const ConfigResult r = LoadConfigFile(dir, ValidateMapperOptions);
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_EQ(r.errors[0].file, dir);
   EXPECT_THAT(r.errors[0].message, HasSubstr("is a directory, not a configuration file"));
   EXPECT_THAT(r.errors[0].message, HasSubstr("give the path of the TOML file itself"));
   std::ostringstream out, err;
-  EXPECT_EQ(CheckConfigCommand(dir, ValidateDerivedOptions, out, err), kExitConfigError);
+  EXPECT_EQ(CheckConfigCommand(dir, ValidateMapperOptions, out, err), kExitConfigError);
   EXPECT_THAT(err.str(), HasSubstr(dir + ": is a directory"));
   EXPECT_EQ(out.str(), "");
 }
@@ -291,7 +281,7 @@ TEST(ConfigLoader, ReadErrorIsRefusedWithTheErrnoText) {
   struct stat st;
   ASSERT_EQ(stat("/proc/self/mem", &st), 0);
   ASSERT_TRUE(S_ISREG(st.st_mode));
-  const ConfigResult r = LoadConfigFile("/proc/self/mem", ValidateDerivedOptions);
+  const ConfigResult r = LoadConfigFile("/proc/self/mem", ValidateMapperOptions);
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_THAT(r.errors[0].message,
               HasSubstr("reading the configuration file failed after 0 bytes"));
@@ -350,12 +340,12 @@ TEST(ConfigLoader, CheckConfigCommandExits78AndNamesTheKey) {
   const std::string bad = (dir / "atlas_bad_config.toml").string();
   std::ofstream(bad) << "[loop]\nstep_budget_ms = 0\n";
   std::ostringstream out, err;
-  EXPECT_EQ(CheckConfigCommand(bad, ValidateDerivedOptions, out, err), kExitConfigError);
+  EXPECT_EQ(CheckConfigCommand(bad, ValidateMapperOptions, out, err), kExitConfigError);
   EXPECT_THAT(err.str(), HasSubstr(bad + ":2:18: loop.step_budget_ms: must be between 0.1"));
   std::ostringstream out2, err2;
-  EXPECT_EQ(CheckConfigCommand(ATLAS_SOURCE_DIR "/config/atlasd.toml", ValidateDerivedOptions, out2,
-                               err2),
-            0);
+  EXPECT_EQ(
+      CheckConfigCommand(ATLAS_SOURCE_DIR "/config/atlasd.toml", ValidateMapperOptions, out2, err2),
+      0);
   EXPECT_THAT(out2.str(), HasSubstr("configuration is valid"));
   std::filesystem::remove(bad);
 }
@@ -367,21 +357,21 @@ TEST(ConfigLoader, TooFewHypothesesOrFramesAreRefusedAtTheirKey) {
   const std::string bad = (dir / "atlas_one_hypothesis.toml").string();
   for (const std::string key : {"max_hypotheses", "frames_examined_per_step"}) {
     std::ofstream(bad) << "[atlas]\nprobation_steps = 20\n" << key << " = 1\n";
-    const ConfigResult r = LoadConfigFile(bad, ValidateDerivedOptions);
+    const ConfigResult r = LoadConfigFile(bad, ValidateMapperOptions);
     ASSERT_EQ(r.errors.size(), 1u) << key;
     EXPECT_EQ(r.errors[0].file, bad);
     EXPECT_EQ(r.errors[0].line, 3);
     EXPECT_EQ(r.errors[0].key, "atlas." + key);
     EXPECT_THAT(r.errors[0].message, HasSubstr("must be between 2 and "));
     std::ostringstream out, err;
-    EXPECT_EQ(CheckConfigCommand(bad, ValidateDerivedOptions, out, err), kExitConfigError);
+    EXPECT_EQ(CheckConfigCommand(bad, ValidateMapperOptions, out, err), kExitConfigError);
     EXPECT_THAT(err.str(), HasSubstr(bad + ":3:" + std::to_string(key.size() + 4) + ": atlas." +
                                      key + ": must be between 2 and "));
     EXPECT_EQ(out.str(), "");
     // The lowest value the file allows is one the atlas accepts.
     std::ofstream(bad) << "[atlas]\n" << key << " = 2\n";
     std::ostringstream out2, err2;
-    EXPECT_EQ(CheckConfigCommand(bad, ValidateDerivedOptions, out2, err2), 0) << err2.str();
+    EXPECT_EQ(CheckConfigCommand(bad, ValidateMapperOptions, out2, err2), 0) << err2.str();
   }
   std::filesystem::remove(bad);
 }

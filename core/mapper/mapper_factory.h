@@ -9,11 +9,13 @@
 // With sonar alone, map-matching uses SonarMapMatchOptions, with laser lines LaserMapMatchOptions
 // (core/atlas/map_match.h says what each setting refused, and where it was measured).
 //
-// MapperSettings is the part of DaemonOptions the mapper needs, copied field by field by
-// daemon_setup.cc, so that the replay tools build the same mapper without the configuration
-// file's types (the daemon's odometry error model is OdometryErrorConfig, distinct from
-// core/localmap's OdometryNoiseOptions).
+// MapperSettings is the mapper's part of atlasd's configuration, in the mapper's units (the
+// odometry noise as variances, angles in radians): the config (DaemonOptions) converts its keys
+// onto it, and the replay tools build the same mapper from it. Its defaults are the defaults of
+// config/atlasd.toml, so that every entry point maps alike without a configuration file (a test
+// compares them). Settings the file does not name keep the core modules' defaults.
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,22 +28,31 @@
 namespace atlas {
 
 struct MapperSettings {
+  // [atlas]: the Atlas framework's parameters (paper, Sections I-A and III).
   int map_capacity = 10;
-  int max_hypotheses = 4;
-  int probation_steps = 8;
+  int max_hypotheses = 8;
+  int probation_steps = 20;
   double quality_alpha = 0.5;
-  double max_sigma_x = 0.5;
-  double max_sigma_y = 0.5;
-  double max_sigma_theta = 0.2;
+  double max_sigma_x = 1.0;
+  double max_sigma_y = 1.0;
+  double max_sigma_theta = 0.35;
   int frames_examined_per_step = 24;
-  int match_candidates_per_step = 1;
-  // The local maps' noise models (core/localmap/localmap_options.h): wheel odometry, and the
-  // laser's range noise and line-fit floors. Defaults: core/localmap's.
-  OdometryNoiseOptions odometry;
+  int match_candidates_per_step = 2;
+  // The local maps' noise models (core/localmap/localmap_options.h): wheel odometry
+  // ([noise.odometry], variances: the squares of the file's sigmas; the track width is
+  // odometry.track_width_m), and the laser's range noise and line-fit floors ([noise.laser]).
+  OdometryNoiseOptions odometry{.track_width = 0.58,
+                                .wheel_var_per_m = 0.01 * 0.01,
+                                .xy_var_per_m = 0.0316 * 0.0316,
+                                .xy_var_per_rad = 0.01 * 0.01,
+                                .theta_var_per_m = 0.0707 * 0.0707,
+                                .theta_var_per_rad = 0.173 * 0.173,
+                                .wheel_scale_sigma = 0.0,
+                                .track_width_sigma = 0.0};
   double laser_range_sigma_m = 0.01;
-  double wall_sigma_m = 0.0;              // ExtractionOptions::model_sigma
-  double line_rho_sigma_min_m = 0.0;      // ExtractionOptions::min_rho_sigma
-  double line_alpha_sigma_min_rad = 0.0;  // ExtractionOptions::min_alpha_sigma
+  double wall_sigma_m = 0.03;                               // ExtractionOptions::model_sigma
+  double line_rho_sigma_min_m = 0.03;                       // ExtractionOptions::min_rho_sigma
+  double line_alpha_sigma_min_rad = 1.15 * (M_PI / 180.0);  // ExtractionOptions::min_alpha_sigma
   // The range sensors the maps use, and the sonar ring's geometry (index = transducer) when
   // they use the sonar; the sonar model keeps core/sonar's defaults.
   RangeSensors sensors = RangeSensors::kLaser;
@@ -53,7 +64,7 @@ struct MapperSettings {
   // With the laser alone: map-frames hold probability grids (core/gridmap/grid_local_map.h)
   // instead of line EKF maps; core/gridmap's defaults with the odometry noise above.
   bool grid_frames = false;
-  // Scan-to-scan matching before each laser step (StepLoop; off by default).
+  // Scan-to-scan matching before each laser step (StepLoop; on by default).
   ScanMatchOptions scan_match;
 };
 

@@ -1,4 +1,4 @@
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/step_loop.h"
 
 #include <algorithm>
 
@@ -31,6 +31,8 @@ std::string StepLoopOptions::Validate() const {
   if (odometry_capacity < 2) return "odometry_capacity must be at least 2";
   if (laser_time_offset < -std::chrono::seconds(1) || laser_time_offset > std::chrono::seconds(1))
     return "laser_time_offset must be within -1 s and +1 s";
+  if (stamp_resolution < Duration::zero() || stamp_resolution > std::chrono::seconds(1))
+    return "stamp_resolution must be within 0 and 1 s";
   return "";
 }
 
@@ -50,7 +52,9 @@ StepLoop::StepLoop(const StepLoopOptions& options, const MapperSettings& setting
   scratch_us_.reserve(kPeriodSample);
 }
 
-void StepLoop::AddOdometry(const OdometrySample& sample) {
+void StepLoop::AddOdometry(const OdometrySample& added) {
+  OdometrySample sample = added;
+  sample.stamp = Truncate(sample.stamp, options_.stamp_resolution);
   if (track_.empty() && !have_previous_) {
     // No scan yet: dead reckoning (if the laser never comes) starts at the first odometry.
     previous_odometry_ = sample.pose;
@@ -61,7 +65,15 @@ void StepLoop::AddOdometry(const OdometrySample& sample) {
     laser_silent_ = true;
 }
 
+void StepLoop::PrepareScan(LaserScan* scan) const {
+  scan->stamp = Truncate(scan->stamp, options_.stamp_resolution);
+  const float max_range = static_cast<float>(options_.max_range_m);
+  for (float& r : scan->ranges)
+    if (!(r < max_range)) r = kNoReturn;
+}
+
 void StepLoop::AddScan(LaserScan&& scan) {
+  PrepareScan(&scan);
   const size_t slot =
       PushDroppingOldest(pending_, pending_head_, pending_size_, dropped_scans_, std::move(scan));
   pending_odometry_[slot] = track_.added();
@@ -69,6 +81,7 @@ void StepLoop::AddScan(LaserScan&& scan) {
 }
 
 void StepLoop::AddSonar(SonarReading&& reading) {
+  reading.stamp = Truncate(reading.stamp, options_.stamp_resolution);
   const size_t slot =
       PushDroppingOldest(sonar_, sonar_head_, sonar_size_, dropped_sonar_, std::move(reading));
   sonar_odometry_[slot] = track_.added();
@@ -84,11 +97,6 @@ bool StepLoop::StepOne(StepSink* sink) {
                                          sonar_order_[sonar_head_] < pending_order_[pending_head_]);
   LaserScan& scan = pending_[pending_head_];
   const Time stamp = sonar ? sonar_[sonar_head_].stamp : scan.stamp;
-  if (!sonar) {
-    const float max_range = static_cast<float>(options_.max_range_m);
-    for (float& r : scan.ranges)
-      if (!(r < max_range)) r = kNoReturn;
-  }
   Pose2 odometry;
   const Time taken = sonar ? stamp : stamp + options_.laser_time_offset;
   const OdometryLookup lookup = track_.PoseAt(

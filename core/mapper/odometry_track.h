@@ -48,7 +48,4 @@ class OdometryTrack {
   uint64_t added_ = 0;  // samples accepted so far
 };
 
-// Interpolates between a and b at fraction f in [0, 1] (extrapolates for f > 1).
-Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f);
-
 }  // namespace atlas

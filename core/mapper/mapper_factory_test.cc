@@ -1,4 +1,4 @@
-#include "daemon/atlasd/atlas_factory.h"
+#include "core/mapper/mapper_factory.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@ namespace {
 // (docs/design.md, "III-E. Traversal"). The sonar atlas keeps the paper's Genesis edge and has
 // no return band (on the simulator's sonar atlases the band made the robot NEES and the false
 // closures worse).
-TEST(AtlasFactory, LaserAtlasSeedsWhereTheRobotReturnsAndTheSonarAtlasDoesNot) {
+TEST(MapperFactory, LaserAtlasSeedsWhereTheRobotReturnsAndTheSonarAtlasDoesNot) {
   MapperSettings s;
   for (RangeSensors sensors : {RangeSensors::kLaser, RangeSensors::kBoth}) {
     s.sensors = sensors;

@@ -69,12 +69,12 @@
 #include "atlas_paths.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
-#include "daemon/config/config_loader.h"
 #include "drivers/fake/fake_agilex_base.h"
 #include "drivers/fake/fake_lms.h"
 #include "drivers/fake/playback.h"
 #include "drivers/serial/pseudo_terminal.h"
 #include "drivers/sick/lms_messages.h"
+#include "formats/config/config_loader.h"
 #include "sim/building_generator.h"
 #include "sim/simulation.h"
 
@@ -348,7 +348,7 @@ void BM_TelegramToPoseReceived(benchmark::State& state) {
   base.Start();
 
   o.laser.device = dir + "/laser";
-  o.laser.unit = LaserUnit::kCentimetre;  // the simulated laser reaches 30 m (80 m mode)
+  o.laser.unit = sick::Unit::kCentimetre;  // the simulated laser reaches 30 m (80 m mode)
   o.laser.max_range_m = 30.0;
   o.odometry.interface = base.interface_name();
   o.sonar.enabled = false;

@@ -24,7 +24,7 @@
 #include <string_view>
 #include <vector>
 
-#include "daemon/config/daemon_options.h"
+#include "formats/config/daemon_options.h"
 
 namespace atlas {
 

@@ -1,4 +1,4 @@
-#include "daemon/atlasd/step_loop.h"
+#include "core/mapper/step_loop.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 
 #include "core/testing/atlas_test_world.h"
 #include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_step_sink.h"
 #include "core/testing/fake_wall_scanner.h"
-#include "daemon/atlasd/fake_step_sink.h"
 #include "sim/corridor.h"
 
 namespace atlas {
@@ -30,9 +30,16 @@ class StepLoopTest : public ::testing::Test {
     loop->AddScan(ScanAt(0.0));
     loop->StepAll(sink);
   }
+  // The fake maps move the robot by exactly the odometry increment they are given; scan
+  // matching (on by default) would replace it, and has its own tests (StepLoopScanMatch).
+  static MapperSettings WithoutScanMatching() {
+    MapperSettings s;
+    s.scan_match.enabled = false;
+    return s;
+  }
   TestWorld world_;
   Atlas atlas_;
-  MapperSettings settings_;
+  MapperSettings settings_ = WithoutScanMatching();
 };
 
 TEST_F(StepLoopTest, OdometryIsInterpolatedToTheScanStamp) {
@@ -80,6 +87,45 @@ TEST_F(StepLoopTest, LaserTimeOffsetShiftsTheOdometryLookupNotTheStamp) {
     EXPECT_NEAR(moved.x, offset == 0.0 ? 1.0 : 0.0, 1e-6) << offset;
     EXPECT_NEAR(moved.theta, offset == 0.0 ? 0.2 : 0.0, 1e-6) << offset;
   }
+}
+
+// stamp_resolution: everything added is truncated to whole microseconds before the loop uses
+// it (the pose's stamp, the odometry lookup, last_scan_stamp); the default keeps nanoseconds.
+TEST_F(StepLoopTest, StampsAreTruncatedToTheStampResolution) {
+  for (const Duration resolution : {Duration::zero(), Duration(std::chrono::microseconds(1))}) {
+    Atlas atlas(TestWorld::Options(), world_.Factory(), nullptr);
+    StepLoopOptions o;
+    o.stamp_resolution = resolution;
+    ASSERT_EQ(o.Validate(), "");
+    StepLoop loop(o, settings_, &atlas);
+    FakeStepSink sink;
+    // Odometry 1 m apart 1 ms apart; the scan 0.999 us after the first sample.
+    loop.AddOdometry({Time(std::chrono::nanoseconds(1'000'000'000)), Pose2{}});
+    loop.AddScan(ScanAt(1.0));
+    loop.AddOdometry({Time(std::chrono::nanoseconds(1'001'000'000)), Pose2{1.0, 0, 0}});
+    LaserScan scan = ScanAt(1.0);
+    scan.stamp = Time(std::chrono::nanoseconds(1'000'000'999));
+    loop.AddScan(std::move(scan));
+    ASSERT_EQ(loop.StepAll(&sink), 2);
+    ASSERT_EQ(sink.poses.size(), 2u);
+    const Pose2 moved = Between(sink.poses[0].pose.pose.mean, sink.poses[1].pose.pose.mean);
+    if (resolution == Duration::zero()) {
+      EXPECT_EQ(sink.poses[1].stamp.time_since_epoch().count(), 1'000'000'999);
+      EXPECT_NEAR(moved.x, 0.000999, 1e-9);  // 999 ns of the 1 ms between the samples
+    } else {
+      EXPECT_EQ(sink.poses[1].stamp.time_since_epoch().count(), 1'000'000'000);
+      EXPECT_NEAR(moved.x, 0.0, 1e-9);
+    }
+    EXPECT_EQ(loop.last_scan_stamp(), sink.poses[1].stamp);
+  }
+}
+
+TEST_F(StepLoopTest, StampResolutionIsValidated) {
+  StepLoopOptions o;
+  o.stamp_resolution = Duration(-1);
+  EXPECT_NE(o.Validate().find("stamp_resolution"), std::string::npos);
+  o.stamp_resolution = std::chrono::milliseconds(1001);
+  EXPECT_NE(o.Validate().find("stamp_resolution"), std::string::npos);
 }
 
 TEST_F(StepLoopTest, LaserTimeOffsetBeyondOneSecondIsRejected) {

@@ -1,4 +1,4 @@
-#include "daemon/config/config_loader.h"
+#include "formats/config/config_loader.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,7 +14,7 @@
 #include <set>
 #include <sstream>
 
-#include "daemon/config/config_schema.h"
+#include "formats/config/config_schema.h"
 
 namespace atlas {
 namespace {
@@ -549,19 +549,19 @@ void CrossCheck(const DaemonOptions& o,
   if (o.laser.angular_resolution_deg < 0.5 && o.laser.angular_range_deg != 100) {
     report("laser.angular_resolution_deg", "0.25 degrees needs laser.angular_range_deg = 100");
   }
-  if (o.laser.unit == LaserUnit::kMillimetre && o.laser.max_range_m > 8.191) {
+  if (o.laser.unit == sick::Unit::kMillimetre && o.laser.max_range_m > 8.191) {
     report("laser.max_range_m", "with unit \"mm\" the scanner measures at most 8.191 m");
   }
   if (o.sonar.enabled && o.laser.enabled && o.sonar.device == o.laser.device) {
     report("sonar.device", "is the same device as laser.device");
   }
-  if (o.localmap.sensors != LocalMapSensors::kLaser && !o.sonar.enabled) {
+  if (o.localmap.sensors != RangeSensors::kLaser && !o.sonar.enabled) {
     report("localmap.sensors", "maps with the sonar: needs sonar.enabled = true");
   }
-  if (o.localmap.sensors == LocalMapSensors::kBoth && !o.laser.enabled) {
+  if (o.localmap.sensors == RangeSensors::kBoth && !o.laser.enabled) {
     report("localmap.sensors", "\"both\" maps with the laser too: needs laser.enabled = true");
   }
-  if (o.localmap.kind == LocalMapKind::kGrid && o.localmap.sensors != LocalMapSensors::kLaser) {
+  if (o.localmap.kind == LocalMapKind::kGrid && o.localmap.sensors != RangeSensors::kLaser) {
     report("localmap.kind", "\"grid\" maps with the laser alone: needs sensors = \"laser\"");
   }
   const bool realtime = o.scheduling.policy != SchedPolicy::kOther;

@@ -4,8 +4,8 @@
 
 #include <vector>
 
+#include "core/mapper/step_loop.h"
 #include "core/testing/atlas_test_world.h"
-#include "daemon/atlasd/step_loop.h"
 
 namespace atlas {
 
