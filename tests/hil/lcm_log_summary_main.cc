@@ -99,9 +99,16 @@ int main(int argc, char** argv) {
       if (poses)
         std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f\n", p.utime * 1e-6, p.x, p.y, p.theta,
                      p.frame_id, p.q);
-      if (!trajectory_path.empty() && p.frame_id >= 0)
-        trajectory.push_back({atlas::Time(std::chrono::microseconds(p.utime)), p.frame_id,
-                              atlas::Pose2{p.x, p.y, p.theta}, 0});
+      if (!trajectory_path.empty() && p.frame_id >= 0) {
+        // Two scans read in one burst carry the burst's arrival stamp; trajectory.tsv holds one
+        // pose per stamp (docs/formats.md): the later estimate stands.
+        const atlas::formats::FramePoseRow row{atlas::Time(std::chrono::microseconds(p.utime)),
+                                               p.frame_id, atlas::Pose2{p.x, p.y, p.theta}, 0};
+        if (!trajectory.empty() && trajectory.back().stamp == row.stamp)
+          trajectory.back() = row;
+        else
+          trajectory.push_back(row);
+      }
     } else if (e.channel == "ATLAS_HEALTH") {
       atlas::health_t h{};
       if (!log.Decode(e, &h)) continue;
