@@ -75,7 +75,7 @@ bool Atlas::HasHypothesis(FrameId f) const {
 
 DominantOutput Atlas::Dominant() const {
   DominantOutput out;
-  const int d = DominantIndex(hypotheses_);
+  const int d = DominantIndex(hypotheses_, options_.lifecycle.switch_margin);
   if (d < 0) return out;
   const Hypothesis& h = hypotheses_[d];
   out.valid = true;
@@ -83,6 +83,7 @@ DominantOutput Atlas::Dominant() const {
   out.frame = h.frame;
   out.pose = PoseOf(h);
   out.q = h.q;
+  out.switched = previous_dominant_ >= 0 && h.id != previous_dominant_;
   return out;
 }
 
@@ -150,6 +151,9 @@ const StepStats& Atlas::LocalizeWith(const Pose2& odometry_delta, const Mat3* in
   graph_pending_ = true;
   stats_ = StepStats{};
   stats_.step = ++step_;
+  previous_dominant_ = -1;
+  for (const Hypothesis& h : hypotheses_)
+    if (h.dominant) previous_dominant_ = h.id;
   const bool first = graph_.FrameCount() == 0;
   if (!UsableInput(odometry_delta, increment_cov, scan, first)) {
     ++stats_.rejected_input;
@@ -183,7 +187,7 @@ bool Atlas::UsableInput(const Pose2& odometry_delta, const Mat3* increment_cov,
 const StepStats& Atlas::MaintainGraph() {
   assert(graph_pending_);
   graph_pending_ = false;
-  const int d = DominantIndex(hypotheses_);
+  const int d = DominantIndex(hypotheses_, options_.lifecycle.switch_margin);
   if (d >= 0 && step_ % options_.match_interval_steps == 0) {
     MatchMaps(d);
     MatchUnconnected(d);
@@ -284,7 +288,7 @@ void Atlas::JudgeJuveniles() {
 
 void Atlas::HandleFailures() {
   int failing = 0, healthy = 0, juveniles = 0;
-  const int dominant = DominantIndex(hypotheses_);
+  const int dominant = DominantIndex(hypotheses_, options_.lifecycle.switch_margin);
   const double dominant_q = dominant >= 0 ? hypotheses_[dominant].q : 0.0;
   for (int i = 0; i < static_cast<int>(hypotheses_.size()); ++i) {
     Hypothesis& h = hypotheses_[i];
@@ -308,7 +312,7 @@ void Atlas::HandleFailures() {
   if (healthy == 0) {
     // The only mature hypotheses fail. Juveniles on probation are given their chance first.
     if (juveniles > 0) return;
-    const int from = DominantIndex(hypotheses_);
+    const int from = DominantIndex(hypotheses_, options_.lifecycle.switch_margin);
     if (!Genesis(from)) return;  // degree full: keep going with the failing map
   }
   for (size_t i = 0; i < hypotheses_.size();) {
@@ -336,7 +340,7 @@ bool Atlas::ContradictsDominant(const Hypothesis& dominant, const Hypothesis& h)
 
 void Atlas::GenesisAtCapacity() {
   if (step_ - last_genesis_step_ < options_.genesis_min_interval_steps) return;
-  const int d = DominantIndex(hypotheses_);
+  const int d = DominantIndex(hypotheses_, options_.lifecycle.switch_margin);
   if (d < 0) return;
   const Hypothesis& h = hypotheses_[d];
   const LocalMap& map = *graph_.Frame(h.frame).map;
@@ -408,7 +412,7 @@ bool Atlas::Genesis(int from_index) {
 }
 
 int Atlas::FindDominant() {
-  const int d = DominantIndex(hypotheses_);
+  const int d = DominantIndex(hypotheses_, options_.lifecycle.switch_margin);
   for (int i = 0; i < static_cast<int>(hypotheses_.size()); ++i) hypotheses_[i].dominant = i == d;
   stats_.dominant_frame = d >= 0 ? hypotheses_[d].frame : kNoFrame;
   return d;

@@ -146,6 +146,9 @@ struct DominantOutput {
   FrameId frame = kNoFrame;
   UncertainPose pose;  // robot pose in `frame`
   double q = 0.0;
+  // The dominant hypothesis is another than at the previous step: the pose moved to another
+  // hypothesis's estimate (or frame) at once, not by the robot's motion.
+  bool switched = false;
 };
 
 class Atlas {
@@ -270,6 +273,7 @@ class Atlas {
   int64_t step_ = 0;
   bool graph_pending_ = false;  // Localize() ran, MaintainGraph() not yet
   int64_t next_hypothesis_id_ = 0;
+  int64_t previous_dominant_ = -1;  // the dominant hypothesis's id before this step, or -1
   int64_t last_genesis_step_ = -1000000;
   uint64_t match_cursor_ = 0;
   StepStats stats_;

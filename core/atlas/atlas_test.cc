@@ -78,6 +78,27 @@ TEST(Atlas, FirstStepMakesFrameZeroWithMatureDominantHypothesis) {
   CheckInvariants(atlas);
 }
 
+// Dominant().switched marks exactly the steps at which another hypothesis dominates than at the
+// step before (a Genesis hands the robot to the new frame's hypothesis), so that a consumer can
+// tell a switch from motion.
+TEST(Atlas, SwitchedMarksExactlyTheStepsWhereTheDominantHypothesisChanges) {
+  TestWorld w;
+  Atlas atlas(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  atlas.Step(Pose2{}, TestScan());
+  EXPECT_FALSE(atlas.Dominant().switched);  // the first step has no previous dominant
+  int64_t previous = atlas.Dominant().hypothesis;
+  int switches = 0;
+  for (int i = 0; i < 200; ++i) {
+    atlas.Step(Pose2{0.25, 0.0, 0.01}, TestScan());
+    const DominantOutput d = atlas.Dominant();
+    ASSERT_TRUE(d.valid);
+    EXPECT_EQ(d.switched, d.hypothesis != previous) << "step " << i;
+    switches += d.switched;
+    previous = d.hypothesis;
+  }
+  EXPECT_GT(switches, 0) << "the test world made no switch";
+}
+
 // III-C: the Genesis edge is the robot pose in the old frame with exactly its covariance; the
 // robot is at exactly zero with zero covariance in the new frame.
 TEST(Atlas, GenesisEdgeCarriesRobotCovarianceExactly) {

@@ -90,6 +90,8 @@ std::string LifecycleOptions::Validate() const {
   if (!(retire_margin >= 0.0 && retire_margin <= 1.0))
     return "lifecycle.retire_margin must lie in [0, 1]";
   if (lag_steps < 1) return "lifecycle.lag_steps must be at least 1";
+  if (!(switch_margin >= 0.0 && switch_margin <= 1.0))
+    return "lifecycle.switch_margin must lie in [0, 1]";
   return "";
 }
 
@@ -116,15 +118,19 @@ bool UpdateLagging(Hypothesis* h, bool h_is_dominant, double dominant_q,
   return h->lagging_steps >= o.lag_steps;
 }
 
-int DominantIndex(const std::vector<Hypothesis>& hypotheses) {
-  int best = -1;
+int DominantIndex(const std::vector<Hypothesis>& hypotheses, double switch_margin) {
+  int best = -1, previous = -1;
   for (int i = 0; i < static_cast<int>(hypotheses.size()); ++i) {
     const Hypothesis& h = hypotheses[i];
     if (h.state != HypothesisState::kMature) continue;
+    if (h.dominant) previous = i;
     if (best < 0 || h.q > hypotheses[best].q ||
         (h.q == hypotheses[best].q && h.id < hypotheses[best].id))
       best = i;
   }
+  if (switch_margin > 0.0 && previous >= 0 &&
+      hypotheses[previous].q >= hypotheses[best].q - switch_margin)
+    return previous;
   return best;
 }
 

@@ -167,6 +167,11 @@ struct LifecycleOptions {
   // corridor loop and building), neutral on the laser logs (docs/design.md, "III-B. Hypotheses").
   double retire_margin = 0.2;
   int lag_steps = 15;
+  // Hysteresis of the dominant hypothesis: the one that dominated at the previous step stays
+  // dominant while it is mature and its q is within switch_margin of the best q. A switch moves
+  // the published pose into another hypothesis's estimate at once (docs/design.md, "III-B.
+  // Hypotheses"); 0: the best q dominates at every step.
+  double switch_margin = 0.0;
   std::string Validate() const;
 };
 
@@ -185,7 +190,9 @@ bool UpdateFailing(Hypothesis* h, const LifecycleOptions& options);
 bool UpdateLagging(Hypothesis* h, bool h_is_dominant, double dominant_q,
                    const LifecycleOptions& options);
 
-// The index of the dominant hypothesis (best q among mature ones; ties to the older), or -1.
-int DominantIndex(const std::vector<Hypothesis>& hypotheses);
+// The index of the dominant hypothesis, or -1: the best q among mature ones (ties to the older),
+// unless the hypothesis flagged `dominant` (the previous step's) is mature and within
+// `switch_margin` of that q (LifecycleOptions::switch_margin).
+int DominantIndex(const std::vector<Hypothesis>& hypotheses, double switch_margin = 0.0);
 
 }  // namespace atlas

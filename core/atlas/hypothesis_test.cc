@@ -153,6 +153,25 @@ TEST(HypothesisStateMachine, DominantIsBestMature) {
   EXPECT_EQ(DominantIndex(hs), -1);
 }
 
+TEST(HypothesisStateMachine, PreviousDominantStaysWithinTheSwitchMargin) {
+  std::vector<Hypothesis> hs(3);
+  for (int i = 0; i < 3; ++i) {
+    hs[i].state = HypothesisState::kMature;
+    hs[i].id = i + 1;
+  }
+  hs[0].q = 0.80;
+  hs[1].q = 0.60;
+  hs[1].dominant = true;  // the previous step's
+  hs[2].q = 0.50;
+  EXPECT_EQ(DominantIndex(hs), 0);       // no hysteresis: the best q
+  EXPECT_EQ(DominantIndex(hs, 0.1), 0);  // 0.2 behind: switches
+  hs[1].q = 0.75;
+  EXPECT_EQ(DominantIndex(hs, 0.1), 1);  // 0.05 behind: stays
+  EXPECT_EQ(DominantIndex(hs, 0.0), 0);
+  hs[1].state = HypothesisState::kRetired;  // a retired one never dominates
+  EXPECT_EQ(DominantIndex(hs, 0.1), 0);
+}
+
 TEST(Options, Validate) {
   EXPECT_EQ(HypothesisQualityOptions{}.Validate(), "");
   EXPECT_EQ(LifecycleOptions{}.Validate(), "");

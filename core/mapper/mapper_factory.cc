@@ -40,6 +40,7 @@ AtlasOptions ToAtlasOptions(const MapperSettings& s) {
   AtlasOptions o;
   o.max_hypotheses = s.max_hypotheses;
   o.lifecycle.probation_scans = std::max(s.probation_steps, o.lifecycle.bootstrap_scans + 1);
+  o.lifecycle.switch_margin = s.switch_margin;
   o.quality.alpha = s.quality_alpha;
   o.quality.sigma_x = s.max_sigma_x;
   o.quality.sigma_y = s.max_sigma_y;

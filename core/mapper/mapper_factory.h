@@ -32,6 +32,7 @@ struct MapperSettings {
   int map_capacity = 10;
   int max_hypotheses = 8;
   int probation_steps = 20;
+  double switch_margin = 0.0;  // LifecycleOptions::switch_margin
   double quality_alpha = 0.5;
   double max_sigma_x = 1.0;
   double max_sigma_y = 1.0;

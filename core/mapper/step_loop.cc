@@ -177,6 +177,7 @@ void StepLoop::DeadReckon(StepSink* sink) {
   const Pose2 delta = Between(dead_reckoned_odometry_, newest.pose);
   const UncertainPose increment{delta, OdometryIncrementNoise(delta, settings_)};
   dead_reckoned_.pose = Compose(dead_reckoned_.pose, increment);
+  dead_reckoned_.switched = false;  // motion since the last step, not a switch
   dead_reckoned_odometry_ = newest.pose;
   sink->OnPose(newest.stamp, dead_reckoned_, PoseSource::kOdometryOnly);
 }

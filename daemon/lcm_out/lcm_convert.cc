@@ -26,6 +26,8 @@ atlas::pose_t ToPoseMessage(Time stamp, const DominantOutput& d) {
   m.theta = d.pose.mean.theta;
   CopyCov3(d.pose.cov, m.covariance);
   m.q = d.valid ? d.q : 0.0;
+  m.hypothesis_id = d.valid ? d.hypothesis : -1;
+  m.switched = d.valid && d.switched;
   return m;
 }
 

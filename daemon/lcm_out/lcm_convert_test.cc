@@ -101,6 +101,14 @@ TEST(LcmConvertTest, GraphHypothesesAndPoseDescribeTheAtlas) {
   EXPECT_DOUBLE_EQ(p.x, d.pose.mean.x);
   EXPECT_DOUBLE_EQ(p.covariance[4], d.pose.cov(1, 1));
   EXPECT_DOUBLE_EQ(p.q, d.q);
+  EXPECT_EQ(p.hypothesis_id, d.hypothesis);
+  EXPECT_EQ(p.switched, d.switched);
+  DominantOutput switched = d;
+  switched.switched = true;
+  EXPECT_TRUE(ToPoseMessage(t, switched).switched);
+  const atlas::pose_t none = ToPoseMessage(t, DominantOutput{});
+  EXPECT_EQ(none.hypothesis_id, -1);
+  EXPECT_FALSE(none.switched);
   const atlas::local_map_t m = ToLocalMapMessage(t, atlas);
   EXPECT_EQ(m.frame_id, d.frame);
   EXPECT_EQ(m.num_lines, static_cast<int>(m.lines.size()));

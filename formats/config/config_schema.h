@@ -130,6 +130,7 @@ void VisitOptions(V& v, DaemonOptions& o) {
     v.Int("map_capacity", a.map_capacity, 1, 1000);
     v.Int("max_hypotheses", a.max_hypotheses, 2, 64);
     v.Int("probation_steps", a.probation_steps, 1, 100000);
+    v.Double("switch_margin", a.switch_margin, 0.0, 1.0);
     v.Double("quality_alpha", a.quality_alpha, 0.0, 1.0);
     v.Double("max_sigma_x", a.max_sigma_x, 0.001, 100.0);
     v.Double("max_sigma_y", a.max_sigma_y, 0.001, 100.0);

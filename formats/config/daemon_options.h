@@ -133,6 +133,7 @@ struct AtlasParameters {
   int map_capacity = 10;          // features a local map may hold (map capacity, Section I-A)
   int max_hypotheses = 8;         // juvenile + mature hypotheses alive at once
   int probation_steps = 20;       // steps a juvenile hypothesis has to mature (Section III-E)
+  double switch_margin = 0.0;     // hysteresis of the dominant hypothesis's q (Section III-B)
   double quality_alpha = 0.5;     // alpha of the quality metric q, eq. 5
   double max_sigma_x = 1.0;       // sigma_x of eq. 5, metres
   double max_sigma_y = 1.0;       // sigma_y of eq. 5, metres

@@ -18,6 +18,7 @@ MapperSettings ToMapperSettings(const DaemonOptions& o) {
   s.map_capacity = o.atlas.map_capacity;
   s.max_hypotheses = o.atlas.max_hypotheses;
   s.probation_steps = o.atlas.probation_steps;
+  s.switch_margin = o.atlas.switch_margin;
   s.quality_alpha = o.atlas.quality_alpha;
   s.max_sigma_x = o.atlas.max_sigma_x;
   s.max_sigma_y = o.atlas.max_sigma_y;

@@ -78,6 +78,7 @@ std::map<std::string, std::string> Fields(const MapperSettings& s, const StepLoo
   ATLAS_PUT(s.map_capacity);
   ATLAS_PUT(s.max_hypotheses);
   ATLAS_PUT(s.probation_steps);
+  ATLAS_PUT(s.switch_margin);
   ATLAS_PUT(s.quality_alpha);
   ATLAS_PUT(s.max_sigma_x);
   ATLAS_PUT(s.max_sigma_y);
