@@ -19,6 +19,7 @@ set(ATLAS_TOOLS
     "atlas-eval|score a trajectory against relations or a reference"
     "atlas-replay|run a CARMEN log through the Atlas as fast as it can"
     "atlas-refine|offline least-squares refinement of a saved atlas"
+    "atlas-export|an atlas as g2o, TUM trajectory, PLY and a map_server occupancy grid"
     "atlas-render|draw a simulated run or an atlas (PNG, SVG)"
     "atlas-localmap-eval|consistency and accuracy of the local map"
     "atlas-sonar-eval|sonar-only local maps and atlas on the simulator"

@@ -214,10 +214,10 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
   return "";
 }
 
-std::vector<std::optional<Pose2>> FramePosesFromFrameZero(const AtlasGraph& graph) {
+std::vector<std::optional<Pose2>> FramePosesFrom(const AtlasGraph& graph, FrameId source) {
   std::vector<std::optional<Pose2>> pose(static_cast<size_t>(graph.FrameCount()));
-  if (graph.FrameCount() > 0)
-    for (const ProjectedFrame& f : DijkstraProjection(graph, 0).entries)
+  if (graph.HasFrame(source))
+    for (const ProjectedFrame& f : DijkstraProjection(graph, source).entries)
       pose[static_cast<size_t>(f.frame)] = f.pose.mean;
   return pose;
 }

@@ -85,9 +85,13 @@ std::string ParsePointRows(std::string_view text, const std::string& source,
 std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wanted,
                              ReplayOutput* out);
 
-// Each frame's pose in frame 0, by the Dijkstra projection from frame 0 (paper, Section III-A);
-// nullopt for frames it does not reach. Empty for a graph without frames.
-std::vector<std::optional<Pose2>> FramePosesFromFrameZero(const AtlasGraph& graph);
+// Each frame's pose in frame `source`, by the Dijkstra projection from it (paper, Section
+// III-A); nullopt for frames it does not reach. Empty for a graph without frames; all nullopt
+// when `source` is not a frame of the graph.
+std::vector<std::optional<Pose2>> FramePosesFrom(const AtlasGraph& graph, FrameId source);
+inline std::vector<std::optional<Pose2>> FramePosesFromFrameZero(const AtlasGraph& graph) {
+  return FramePosesFrom(graph, 0);
+}
 
 // Each trajectory row composed with its frame's global pose; rows whose frame has no global
 // pose are left out.

@@ -31,7 +31,9 @@ std::string WriteTextFile(const std::string& path, std::string_view text);
 
 // Calls `row(fields, line)` for every row; stops at the first error it returns and gives it as
 // "<source>:<line>: <error>". A row with a field count other than `field_count` is the error
-// "expected N fields (<columns>), found M".
+// "expected N fields (<columns>), found M"; with `field_count` kAnyFieldCount every row is
+// passed on (formats whose rows differ by tag, such as g2o, check the count themselves).
+inline constexpr size_t kAnyFieldCount = 0;
 using RowFunction = std::function<std::string(std::span<const std::string_view>, int64_t line)>;
 std::string ForEachRow(std::string_view text, const std::string& source, size_t field_count,
                        std::string_view columns, const RowFunction& row);

@@ -12,6 +12,7 @@
 #include "atlas/local_map_t.hpp"
 #include "atlas/odometry_t.hpp"
 #include "atlas/pose_t.hpp"
+#include "atlas/reference_pose_t.hpp"
 #include "atlas/sonar_t.hpp"
 
 namespace {
@@ -43,7 +44,7 @@ TEST(LcmTypes, LaserScanRoundTripKeepsNoReturn) {
   EXPECT_TRUE(std::isinf(out.ranges[1]));
 }
 
-TEST(LcmTypes, PoseOdometrySonarRoundTrip) {
+TEST(LcmTypes, PoseReferencePoseOdometrySonarRoundTrip) {
   atlas::pose_t p{};
   p.frame_id = 7;
   p.x = 1.5;
@@ -52,6 +53,20 @@ TEST(LcmTypes, PoseOdometrySonarRoundTrip) {
   const auto po = RoundTrip(p);
   EXPECT_EQ(po.frame_id, 7);
   EXPECT_DOUBLE_EQ(po.covariance[4], 0.25);
+
+  atlas::reference_pose_t r{};
+  r.reference_frame_id = 0;
+  r.placed = true;
+  r.frame_id = 7;
+  r.x = -3.5;
+  r.frame_covariance[8] = 0.01;
+  r.hops = 4;
+  const auto ro = RoundTrip(r);
+  EXPECT_TRUE(ro.placed);
+  EXPECT_EQ(ro.frame_id, 7);
+  EXPECT_DOUBLE_EQ(ro.x, -3.5);
+  EXPECT_DOUBLE_EQ(ro.frame_covariance[8], 0.01);
+  EXPECT_EQ(ro.hops, 4);
 
   atlas::odometry_t o{};
   o.left_m = 12.345;

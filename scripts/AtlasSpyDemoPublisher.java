@@ -27,6 +27,23 @@ public class AtlasSpyDemoPublisher {
       pose.q = 0.87;
       lcm.publish("ATLAS_POSE", pose);
 
+      reference_pose_t reference = new reference_pose_t();
+      reference.utime = utime;
+      reference.reference_frame_id = 0;
+      reference.placed = true;
+      reference.frame_id = pose.frame_id;
+      reference.frame_x = 4.0;
+      reference.frame_y = -2.0;
+      reference.frame_theta = 0.5;
+      reference.frame_covariance = new double[] {0.04, 0, 0, 0, 0.04, 0, 0, 0, 0.004};
+      reference.x = 4.0 + Math.cos(0.5) * pose.x - Math.sin(0.5) * pose.y;
+      reference.y = -2.0 + Math.sin(0.5) * pose.x + Math.cos(0.5) * pose.y;
+      reference.theta = Math.IEEEremainder(0.5 + pose.theta, 2 * Math.PI);
+      reference.covariance = new double[] {0.05, 0, 0, 0, 0.05, 0, 0, 0, 0.006};
+      reference.hops = 2;
+      reference.q = pose.q;
+      lcm.publish("ATLAS_REFERENCE_POSE", reference);
+
       local_map_t map = new local_map_t();
       map.utime = utime;
       map.frame_id = 3;

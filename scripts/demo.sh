@@ -9,7 +9,8 @@
 #     sonar on pseudo-terminals and an AgileX base on a fake CAN bus; a real atlasd reads them
 #     and maps, printing its health line every 5 s; lcm-logger records what it publishes;
 #  4. atlasd stops (saving its atlas), the saved atlas is exported (atlasd --export-atlas) with
-#     the poses it published, and atlas-render draws the atlas atlasd built, and the simulated run.
+#     the poses it published, atlas-render draws the atlas atlasd built, and the simulated run,
+#     and atlas-export writes the atlas as g2o, TUM, PLY and a map_server occupancy grid.
 # Output goes to $ATLAS_DEMO_DIR (default: <repo>/out/demo). Takes about two minutes after the
 # build. Needs root (or unprivileged user namespaces) for `unshare -n`.
 #
@@ -100,9 +101,12 @@ echo "== drawing the atlas atlasd built"
 # The published poses as a replay's trajectory.tsv (docs/formats.md).
 "$BIN/atlas-lcm-log-summary" "$OUT/session.lcm" --trajectory "$OUT/atlas/trajectory.tsv" \
   >"$OUT/session.txt"
+# The same atlas in the formats other tools read: g2o, TUM, PLY, map_server PGM + YAML.
+"$BIN/atlas-export" "$OUT/atlas" --out "$OUT/atlas/export" >"$OUT/export.txt"
 "$BIN/atlas-render" --atlas "$OUT/atlas" --whole --png "$OUT/atlas.png"
 "$BIN/atlas-render" --run "$OUT/sim" --png "$OUT/run.png"
 echo
 echo "Result: $OUT/atlas.png: the atlas atlasd built (its frames placed from frame 0, their lines,"
 echo "the laser points they keep, and the poses it published); $OUT/run.png: the simulated building and run; the saved atlas"
-echo "is $OUT/state/atlas.sqlite, atlasd's log $OUT/atlasd.err."
+echo "is $OUT/state/atlas.sqlite, atlasd's log $OUT/atlasd.err; $OUT/atlas/export/ holds it as g2o,"
+echo "TUM, PLY and a map_server occupancy grid (map.pgm, map.yaml)."

@@ -4,7 +4,8 @@
 
 namespace atlas {
 
-LcmSink::LcmSink(AtlasPublisher* publisher, const LcmOptions& o) : publisher_(publisher) {
+LcmSink::LcmSink(AtlasPublisher* publisher, const LcmOptions& o)
+    : publisher_(publisher), reference_(o.reference_frame) {
   SetPeriods(o);
 }
 
@@ -15,11 +16,15 @@ void LcmSink::SetPeriods(const LcmOptions& o) {
 
 void LcmSink::OnPose(Time stamp, const DominantOutput& pose, PoseSource) {
   publisher_->Pose(stamp, pose);
+  publisher_->ReferencePose(
+      ToReferencePoseMessage(stamp, pose, reference_.reference(), reference_.Place(pose)));
 }
 
 void LcmSink::OnStep(Time stamp, const Atlas& atlas) {
   const Time now = Now();
-  if (Due(now, last_graph_, graph_period_)) {
+  const bool graph_due = Due(now, last_graph_, graph_period_);
+  reference_.Update(atlas, graph_due);
+  if (graph_due) {
     last_graph_ = now;
     publisher_->Graph(stamp, atlas);
     publisher_->Hypotheses(stamp, atlas);

@@ -1,11 +1,13 @@
 #pragma once
 // The live loop's StepSink: the pose at every step (and while dead reckoning), the graph and
 // hypotheses every lcm.graph_period_s and the local map every lcm.local_map_period_s, by the
-// loop thread's clock (docs/lcm.md).
+// loop thread's clock (docs/lcm.md). Beside every pose, the pose in the reference frame
+// (lcm.reference_frame; reference_placement.h), re-projected every lcm.graph_period_s.
 
 #include "core/atlas/atlas.h"
 #include "core/mapper/step_loop.h"
 #include "daemon/lcm_out/atlas_publisher.h"
+#include "daemon/lcm_out/reference_placement.h"
 #include "formats/config/daemon_options.h"
 
 namespace atlas {
@@ -22,6 +24,7 @@ class LcmSink final : public StepSink {
 
  private:
   AtlasPublisher* publisher_;
+  ReferencePlacement reference_;
   Duration graph_period_{}, map_period_{};
   Time last_graph_{}, last_map_{};
 };

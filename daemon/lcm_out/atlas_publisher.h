@@ -16,6 +16,7 @@ class AtlasPublisher {
   AtlasPublisher(lcm::LCM* lcm, const LcmChannels& channels) : lcm_(lcm), channels_(channels) {}
 
   void Pose(Time stamp, const DominantOutput& d) { Send(channels_.pose, ToPoseMessage(stamp, d)); }
+  void ReferencePose(const atlas::reference_pose_t& m) { Send(channels_.reference_pose, m); }
   void Graph(Time stamp, const Atlas& a) { Send(channels_.graph, ToGraphMessage(stamp, a)); }
   void Hypotheses(Time stamp, const Atlas& a) {
     Send(channels_.hypotheses, ToHypothesesMessage(stamp, a));

@@ -31,6 +31,28 @@ atlas::pose_t ToPoseMessage(Time stamp, const DominantOutput& d) {
   return m;
 }
 
+atlas::reference_pose_t ToReferencePoseMessage(Time stamp, const DominantOutput& d,
+                                               FrameId reference,
+                                               const std::optional<PlacedPose>& placed) {
+  atlas::reference_pose_t m{};
+  m.utime = ToUtime(stamp);
+  m.reference_frame_id = reference;
+  m.frame_id = d.valid ? d.frame : -1;
+  m.placed = placed.has_value();
+  if (!placed) return m;
+  m.x = placed->pose.mean.x;
+  m.y = placed->pose.mean.y;
+  m.theta = placed->pose.mean.theta;
+  CopyCov3(placed->pose.cov, m.covariance);
+  m.frame_x = placed->frame.mean.x;
+  m.frame_y = placed->frame.mean.y;
+  m.frame_theta = placed->frame.mean.theta;
+  CopyCov3(placed->frame.cov, m.frame_covariance);
+  m.hops = placed->hops;
+  m.q = d.q;
+  return m;
+}
+
 atlas::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_projected) {
   const AtlasGraph& g = atlas.Graph();
   const DominantOutput d = atlas.Dominant();

@@ -17,9 +17,11 @@
 #include "atlas/local_map_t.hpp"
 #include "atlas/odometry_t.hpp"
 #include "atlas/pose_t.hpp"
+#include "atlas/reference_pose_t.hpp"
 #include "atlas/sonar_t.hpp"
 #include "core/atlas/atlas.h"
 #include "core/common/sensor_types.h"
+#include "daemon/lcm_out/reference_placement.h"
 #include "drivers/device/driver_health.h"
 
 namespace atlas {
@@ -31,6 +33,12 @@ Time FromUtime(int64_t utime);
 
 // The dominant pose (pose_t); frame_id -1 and q 0 when `dominant.valid` is false.
 atlas::pose_t ToPoseMessage(Time stamp, const DominantOutput& dominant);
+
+// The dominant pose in the reference frame (reference_pose_t): `placed` is what
+// ReferencePlacement::Place(dominant) returned; placed false and zeros without it.
+atlas::reference_pose_t ToReferencePoseMessage(Time stamp, const DominantOutput& dominant,
+                                               FrameId reference,
+                                               const std::optional<PlacedPose>& placed);
 
 // The whole graph. Frames reached by a Dijkstra projection from the dominant frame (at most
 // `max_projected` frames, for display) carry their pose in the dominant frame.

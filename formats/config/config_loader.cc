@@ -603,10 +603,15 @@ void CrossCheck(const DaemonOptions& o,
   }
   const LcmChannels& c = o.lcm.channels;
   const std::pair<const char*, const std::string*> channels[] = {
-      {"pose", &c.pose},           {"local_map", &c.local_map},
-      {"graph", &c.graph},         {"hypotheses", &c.hypotheses},
-      {"health", &c.health},       {"raw_odometry", &c.raw_odometry},
-      {"raw_laser", &c.raw_laser}, {"raw_sonar", &c.raw_sonar}};
+      {"pose", &c.pose},
+      {"reference_pose", &c.reference_pose},
+      {"local_map", &c.local_map},
+      {"graph", &c.graph},
+      {"hypotheses", &c.hypotheses},
+      {"health", &c.health},
+      {"raw_odometry", &c.raw_odometry},
+      {"raw_laser", &c.raw_laser},
+      {"raw_sonar", &c.raw_sonar}};
   for (size_t i = 0; i < std::size(channels); ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (read({std::string("lcm.channels.") + channels[i].first,

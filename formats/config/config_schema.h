@@ -145,9 +145,11 @@ void VisitOptions(V& v, DaemonOptions& o) {
     v.Double("health_period_s", l.health_period_s, 0.1, 60.0);
     v.Double("graph_period_s", l.graph_period_s, 0.05, 600.0);
     v.Double("local_map_period_s", l.local_map_period_s, 0.0, 600.0);
+    v.Int("reference_frame", l.reference_frame, 0, 100000000);
     v.Section("channels", [&] {
       LcmChannels& c = l.channels;
       v.String("pose", c.pose, CheckChannelName);
+      v.String("reference_pose", c.reference_pose, CheckChannelName);
       v.String("local_map", c.local_map, CheckChannelName);
       v.String("graph", c.graph, CheckChannelName);
       v.String("hypotheses", c.hypotheses, CheckChannelName);

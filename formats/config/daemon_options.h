@@ -148,6 +148,7 @@ struct AtlasParameters {
 // LCM channel names (at most 63 characters, no whitespace, all different).
 struct LcmChannels {
   std::string pose = "ATLAS_POSE";
+  std::string reference_pose = "ATLAS_REFERENCE_POSE";
   std::string local_map = "ATLAS_LOCAL_MAP";
   std::string graph = "ATLAS_GRAPH";
   std::string hypotheses = "ATLAS_HYPOTHESES";
@@ -164,6 +165,8 @@ struct LcmOptions {
   double health_period_s = 1.0;
   double graph_period_s = 1.0;
   double local_map_period_s = 0.2;
+  // The frame ATLAS_REFERENCE_POSE places the pose in (frame 0 is the first frame).
+  int reference_frame = 0;
   LcmChannels channels;
 };
 

@@ -3,10 +3,10 @@
 # while the command line is read): a value with trailing characters, an empty one, a non-finite
 # one and one out of range are refused with exit 2 and core/common/parse_number.h's message,
 # which names the option, the range and the text given. Needs ATLASD, ATLAS_REPLAY,
-# ATLAS_RENDER, ATLAS_REFINE, ATLAS_EVAL, ATLAS_CARMEN.
+# ATLAS_RENDER, ATLAS_REFINE, ATLAS_EXPORT, ATLAS_EVAL, ATLAS_CARMEN.
 source "$(dirname "$0")/hil_lib.sh"
 : "${ATLASD:?}" "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}" "${ATLAS_REFINE:?}" "${ATLAS_EVAL:?}"
-: "${ATLAS_CARMEN:?}"
+: "${ATLAS_CARMEN:?}" "${ATLAS_EXPORT:?}"
 
 # refused TOOL OPTION KIND RANGE OUT_OF_RANGE: TOOL OPTION VALUE exits 2 with "OPTION must be
 # a KIND in RANGE, got 'VALUE'" for each bad VALUE.
@@ -49,6 +49,10 @@ pass "atlas-replay's number options"
 
 refused "$ATLAS_REFINE" --max-iterations integer '[1, 100000]' 100001
 pass "atlas-refine's number options"
+
+refused "$ATLAS_EXPORT" --reference integer '[0, 100000000]' -1
+refused "$ATLAS_EXPORT" --resolution number '[0.01, 10]' 0.001
+pass "atlas-export's number options"
 
 refused "$ATLASD" --health-every number '[0.001, 86400]' 0
 pass "atlasd's number options"
