@@ -23,7 +23,8 @@ set(ATLAS_TOOLS
     "atlas-localmap-eval|consistency and accuracy of the local map"
     "atlas-sonar-eval|sonar-only local maps and atlas on the simulator"
     "atlas-lcm-log-summary|summarise an lcm-logger file of atlasd's channels"
-    "atlas-pose-latency|latency of atlasd's published poses")
+    "atlas-pose-latency|latency of atlasd's published poses"
+    "atlas-view|atlasd's live map in a web browser")
 
 set(ATLAS_SYSTEMD_UNIT_DIR "" CACHE PATH "Where the systemd unit goes (default: systemd.pc's)")
 if(NOT ATLAS_SYSTEMD_UNIT_DIR)
