@@ -109,7 +109,7 @@ install(FILES ${CMAKE_SOURCE_DIR}/systemd/atlasd.service DESTINATION ${ATLAS_SYS
 install(FILES ${CMAKE_SOURCE_DIR}/config/atlasd.toml DESTINATION /etc/atlasd)
 install(FILES ${CMAKE_SOURCE_DIR}/README.md ${CMAKE_SOURCE_DIR}/docs/atlasd.md
               ${CMAKE_SOURCE_DIR}/docs/config.md ${CMAKE_SOURCE_DIR}/docs/lcm.md
-              ${CMAKE_SOURCE_DIR}/docs/systemd.md
+              ${CMAKE_SOURCE_DIR}/docs/atlas-view.md ${CMAKE_SOURCE_DIR}/docs/systemd.md
         DESTINATION ${_atlas_doc_dir})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/config/robot/ DESTINATION ${_atlas_doc_dir}/examples)
 install(FILES ${CMAKE_SOURCE_DIR}/config/atlasd-fakedev.toml

@@ -6,7 +6,9 @@ Usage: browser_check.py CHROMIUM URL PROFILE_DIR SCREENSHOT.png SECONDS
 
 Loads URL, then watches atlas-view's page for up to SECONDS: it must show frames, a placed
 pose and the health panel, and then update (the update counter, the pose and the health line
-change). Prints what it read, saves a screenshot, exits 0 when all of it was seen, else 1.
+change). Prints what it read, saves a screenshot (after the page's "fit"), exits 0 when all of
+it was seen, else 1. With VIEW_MIN_SECONDS=S in the environment it watches at least S seconds
+before the screenshot (a larger map for docs/atlas-view.png).
 """
 import base64
 import json
@@ -137,6 +139,7 @@ def main():
         dt.call("Page.navigate", url=url)
         first = None
         last = None
+        earliest = time.monotonic() + float(os.environ.get("VIEW_MIN_SECONDS", "0"))
         while time.monotonic() < deadline:
             time.sleep(0.5)
             last = json.loads(dt.evaluate(READ_PAGE) or "{}")
@@ -149,9 +152,11 @@ def main():
                     print("first:", json.dumps(first))
                 continue
             if (last["updates"] >= first["updates"] + 3 and last["pose"] != first["pose"] and
-                    last["health"] != first["health"]):
+                    last["health"] != first["health"] and time.monotonic() >= earliest):
                 break
         print("last: ", json.dumps(last))
+        dt.evaluate("fit()")
+        time.sleep(0.3)
         shot = dt.call("Page.captureScreenshot", format="png")
         with open(screenshot, "wb") as f:
             f.write(base64.b64decode(shot["data"]))

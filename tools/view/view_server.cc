@@ -70,7 +70,7 @@ class BoundedTaskQueue : public httplib::TaskQueue {
 // The state, its lock, and the rate-limited JSON built from it.
 class Updates {
  public:
-  Updates(const ViewOptions& o)
+  explicit Updates(const ViewOptions& o)
       : options_(o),
         state_(o.channels, o.max_frames),
         gate_(std::chrono::duration_cast<Duration>(std::chrono::duration<double>(1.0 / o.rate_hz))),
@@ -190,6 +190,7 @@ int RunViewServer(const ViewOptions& o) {
   server.set_write_timeout(5, 0);
   server.set_payload_max_length(4096);
   server.set_keep_alive_max_count(20);
+  server.set_keep_alive_timeout(2);  // an idle connection holds a worker thread
   server.Get("/", [](const httplib::Request&, httplib::Response& res) {
     SetCommonHeaders(res);
     // The page's script and style are inline; nothing may come from elsewhere.
