@@ -35,18 +35,10 @@ mkdir -p "$WORK/chromium-profile"
   >/dev/null 2>"$WORK/chromium.err" &
 CHROME_PID=$!
 PIDS+=("$CHROME_PID")
-ticks() { awk '{ print $14 + $15 }' "/proc/$1/stat"; }
-hz=$(getconf CLK_TCK)
 sleep 15
 kill -0 "$ATLASD_PID" || fail "atlasd died"
 kill -0 "$VIEW_PID" || fail "atlas-view died"
-v0=$(ticks "$VIEW_PID")
-a0=$(ticks "$ATLASD_PID")
-t0=$(date +%s.%N)
-sleep "$MEASURED"
-v1=$(ticks "$VIEW_PID")
-a1=$(ticks "$ATLASD_PID")
-t1=$(date +%s.%N)
+read -r wall v a < <(cpu_seconds "$MEASURED" "$VIEW_PID" "$ATLASD_PID")
 rss=$(awk '/^VmRSS/ { print $2 }' "/proc/$VIEW_PID/status")
 hwm=$(awk '/^VmHWM/ { print $2 }' "/proc/$VIEW_PID/status")
 snapshot=$(curl -sS http://127.0.0.1:8080/snapshot.json | wc -c)
@@ -57,10 +49,8 @@ grep -q "^atlas-view: streams=1 " "$WORK/view.err" || fail "the browser never he
 status=$(grep -E '^atlas-view: streams=' "$WORK/view.err" | tail -n 1)
 updates=$(sed -E 's/.* updates=([0-9]+).*/\1/' <<<"$status")
 bytes=$(sed -E 's/.* update_bytes=([0-9]+).*/\1/' <<<"$status")
-awk -v v="$((v1 - v0))" -v a="$((a1 - a0))" -v hz="$hz" -v t0="$t0" \
-  -v t1="$t1" -v rss="$rss" -v hwm="$hwm" -v u="$updates" -v b="$bytes" -v s="$snapshot" \
+awk -v v="$v" -v a="$a" -v w="$wall" -v rss="$rss" -v hwm="$hwm" -v u="$updates" -v b="$bytes" -v s="$snapshot" \
   -v f="$frames" 'BEGIN {
-  w = t1 - t0
   printf "atlas-view cpu: %.2f %% of one core over %.0f s; rss %.1f MiB (peak %.1f MiB); %d updates in the run, mean %d bytes; last snapshot %d bytes, %d frames\n",
-         100 * v / hz / w, w, rss / 1024, hwm / 1024, u, b, s, f
-  printf "beside it: atlasd %.2f %% of one core\n", 100 * a / hz / w }' | tee "$WORK/cost.txt"
+         100 * v / w, w, rss / 1024, hwm / 1024, u, b, s, f
+  printf "beside it: atlasd %.2f %% of one core\n", 100 * a / w }' | tee "$WORK/cost.txt"
