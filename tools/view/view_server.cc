@@ -94,6 +94,7 @@ class Updates {
     }
     hub_.Publish(std::move(json));
   }
+  // The page's data now (without the rate limit): for a request before anything arrived.
   std::string SnapshotNow() {
     std::lock_guard<std::mutex> lock(mu_);
     return BuildViewJson(state_, Now(), options_.max_frames);
@@ -202,7 +203,11 @@ int RunViewServer(const ViewOptions& o) {
   });
   server.Get("/snapshot.json", [&updates](const httplib::Request&, httplib::Response& res) {
     SetCommonHeaders(res);
-    res.set_content(updates.SnapshotNow(), "application/json");
+    // The latest update (built within the rate limit): requests cannot make it build more often.
+    updates.MaybePublish();
+    uint64_t seq = 0;
+    const std::shared_ptr<const std::string> latest = updates.hub().Latest(&seq);
+    res.set_content(latest ? *latest : updates.SnapshotNow(), "application/json");
   });
   server.Get("/events", [&updates](const httplib::Request&, httplib::Response& res) {
     SetCommonHeaders(res);
@@ -240,7 +245,8 @@ int RunViewServer(const ViewOptions& o) {
   std::atomic<bool> stop{false};
   std::thread http([&server] { server.listen_after_bind(); });
   std::thread lcm_thread([&] {
-    while (!stop.load()) lcm.handleTimeout(100);
+    while (!stop.load())
+      if (lcm.handleTimeout(100) < 0) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   });
   std::thread update_thread([&] {
     const auto tick = std::chrono::duration<double>(1.0 / o.rate_hz) / 4;

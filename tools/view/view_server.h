@@ -7,7 +7,7 @@
 // and publishes it to the hub; HTTP requests run on a fixed pool of max_clients + 2 threads
 // (each open event stream holds one) with a bounded hand-over queue, so further connections wait
 // in the kernel's listen backlog. Routes: GET / (the page), GET /events (text/event-stream),
-// GET /snapshot.json; nothing else, and nothing that writes.
+// GET /snapshot.json (the latest update); nothing else, and nothing that writes.
 
 #include "tools/view/view_options.h"
 
