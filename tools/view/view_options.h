@@ -6,16 +6,13 @@
 
 #include <string>
 
+#include "formats/config/daemon_options.h"
+
 namespace atlas::view {
 
-// atlasd's channel names, as in atlasd's [lcm.channels].
-struct ViewChannels {
-  std::string pose = "ATLAS_POSE";
-  std::string local_map = "ATLAS_LOCAL_MAP";
-  std::string graph = "ATLAS_GRAPH";
-  std::string hypotheses = "ATLAS_HYPOTHESES";
-  std::string health = "ATLAS_HEALTH";
-};
+// atlasd's channel names and their defaults, as atlasd's [lcm.channels] (formats/config); the
+// raw_* channels are not read.
+using ViewChannels = LcmChannels;
 
 struct ViewOptions {
   // An IPv4 or IPv6 address to listen on; all interfaces by default, so that a laptop on the
