@@ -24,7 +24,8 @@ set(ATLAS_TOOLS
     "atlas-localmap-eval|consistency and accuracy of the local map"
     "atlas-sonar-eval|sonar-only local maps and atlas on the simulator"
     "atlas-lcm-log-summary|summarise an lcm-logger file of atlasd's channels"
-    "atlas-pose-latency|latency of atlasd's published poses")
+    "atlas-pose-latency|latency of atlasd's published poses"
+    "atlas-view|atlasd's live map in a web browser")
 
 set(ATLAS_SYSTEMD_UNIT_DIR "" CACHE PATH "Where the systemd unit goes (default: systemd.pc's)")
 if(NOT ATLAS_SYSTEMD_UNIT_DIR)
@@ -109,7 +110,7 @@ install(FILES ${CMAKE_SOURCE_DIR}/systemd/atlasd.service DESTINATION ${ATLAS_SYS
 install(FILES ${CMAKE_SOURCE_DIR}/config/atlasd.toml DESTINATION /etc/atlasd)
 install(FILES ${CMAKE_SOURCE_DIR}/README.md ${CMAKE_SOURCE_DIR}/docs/atlasd.md
               ${CMAKE_SOURCE_DIR}/docs/config.md ${CMAKE_SOURCE_DIR}/docs/lcm.md
-              ${CMAKE_SOURCE_DIR}/docs/systemd.md
+              ${CMAKE_SOURCE_DIR}/docs/atlas-view.md ${CMAKE_SOURCE_DIR}/docs/systemd.md
         DESTINATION ${_atlas_doc_dir})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/config/robot/ DESTINATION ${_atlas_doc_dir}/examples)
 install(FILES ${CMAKE_SOURCE_DIR}/config/atlasd-fakedev.toml

@@ -142,6 +142,22 @@ stop_pid() {
   return "$rc"
 }
 
+# cpu_seconds SECONDS PID...: sleeps SECONDS, then prints the wall time it slept and, for each
+# PID, the CPU time (utime + stime, /proc/PID/stat) it used meanwhile, in seconds, on one line.
+cpu_seconds() {
+  local seconds=$1 p t0 t1
+  shift
+  local before=() after=()
+  for p in "$@"; do before+=("$(awk '{ print $14 + $15 }' "/proc/$p/stat")"); done
+  t0=$(date +%s.%N)
+  sleep "$seconds"
+  for p in "$@"; do after+=("$(awk '{ print $14 + $15 }' "/proc/$p/stat")"); done
+  t1=$(date +%s.%N)
+  awk -v t0="$t0" -v t1="$t1" -v hz="$(getconf CLK_TCK)" -v b="${before[*]}" -v a="${after[*]}" \
+    'BEGIN { n = split(b, B, " "); split(a, A, " "); line = sprintf("%.3f", t1 - t0)
+             for (i = 1; i <= n; ++i) line = line sprintf(" %.3f", (A[i] - B[i]) / hz); print line }'
+}
+
 summary_value() {  # summary_value FILE KEY
   grep -E "^$2=" "$1" | head -n 1 | cut -d= -f2
 }

@@ -3,10 +3,10 @@
 # while the command line is read): a value with trailing characters, an empty one, a non-finite
 # one and one out of range are refused with exit 2 and core/common/parse_number.h's message,
 # which names the option, the range and the text given. Needs ATLASD, ATLAS_REPLAY,
-# ATLAS_RENDER, ATLAS_REFINE, ATLAS_EXPORT, ATLAS_EVAL, ATLAS_CARMEN.
+# ATLAS_RENDER, ATLAS_REFINE, ATLAS_EXPORT, ATLAS_EVAL, ATLAS_CARMEN, ATLAS_VIEW.
 source "$(dirname "$0")/hil_lib.sh"
 : "${ATLASD:?}" "${ATLAS_REPLAY:?}" "${ATLAS_RENDER:?}" "${ATLAS_REFINE:?}" "${ATLAS_EVAL:?}"
-: "${ATLAS_CARMEN:?}" "${ATLAS_EXPORT:?}"
+: "${ATLAS_CARMEN:?}" "${ATLAS_EXPORT:?}" "${ATLAS_VIEW:?}"
 
 # refused TOOL OPTION KIND RANGE OUT_OF_RANGE: TOOL OPTION VALUE exits 2 with "OPTION must be
 # a KIND in RANGE, got 'VALUE'" for each bad VALUE.
@@ -25,6 +25,13 @@ refused "$ATLAS_RENDER" --width integer '[200, 20000]' 199
 refused "$ATLAS_RENDER" --scans integer '[0, 1000000]' 1000001
 refused "$ATLAS_RENDER" --odometry-km number '[0, 1000000]' -0.5
 pass "atlas-render's number options"
+
+refused "$ATLAS_VIEW" --port integer '[0, 65535]' 65536
+refused "$ATLAS_VIEW" --rate number '[0.1, 10]' 0
+refused "$ATLAS_VIEW" --max-clients integer '[1, 64]' 65
+refused "$ATLAS_VIEW" --max-frames integer '[1, 100000]' 0
+refused "$ATLAS_VIEW" --status-every number '[0, 86400]' -1
+pass "atlas-view's number options"
 
 R=$ATLAS_REPLAY
 refused "$R" --max-scans integer '[1, 9223372036854775807]' 0
