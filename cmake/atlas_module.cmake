@@ -35,6 +35,9 @@ function(atlas_module)
     add_executable(${M_NAME}_test ${test_cc})
     target_link_libraries(${M_NAME}_test PRIVATE ${M_NAME} ${M_TEST_DEPS} GTest::gtest_main
                           GTest::gmock)
+    if(ATLAS_TESTS_UNOPTIMISED)
+      target_compile_options(${M_NAME}_test PRIVATE -O0)
+    endif()
     gtest_discover_tests(${M_NAME}_test DISCOVERY_TIMEOUT 60
                          PROPERTIES LABELS unit ENVIRONMENT "LCM_DEFAULT_URL=memq://")
   endif()

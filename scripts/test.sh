@@ -53,7 +53,8 @@ run_ctest() {  # dir, ctest args...
 mkdir -p "$ROOT/build"
 
 # 1. Release.
-configure_and_build "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DATLAS_WERROR=ON
+configure_and_build "$ROOT/build/release" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DATLAS_WERROR=ON \
+  -DATLAS_TESTS_UNOPTIMISED=ON
 run_ctest "$ROOT/build/release" -LE hil
 
 # 2. Sanitizers.
