@@ -12,6 +12,7 @@
 #include "formats/pose_file.h"
 #include "logs/carmen/carmen_log.h"
 #include "sim/reference_odometry.h"
+#include "tools/cli/carmen_log_options.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/odometry_noise_options.h"
 #include "tools/eval/trajectory_files.h"
@@ -24,7 +25,7 @@ constexpr const char* kPoseColumns = "timestamp x y theta";
 constexpr const char* kDescription =
     R"(Reads CARMEN logs (plain or gzip) with the atlasd reader (FLASER, ROBOTLASER1, RAWLASER1..4,
 ODOM; other messages are counted and ignored). Modes (default --count): one mode only, two
-different modes are a usage error.)";
+different modes are a usage error; --dump-reference implies --corrected.)";
 
 constexpr const char* kFooter =
     R"(Exit status: 0 done, 1 a log could not be read, is truncated or corrupt, or has no CARMEN
@@ -105,21 +106,8 @@ int Main(int argc, char** argv) {
   cli::AddFlag(app, "--dump-reference", &dump_reference,
                "write the reference trajectory (pose at each scan) of one corrected LOG")
       ->group(modes);
-  const std::string reading = "Reading";
-  cli::AddFlag(app, "--corrected", &corrected,
-               "a \"corrected\" log: the line order is the clock and the poses are the\n"
-               "reference trajectory, not odometry (implied by --dump-reference)")
-      ->group(reading);
-  cli::AddNumber(app, "--line-period", "S", 1e-6, 1, &options.line_period_s,
-                 "seconds per line for the line-order clock (default 0.05)")
-      ->group(reading);
-  cli::AddNumber(app, "--log-max-range", "M", 0, 1e6, &options.max_range_m,
-                 "ranges >= M metres in the log are no-return (default: the line's own\n"
-                 "maximum, or 80 m for FLASER; aces-corrected clamps at 50)")
-      ->group(reading);
-  cli::AddFlag(app, "--skip-bad-lines", &options.skip_bad_lines,
-               "count malformed lines instead of stopping at the first")
-      ->group(reading);
+  const std::string reading = "Reading the log";
+  cli::AddCarmenLogOptions(app, reading, &options, &corrected);
   const std::string synthesis = "Synthesised odometry (with --corrected and --dump-odometry)";
   cli::AddSeed(app, "--seed", &seed, "random seed (default 1)")->group(synthesis);
   cli::AddOdometryNoiseOptions(app, synthesis, &noise);

@@ -20,6 +20,7 @@
 #include "replay/replay_run.h"
 #include "replay/replay_source.h"
 #include "sim/reference_odometry.h"
+#include "tools/cli/carmen_log_options.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/odometry_noise_options.h"
 #include "tools/replay/progress.h"
@@ -156,21 +157,7 @@ int Main(int argc, char** argv) {
       "live hypotheses (default " + std::to_string(MapperSettings{}.max_hypotheses) + ")");
   cli::AddFlag(app, "--quiet", &quiet, "no progress on stderr");
   const std::string log_group = "Reading the log";
-  cli::AddNumber(app, "--log-max-range", "M", 0, 1e6, &log_options.max_range_m,
-                 "ranges >= M metres in the log are no-return (default: the line's own\n"
-                 "maximum, or 80 m for FLASER; aces-corrected clamps at 50)")
-      ->group(log_group);
-  cli::AddFlag(app, "--skip-bad-lines", &log_options.skip_bad_lines,
-               "count malformed log lines instead of stopping at the first")
-      ->group(log_group);
-  cli::AddFlag(app, "--corrected", &corrected,
-               "a Radish \"corrected\" log: line order is the clock, its poses are the\n"
-               "reference; wheel odometry is synthesised from them with seeded noise\n"
-               "(the options below)")
-      ->group(log_group);
-  cli::AddNumber(app, "--line-period", "S", 1e-6, 1, &log_options.line_period_s,
-                 "seconds per line for the line-order clock (default 0.05)")
-      ->group(log_group);
+  cli::AddCarmenLogOptions(app, log_group, &log_options, &corrected);
   const std::string noise_group = "Synthesised odometry (with --corrected)";
   cli::AddSeed(app, "--seed", &seed, "random seed (default 1)")->group(noise_group);
   cli::AddOdometryNoiseOptions(app, noise_group, &noise);
