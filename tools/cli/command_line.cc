@@ -18,7 +18,9 @@ class Formatter : public CLI::Formatter {
     if (mode == CLI::AppFormatMode::Sub) return make_expanded(app);
     std::ostringstream out;
     out << (app->get_parent() == nullptr ? usage_ : make_usage(app, name)) << "\n";
-    if (!app->get_description().empty()) out << app->get_description() << "\n\n";
+    std::string description = app->get_description();
+    while (!description.empty() && description.back() == '\n') description.pop_back();
+    if (!description.empty()) out << description << "\n";
     out << make_positionals(app) << make_groups(app, mode) << make_subcommands(app, mode);
     const std::string footer = make_footer(app);
     if (!footer.empty()) out << "\n" << footer;

@@ -11,6 +11,7 @@ int RunToolMode(int argc, char** argv, const char* tool, const std::string& mode
   std::string names;
   for (const ToolMode& mode : modes) {
     CLI::App* sub = command_line.app().add_subcommand(mode.name);
+    sub->group("Modes");
     for (const std::string& key : mode.keys) {
       AddValue(
           *sub, key, "VALUE",
@@ -22,8 +23,6 @@ int RunToolMode(int argc, char** argv, const char* tool, const std::string& mode
     }
     names += (names.empty() ? "" : ", ") + std::string(mode.name);
   }
-  // The modes' list in the help is modes_help's.
-  command_line.app().get_formatter()->label("Subcommands", "Modes");
   bool known = argc < 2 || argv[1][0] == '-';
   for (const ToolMode& mode : modes) known = known || std::string(argv[1]) == mode.name;
   if (!known)
