@@ -66,8 +66,8 @@ for name in intel aces freiburg-079 freiburg-101 csail seattle; do
   fi
   # Dead reckoning of the same synthesised odometry (same seed and noise), for scale.
   "$BIN/atlas-carmen" --corrected --dump-odometry --seed "$SEED" \
-    --odometry-noise "$ODOMETRY_NOISE" "${range[@]/--log-max-range/--max-range}" \
-    -o "$dir/odometry.tsv" "$log"
+    --odometry-noise "$ODOMETRY_NOISE" "${range[@]}" \
+    --out "$dir/odometry.tsv" "$log"
   "$BIN/atlas-eval" --json --reference "$dir/reference.tsv" "$dir/odometry.tsv" \
     >"$dir/eval_odometry.json"
   # Revisits: where the robot returns. Pose pairs of the reference at most 1.5 m apart with at

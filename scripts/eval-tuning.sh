@@ -36,7 +36,7 @@ one_run() {
   "$BIN/atlas-replay" --quiet --corrected --seed "$seed" --odometry-noise "$ODOMETRY_NOISE" \
     --config "$CONFIG" --out "$dir" "$log" >"$dir/replay.txt"
   "$BIN/atlas-carmen" --corrected --dump-odometry --seed "$seed" \
-    --odometry-noise "$ODOMETRY_NOISE" -o "$dir/odometry.tsv" "$log"
+    --odometry-noise "$ODOMETRY_NOISE" --out "$dir/odometry.tsv" "$log"
   "$ROOT/scripts/relations-from-reference.py" "$dir/reference.tsv" "$dir/all.relations" \
     --travel 1.0
   "$ROOT/scripts/relations-from-reference.py" "$dir/reference.tsv" "$dir/returns.relations"

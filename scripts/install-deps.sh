@@ -16,6 +16,7 @@ packages=(
   libcairo2-dev libfontconfig-dev  # pictures (PNG, SVG); fontconfig to free its caches at exit
   zlib1g-dev                    # gzip CARMEN logs
   libtomlplusplus-dev           # the configuration file
+  libcli11-dev                  # every tool's command line (tools/cli), header-only
   libsqlite3-dev                # the persistent atlas store
   libsystemd-dev                # sd_notify
   libceres-dev                  # offline global refinement

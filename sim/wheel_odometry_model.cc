@@ -57,7 +57,8 @@ const char* const kOdometryNoiseHelp =
     "  taken 0.1 s before the scan stamps); the realistic level 1.7 % and 0.35 deg, the\n"
     "  default 0.5 % and 0.27 deg (a simulated 0.5 km office run, 837 relations). Real\n"
     "  bases can be worse than the realistic level.\n"
-    "  A level sets the wheel-noise options; options after it override.\n";
+    "  A level sets the wheel-noise options; --left-scale-error, --right-scale-error,\n"
+    "  --track-width-error and --wheel-noise override it wherever they stand.\n";
 
 WheelOdometryModel::WheelOdometryModel(const WheelOdometryNoiseOptions& options, uint64_t seed)
     : options_(options), rng_(seed) {}

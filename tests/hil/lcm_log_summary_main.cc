@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,14 +15,12 @@
 #include "formats/text_rows.h"
 #include "formats/trajectory_tsv.h"
 #include "logs/lcm/lcm_log_reader.h"
+#include "tools/cli/command_line.h"
 
 namespace {
 
-constexpr const char* kHelp =
-    R"(usage: atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE]
-       atlas-lcm-log-summary --help
-
-Prints key=value lines about an lcm-logger file recorded from atlasd (default channels):
+constexpr const char* kDescription =
+    R"(Prints key=value lines about an lcm-logger file recorded from atlasd (default channels):
   events.CHANNEL            messages per channel
   pose.count, pose.max_gap_s (largest gap between consecutive ATLAS_POSE receive times)
   health.count, health.laser_fault_seen (a status with LASER FAULT), health.last_steps,
@@ -29,44 +28,30 @@ Prints key=value lines about an lcm-logger file recorded from atlasd (default ch
   health.<driver>.<counter> (last value: bad_crc garbage_bytes truncated discontinuities
                              disconnects reconnects), health.<driver>.states (states seen, in order)
   undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH events that did not decode (left out)
-  log                       complete, truncated or corrupt
---poses FILE writes the poses received: "t x y theta frame q" (t: utime in seconds).
---trajectory FILE writes the poses received with a frame as a replay's trajectory.tsv
-  (docs/formats.md): "timestamp frame x y theta".
+  log                       complete, truncated or corrupt)";
 
-Exit 0; 1 when LOGFILE is not an LCM log (nothing printed), or is truncated or corrupt, or holds
+constexpr const char* kFooter =
+    R"(Exit 0; 1 when LOGFILE is not an LCM log (nothing printed), or is truncated or corrupt, or holds
 events that do not decode (the lines above are then printed for the events read, and stderr
 says what is wrong and where), or FILE cannot be written; 2 on a usage error.
 )";
-
-int Usage(const std::string& message) {
-  std::fprintf(stderr, "atlas-lcm-log-summary: %s (see --help)\n", message.c_str());
-  return 2;
-}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string log_path, poses_path, trajectory_path;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    } else if (a == "--trajectory") {
-      if (i + 1 >= argc) return Usage("--trajectory needs a FILE");
-      trajectory_path = argv[++i];
-    } else if (a == "--poses") {
-      if (i + 1 >= argc) return Usage("--poses needs a FILE");
-      poses_path = argv[++i];
-    } else if (a.size() > 1 && a[0] == '-') {
-      return Usage("unknown option '" + a + "'");
-    } else if (log_path.empty()) {
-      log_path = a;
-    } else {
-      return Usage("one LOGFILE only ('" + log_path + "', then '" + a + "')");
-    }
-  }
+  atlas::cli::CommandLine command_line(
+      "atlas-lcm-log-summary", {"atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE]"},
+      kDescription, kFooter);
+  CLI::App& app = command_line.app();
+  app.add_option("LOGFILE", log_path, "an lcm-logger file")->type_name("");
+  atlas::cli::AddText(app, "--poses", "FILE", &poses_path,
+                      "write the poses received: \"t x y theta frame q\" (t: utime in seconds)");
+  atlas::cli::AddText(app, "--trajectory", "FILE", &trajectory_path,
+                      "write the poses received with a frame as a replay's trajectory.tsv\n"
+                      "(docs/formats.md): \"timestamp frame x y theta\"");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
   if (log_path.empty()) return Usage("no LOGFILE given");
   atlas::LcmLogReader log;
   if (!log.Open(log_path)) {

@@ -37,12 +37,12 @@ printf '\x13\x37\x00\xff\x42random bytes' >"$WORK/random.bin"
 printf '# CARMEN Logfile\nODOM 0 0 0 0 0 0 1.0 host 1.0\n' >"$WORK/mit.clf"
 
 # atlas-lcm-log-summary
-expect 0 '^usage: atlas-lcm-log-summary' "$S" --help
+expect 0 '^Usage: atlas-lcm-log-summary' "$S" --help
 expect 2 'no LOGFILE given' "$S"
 expect 2 "unknown option '--bogus-opt'" "$S" --bogus-opt
 expect 2 "unknown option '--bogus'" "$S" "$WORK/ok.lcm" --bogus
-expect 2 '--poses needs a FILE' "$S" "$WORK/ok.lcm" --poses
-expect 2 'one LOGFILE only' "$S" "$WORK/ok.lcm" "$WORK/ok.lcm"
+expect 2 '--poses needs a value' "$S" "$WORK/ok.lcm" --poses
+expect 2 "unexpected argument '$WORK/ok.lcm'" "$S" "$WORK/ok.lcm" "$WORK/ok.lcm"
 expect 1 'is a directory' "$S" "$WORK"
 expect 1 'is empty, not an LCM log' "$S" "$WORK/empty.lcm"
 expect 1 'not an LCM log: it begins with 13 37 00 FF' "$S" "$WORK/random.bin"
@@ -76,7 +76,7 @@ expect 1 'nothing to step: .*a CARMEN log' "${R[@]}" "$WORK/mit.clf" --out "$WOR
 
 # atlas-pose-latency: options (refused before LCM is opened)
 P=$POSE_LATENCY
-expect 0 '^usage: atlas-pose-latency' "$P" --help
+expect 0 '^Usage: atlas-pose-latency' "$P" --help
 for v in abc 5x 1e300 1e999 nan 0 -5 100000 ''; do
   expect 2 "--seconds must be a number in \[0.001, 86400\], got '$v'" "$P" --seconds "$v"
 done
@@ -84,7 +84,8 @@ for v in abc 5x '' -1 1.5 1e3 nan 2000000; do
   expect 2 "--warmup must be an integer in \[0, 1000000\], got '$v'" "$P" --warmup "$v"
 done
 expect 2 '--seconds needs a value' "$P" --seconds
-expect 2 '--channel needs a non-empty NAME' "$P" --channel ''
-expect 2 "unknown argument '--bogus'" "$P" --bogus
+expect 2 "--channel needs a NAME, got ''" "$P" --channel ''
+expect 2 '--channel needs a value' "$P" --channel=
+expect 2 "unknown option '--bogus'" "$P" --bogus
 
 pass "the LCM log tools on bad input"

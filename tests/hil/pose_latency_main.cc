@@ -9,36 +9,29 @@
 #include <cstdio>
 #include <cstring>
 #include <lcm/lcm-cpp.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "atlas/pose_t.hpp"
-#include "core/common/parse_number.h"
 #include "core/common/time.h"
+#include "tools/cli/command_line.h"
 
 namespace {
 
-constexpr const char* kHelp =
-    R"(usage: atlas-pose-latency [--seconds S] [--channel NAME] [--warmup N]
-
-  --seconds S     how long to listen, 0.001 to 86400 (default 60)
-  --channel NAME  the pose channel (default ATLAS_POSE)
-  --warmup N      poses skipped at the start, an integer 0 to 1000000 (default 20)
-
-Subscribes to ATLAS_POSE (LCM_DEFAULT_URL) for S seconds or until SIGINT/SIGTERM,
+constexpr const char* kDescription =
+    R"(Subscribes to ATLAS_POSE (LCM_DEFAULT_URL) for S seconds or until SIGINT/SIGTERM,
 and prints the latency of each pose: from the laser driver's arrival stamp of the scan
 (pose_t.utime, CLOCK_MONOTONIC) to the pose's receipt here (same clock), as
   poses=N median_us=.. p90_us=.. p99_us=.. max_us=..
 Dead-reckoning poses (published without a scan, utime = odometry time) are counted apart and
 left out. The first N poses are skipped (start-up). atlasd must run on this machine (one
-monotonic clock). Exit 0; 1 when no pose was measured or LCM cannot be opened; 2 on a usage
+monotonic clock).)";
+
+constexpr const char* kFooter =
+    R"(Exit 0; 1 when no pose was measured or LCM cannot be opened; 2 on a usage
 error (an unknown option, a missing value, a value that is not a number in its range).
 )";
-
-int Usage(const std::string& message) {
-  std::fprintf(stderr, "atlas-pose-latency: %s (see --help)\n", message.c_str());
-  return 2;
-}
 
 volatile sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
@@ -76,24 +69,16 @@ int main(int argc, char** argv) {
   double seconds = 60;
   std::string channel = "ATLAS_POSE";
   Collector c;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    } else if (a != "--seconds" && a != "--channel" && a != "--warmup") {
-      return Usage("unknown argument '" + a + "'");
-    } else if (i + 1 >= argc) {
-      return Usage(a + " needs a value");
-    } else if (const char* v = argv[++i]; a == "--seconds") {
-      if (std::string e; !atlas::NumberArgument(a, v, 0.001, 86400, seconds, e)) return Usage(e);
-    } else if (a == "--warmup") {
-      if (std::string e; !atlas::IntegerArgument(a, v, 0, 1000000, c.warmup, e)) return Usage(e);
-    } else {
-      if (*v == '\0') return Usage("--channel needs a non-empty NAME");
-      channel = v;
-    }
-  }
+  atlas::cli::CommandLine command_line(
+      "atlas-pose-latency", {"atlas-pose-latency [--seconds S] [--channel NAME] [--warmup N]"},
+      kDescription, kFooter);
+  CLI::App& app = command_line.app();
+  atlas::cli::AddNumber(app, "--seconds", "S", 0.001, 86400, &seconds,
+                        "how long to listen, 0.001 to 86400 (default 60)");
+  atlas::cli::AddText(app, "--channel", "NAME", &channel, "the pose channel (default ATLAS_POSE)");
+  atlas::cli::AddInteger(app, "--warmup", "N", 0, 1000000, &c.warmup,
+                         "poses skipped at the start, an integer 0 to 1000000 (default 20)");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
   lcm::LCM lcm;
   if (!lcm.good()) {
     std::fprintf(stderr,

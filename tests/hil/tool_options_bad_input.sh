@@ -35,14 +35,14 @@ pass "atlas-view's number options"
 
 R=$ATLAS_REPLAY
 refused "$R" --max-scans integer '[1, 9223372036854775807]' 0
-refused "$R" --max-range number '[0.01, 1000000]' 0
+refused "$R" --laser-max-range number '[0.01, 1000000]' 0
 refused "$R" --map-capacity integer '[1, 10000]' 10001
 refused "$R" --max-hypotheses integer '[1, 1000]' 0
 refused "$R" --laser-time-offset number '[-1, 1]' 1.5
 refused "$R" --seed integer '[0, 18446744073709551615]' 18446744073709551616
 refused "$R" --wheel-noise number '[0, 1]' -1e-9
-refused "$R" --left-scale number '[-0.5, 0.5]' 0.6
-refused "$R" --right-scale number '[-0.5, 0.5]' -0.6
+refused "$R" --left-scale-error number '[-0.5, 0.5]' 0.6
+refused "$R" --right-scale-error number '[-0.5, 0.5]' -0.6
 refused "$R" --track-width-error number '[-0.5, 0.5]' 1
 refused "$R" --line-period number '[1e-06, 1]' 0
 refused "$R" --log-max-range number '[0, 1000000]' -1
@@ -72,10 +72,10 @@ pass "atlas-eval's number options"
 C=$ATLAS_CARMEN
 refused "$C" --seed integer '[0, 18446744073709551615]' -1
 refused "$C" --line-period number '[1e-06, 1]' 2
-refused "$C" --max-range number '[0, 1000000]' -1
+refused "$C" --log-max-range number '[0, 1000000]' -1
 refused "$C" --track-width number '[0.05, 10]' 0
 refused "$C" --wheel-noise number '[0, 1]' 1.5
-refused "$C" --left-scale number '[-0.5, 0.5]' 0.6
-refused "$C" --right-scale number '[-0.5, 0.5]' -0.6
+refused "$C" --left-scale-error number '[-0.5, 0.5]' 0.6
+refused "$C" --right-scale-error number '[-0.5, 0.5]' -0.6
 refused "$C" --track-width-error number '[-0.5, 0.5]' 1
 pass "atlas-carmen's number options"

@@ -5,14 +5,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "core/common/parse_number.h"
-#include "core/common/version.h"
 #include "formats/pose_file.h"
 #include "logs/carmen/carmen_log.h"
 #include "sim/reference_odometry.h"
+#include "tools/cli/carmen_log_options.h"
+#include "tools/cli/command_line.h"
+#include "tools/cli/odometry_noise_options.h"
 #include "tools/eval/trajectory_files.h"
 
 namespace atlas::eval {
@@ -20,49 +22,15 @@ namespace {
 
 constexpr const char* kPoseColumns = "timestamp x y theta";
 
-constexpr const char* kHelp = R"(Usage: atlas-carmen [options] LOG...
+constexpr const char* kDescription =
+    R"(Reads CARMEN logs (plain or gzip) with the atlasd reader (FLASER, ROBOTLASER1, RAWLASER1..4,
+ODOM; other messages are counted and ignored). Modes (default --count): one mode only, two
+different modes are a usage error; --dump-reference implies --corrected.)";
 
-Reads CARMEN logs (plain or gzip) with the atlasd reader (FLASER, ROBOTLASER1, RAWLASER1..4,
-ODOM; other messages are counted and ignored).
-
-Modes (default --count):
-  --count              print the lines per message type and the events per type of each LOG
-  --dump-odometry      write the dead-reckoned trajectory (odometry pose at each scan) of one
-                       LOG as a trajectory file (docs/formats.md) to stdout, or to -o FILE
-  --dump-reference     write the reference trajectory (pose at each scan) of one corrected LOG
-                       (one mode only: two different modes are a usage error)
-
-Reading:
-  --corrected          a "corrected" log: the line order is the clock and the poses are the
-                       reference trajectory, not odometry (implied by --dump-reference)
-  --line-period S      seconds per line for the line-order clock (default 0.05)
-  --max-range M        ranges >= M metres are no-return (default: the line's own maximum, or
-                       80 m for FLASER; aces-corrected clamps at 50)
-  --skip-bad-lines     count malformed lines instead of stopping at the first
-
-Synthesised odometry (with --corrected and --dump-odometry):
-  --seed N             random seed, an integer in [0, 18446744073709551615] (default 1)
-  --odometry-noise LEVEL  default | realistic (below)
-  --track-width M      nominal track width (default 0.4)
-  --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
-  --left-scale E       left wheel scale error (default 0.0002)
-  --right-scale E      right wheel scale error (default -0.0002)
-  --track-width-error E  relative track width error (default 0.002)
-
-Other:
-  -o FILE              output file for the dump modes (default stdout)
-  --json               --count as JSON lines, one object per LOG
-  --version            the version
-  -h, --help           this text
-
-Exit status: 0 done, 1 a log could not be read, is truncated or corrupt, or has no CARMEN
+constexpr const char* kFooter =
+    R"(Exit status: 0 done, 1 a log could not be read, is truncated or corrupt, or has no CARMEN
 line (message on stderr), 2 bad command line.
 )";
-
-int Usage(const std::string& what) {
-  std::fprintf(stderr, "atlas-carmen: %s\nTry 'atlas-carmen --help'.\n", what.c_str());
-  return 2;
-}
 
 void PrintCounts(const std::string& path, const carmen::CarmenLog& log, bool json) {
   if (json) {
@@ -116,73 +84,43 @@ bool WriteOutput(const std::string& path, const std::string& text) {
 
 int Main(int argc, char** argv) {
   enum class Mode { kCount, kDumpOdometry, kDumpReference } mode = Mode::kCount;
-  std::string mode_option;  // the mode given, to refuse a second, different one
   carmen::CarmenLogOptions options;
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
   bool corrected = false, json = false;
   std::string output;
   std::vector<std::string> logs;
-  struct NumberOption {
-    const char* name;
-    double lo, hi;
-    double* out;
-  };
-  const NumberOption numbers[] = {
-      {"--line-period", 1e-6, 1, &options.line_period_s},
-      {"--max-range", 0, 1e6, &options.max_range_m},
-      {"--track-width", 0.05, 10, &noise.track_width_m},
-      {"--wheel-noise", 0, 1, &noise.wheel_noise_per_m},
-      {"--left-scale", -0.5, 0.5, &noise.left_scale_error},
-      {"--right-scale", -0.5, 0.5, &noise.right_scale_error},
-      {"--track-width-error", -0.5, 0.5, &noise.track_width_error},
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--version") {
-      std::fputs(atlas::VersionLine("atlas-carmen").c_str(), stdout);
-      return 0;
-    }
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      std::fputs(kOdometryNoiseHelp, stdout);
-      return 0;
-    } else if (a == "--count" || a == "--dump-odometry" || a == "--dump-reference") {
-      if (!mode_option.empty() && mode_option != a)
-        return Usage(mode_option + " and " + a + " are different modes: give one");
-      mode_option = a;
-      mode = a == "--count"           ? Mode::kCount
-             : a == "--dump-odometry" ? Mode::kDumpOdometry
-                                      : Mode::kDumpReference;
-      if (mode == Mode::kDumpReference) corrected = true;
-    } else if (a == "--corrected") {
-      corrected = true;
-    } else if (a == "--skip-bad-lines") {
-      options.skip_bad_lines = true;
-    } else if (a == "--json") {
-      json = true;
-    } else if (a == "-o") {
-      if (i + 1 >= argc) return Usage("-o needs a file name");
-      output = argv[++i];
-    } else if (a == "--odometry-noise") {
-      if (i + 1 >= argc || !SetOdometryNoiseLevel(argv[++i], &noise))
-        return Usage("--odometry-noise needs default or realistic");
-    } else if (a == "--seed") {
-      std::string error;
-      if (i + 1 >= argc) return Usage("--seed needs an integer");
-      if (!SeedArgument(a, argv[++i], seed, error)) return Usage(error);
-    } else if (const NumberOption* n =
-                   std::find_if(std::begin(numbers), std::end(numbers),
-                                [&](const NumberOption& o) { return a == o.name; });
-               n != std::end(numbers)) {
-      std::string error;
-      if (i + 1 >= argc) return Usage(a + " needs a value");
-      if (!NumberArgument(a, argv[++i], n->lo, n->hi, *n->out, error)) return Usage(error);
-    } else if (!a.empty() && a[0] == '-') {
-      return Usage("unknown option " + a);
-    } else {
-      logs.push_back(a);
-    }
+  cli::CommandLine command_line("atlas-carmen", {"atlas-carmen [options] LOG..."}, kDescription,
+                                std::string(kFooter) + kOdometryNoiseHelp);
+  CLI::App& app = command_line.app();
+  app.add_option("LOG", logs, "CARMEN logs")->type_name("");
+  const std::string modes = "Modes";
+  bool count = false, dump_odometry = false, dump_reference = false;
+  cli::AddFlag(app, "--count", &count,
+               "print the lines per message type and the events per type of each LOG")
+      ->group(modes);
+  cli::AddFlag(app, "--dump-odometry", &dump_odometry,
+               "write the dead-reckoned trajectory (odometry pose at each scan) of one\n"
+               "LOG as a trajectory file (docs/formats.md) to stdout, or to --out FILE")
+      ->group(modes);
+  cli::AddFlag(app, "--dump-reference", &dump_reference,
+               "write the reference trajectory (pose at each scan) of one corrected LOG")
+      ->group(modes);
+  const std::string reading = "Reading the log";
+  cli::AddCarmenLogOptions(app, reading, &options, &corrected);
+  const std::string synthesis = "Synthesised odometry (with --corrected and --dump-odometry)";
+  cli::AddSeed(app, "--seed", &seed, "random seed (default 1)")->group(synthesis);
+  cli::AddOdometryNoiseOptions(app, synthesis, &noise);
+  cli::AddText(app, "-o,--out", "FILE", &output, "output file for the dump modes (default stdout)");
+  cli::AddFlag(app, "--json", &json, "--count as JSON lines, one object per LOG");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
+  if (count + dump_odometry + dump_reference > 1)
+    return Usage("--count, --dump-odometry and --dump-reference are different modes: give one");
+  if (dump_odometry) mode = Mode::kDumpOdometry;
+  if (dump_reference) {
+    mode = Mode::kDumpReference;
+    corrected = true;
   }
   if (logs.empty()) return Usage("no LOG given");
   if (mode != Mode::kCount && logs.size() != 1) return Usage("the dump modes take one LOG");

@@ -8,28 +8,23 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "core/common/parse_number.h"
-#include "core/common/version.h"
 #include "core/eval/reference_score.h"
 #include "core/eval/relations_metric.h"
 #include "formats/replay_dir.h"
 #include "formats/text_rows.h"
+#include "tools/cli/command_line.h"
 #include "tools/eval/trajectory_files.h"
 
 namespace atlas::eval {
 namespace {
 
-constexpr const char* kHelp = R"(Usage:
-  atlas-eval --relations RELATIONS TRAJECTORY         score against ground-truth relations
-  atlas-eval --reference REFERENCE TRAJECTORY         score against a reference trajectory
-  atlas-eval --relations RELATIONS --dead-reckon LOG  score a CARMEN log's dead reckoning
-  atlas-eval --relations RELATIONS --atlas DIR        score atlas-replay output, per frame
-
-TRAJECTORY and REFERENCE are trajectory files: one pose per line, "timestamp x y theta"
+constexpr const char* kDescription =
+    R"(TRAJECTORY and REFERENCE are trajectory files: one pose per line, "timestamp x y theta"
 (seconds, metres, radians), '#' comments; plain or gzip (docs/formats.md). RELATIONS is a
 Freiburg SLAM-benchmark relations file "t1 t2 x y z roll pitch yaw".
 
@@ -44,24 +39,10 @@ Relations whose frames are not connected are counted and left out. The score is 
 for four parts of the relations: both poses in one frame / composed across frames, and
 spanning under 1 s / 1 s or more (on mit-csail the long ones are the robot's returns).
 Reference scoring: relative pose error over pose pairs a fixed distance (--segment) or a fixed
-number of poses (--step) apart, and absolute error after the best rigid alignment.
+number of poses (--step) apart, and absolute error after the best rigid alignment.)";
 
-Options:
-  --relations FILE     relations file to score against
-  --reference FILE     reference trajectory file to score against
-  --dead-reckon LOG    use the odometry of a CARMEN log (at each scan) as the trajectory
-  --atlas DIR          score atlas-replay output (DIR/trajectory.tsv, DIR/graph.tsv)
-  --tolerance S        stamp matching tolerance in seconds (default 0.001)
-  --segment M          reference scoring: RPE pairs M metres of travel apart (default 1.0)
-  --step N             reference scoring: RPE pairs N poses apart (instead of --segment;
-                       give one of the two)
-  --json               print a JSON object instead of text
-  --errors FILE        relations scoring: write each matched relation's error to FILE, one
-                       row "t1 t2 translation_m rotation_deg" in the relations' order
-  --version            the version
-  -h, --help           this text
-
-Input files are checked as they are read: a malformed line, a value out of range (|t| > 4e9 s,
+constexpr const char* kFooter =
+    R"(Input files are checked as they are read: a malformed line, a value out of range (|t| > 4e9 s,
 |x|, |y| > 1e7 m, |angle| > 1e3 rad), two poses with the same stamp, an edge whose covariance
 is not positive definite or that names a frame DIR/frames.tsv does not list is an error naming
 the file and line.
@@ -69,11 +50,6 @@ the file and line.
 Exit status: 0 scored, 1 bad input or nothing to score (no relation or pose matched, no RPE
 pair; message on stderr), 2 bad command line.
 )";
-
-int Usage(const std::string& what) {
-  std::fprintf(stderr, "atlas-eval: %s\nTry 'atlas-eval --help'.\n", what.c_str());
-  return 2;
-}
 
 int Fail(const std::string& error) {
   std::fprintf(stderr, "atlas-eval: %s\n", error.c_str());
@@ -195,58 +171,43 @@ int Main(int argc, char** argv) {
   double tolerance_s = 0.001;
   ReferenceScoreOptions ref_options;
   bool json = false, step_given = false, segment_given = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto value = [&](const char* name) -> const char* {
-      if (i + 1 >= argc) return nullptr;
-      (void)name;
-      return argv[++i];
-    };
-    if (a == "--version") {
-      std::fputs(atlas::VersionLine("atlas-eval").c_str(), stdout);
-      return 0;
-    }
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    } else if (a == "--json") {
-      json = true;
-    } else if (a == "--relations" || a == "--reference" || a == "--dead-reckon" || a == "--atlas" ||
-               a == "--tolerance" || a == "--segment" || a == "--step" || a == "--errors") {
-      const char* v = value(a.c_str());
-      if (v == nullptr) return Usage(a + " needs a value");
-      std::string error;
-      if (a == "--relations") {
-        relations_path = v;
-      } else if (a == "--reference") {
-        reference_path = v;
-      } else if (a == "--dead-reckon") {
-        log_path = v;
-      } else if (a == "--atlas") {
-        atlas_dir = v;
-      } else if (a == "--errors") {
-        errors_path = v;
-      } else if (a == "--step") {
-        if (!IntegerArgument(a, v, 1, 1000000000, ref_options.step_count, error))
-          return Usage(error);
-        ref_options.segment_length_m = 0.0;
-        step_given = true;
-      } else if (a == "--tolerance") {
-        if (!NumberArgument(a, v, 0, 1e6, tolerance_s, error)) return Usage(error);
-      } else if (a == "--segment") {
-        if (!NumberArgument(a, v, 0.001, 1e6, ref_options.segment_length_m, error))
-          return Usage(error);
+  cli::CommandLine command_line(
+      "atlas-eval",
+      {"atlas-eval --relations RELATIONS TRAJECTORY         score against ground-truth relations",
+       "atlas-eval --reference REFERENCE TRAJECTORY         score against a reference trajectory",
+       "atlas-eval --relations RELATIONS --dead-reckon LOG  score a CARMEN log's dead reckoning",
+       "atlas-eval --relations RELATIONS --atlas DIR        score atlas-replay output, per frame"},
+      kDescription, kFooter);
+  CLI::App& app = command_line.app();
+  app.add_option("TRAJECTORY", trajectory_path, "the trajectory file to score")->type_name("");
+  cli::AddText(app, "--relations", "FILE", &relations_path, "relations file to score against");
+  cli::AddText(app, "--reference", "FILE", &reference_path,
+               "reference trajectory file to score against");
+  cli::AddText(app, "--dead-reckon", "LOG", &log_path,
+               "use the odometry of a CARMEN log (at each scan) as the trajectory");
+  cli::AddText(app, "--atlas", "DIR", &atlas_dir,
+               "score atlas-replay output (DIR/trajectory.tsv, DIR/graph.tsv)");
+  cli::AddNumber(app, "--tolerance", "S", 0, 1e6, &tolerance_s,
+                 "stamp matching tolerance in seconds (default 0.001)");
+  cli::AddNumber(
+      app, "--segment", "M", 0.001, 1e6,
+      [&](double m) {
+        ref_options.segment_length_m = m;
         ref_options.step_count = 0;
         segment_given = true;
-      }
-    } else if (!a.empty() && a[0] == '-') {
-      return Usage("unknown option " + a);
-    } else if (trajectory_path.empty()) {
-      trajectory_path = a;
-    } else {
-      return Usage("more than one trajectory given: " + trajectory_path + ", " + a);
-    }
-  }
+      },
+      "reference scoring: RPE pairs M metres of travel apart (default 1.0)");
+  cli::AddInteger(app, "--step", "N", 1, 1000000000, &ref_options.step_count,
+                  "reference scoring: RPE pairs N poses apart (instead of --segment;\n"
+                  "give one of the two)")
+      ->each([&](const std::string&) { step_given = true; });
+  cli::AddFlag(app, "--json", &json, "print a JSON object instead of text");
+  cli::AddText(app, "--errors", "FILE", &errors_path,
+               "relations scoring: write each matched relation's error to FILE, one\n"
+               "row \"t1 t2 translation_m rotation_deg\" in the relations' order");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  if (step_given) ref_options.segment_length_m = 0.0;
+  auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
   if (relations_path.empty() == reference_path.empty()) {
     return Usage("give exactly one of --relations and --reference");
   }

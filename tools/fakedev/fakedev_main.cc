@@ -10,21 +10,20 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
-#include "core/common/parse_number.h"
-#include "core/common/version.h"
 #include "drivers/fake/fake_agilex_base.h"
 #include "drivers/fake/fake_lms.h"
 #include "drivers/fake/fake_p2os.h"
 #include "drivers/fake/playback.h"
+#include "tools/cli/command_line.h"
 
 namespace {
 
-constexpr const char* kHelp = R"(usage: atlas-fakedev --log FILE [options]
-
-Fake robot devices for atlasd, playing a CARMEN log (plain or .gz) as real device bytes:
+constexpr const char* kDescription =
+    R"(Fake robot devices for atlasd, playing a CARMEN log (plain or .gz) as real device bytes:
   laser     a SICK LMS 2xx on a pseudo-terminal (answers status, mode, variant and the baud
             switch; streams 0xB0 telegrams in continuous mode)
   odometry  an AgileX base on the fake CAN bus: a Unix SOCK_SEQPACKET socket, one struct
@@ -32,39 +31,10 @@ Fake robot devices for atlasd, playing a CARMEN log (plain or .gz) as real devic
             point atlasd at  unix:PATH
   sonar     a Pioneer P2OS controller on a pseudo-terminal (SYNC handshake, OPEN, sonar on,
             SIPs every 100 ms with returns synthesised from the laser)
-Run all devices in one process (default) or one per process (--only laser|odometry|sonar).
+Run all devices in one process (default) or one per process (--only laser|odometry|sonar).)";
 
-options:
-  --log FILE             the CARMEN log to play (required)
-  --speed F              playback speed, 1 = real time, 0.001..1000 (default 1)
-  --max-scans N          play only the first N scans (default 0: all)
-  --dir DIR              where links and sockets go (default /tmp/atlas-fakedev)
-  --laser-link PATH      symlink to the laser's pty (default DIR/laser)
-  --sonar-link PATH      symlink to the sonar's pty (default DIR/sonar)
-  --can-socket PATH      the fake CAN bus socket (default DIR/can)
-  --only DEVICE          run one device: laser, odometry or sonar
-  --no-laser, --no-odometry, --no-sonar
-  --lms-power-up-baud B  the scanner's rate at power-up: 9600, 19200, 38400 or 500000
-                         (default 9600)
-  --wait-for-drivers     start playing only when every device has its driver connected
-                         (laser streaming, CAN client connected, P2OS opened)
-  --progress-every S     print progress every S seconds, 0..1e6 (default 5; 0 = never)
-fault injection (applied to --fault-device, default all):
-  --fault-device D       laser, odometry, sonar or all
-  (the *-every counts are integers 0..2147483647, 0 = never)
-  --garbage-every N      garbage bytes before every Nth message
-  --garbage-bytes N      how many, 1..4096 (default 40)
-  --corrupt-every N      corrupt the CRC / checksum of every Nth message
-  --truncate-every N     send only half of every Nth message
-  --jump-every N         odometry counters jump every Nth 0x311 ...
-  --jump-mm N            ... by N mm, a 32-bit integer (default 500000)
-  --drop-after S --drop-for T   close the device after S s for T s, then recreate it
-  --stall-after S --stall-for T send nothing from S s for T s
-                         (S >= 0, T >= 0.001, at most 1e6 s; each pair goes together)
-  --version              the version
-  -h, --help             this text
-
-Exits when the whole log has been played (or on SIGINT / SIGTERM).
+constexpr const char* kFooter =
+    R"(Exits when the whole log has been played (or on SIGINT / SIGTERM).
 example:
   atlas-fakedev --log ../shared/datasets/mit-csail/mit-csail.clf.gz --speed 10 \
       --dir /tmp/robot --wait-for-drivers
@@ -90,105 +60,93 @@ int main(int argc, char** argv) {
   bool drop_for_given = false, stall_for_given = false;
   bool laser = true, odometry = true, sonar = true, wait = false;
   fake::FaultOptions faults;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-    auto need = [&](const char* v) {
-      if (v == nullptr) {
-        std::fprintf(stderr, "atlas-fakedev: %s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return v;
-    };
-    std::string error;
-    auto num = [&](double lo, double hi, double* out) {
-      if (!NumberArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
-    };
-    auto integer = [&](int64_t lo, int64_t hi, auto* out) {
-      if (!IntegerArgument(a, need(value()), lo, hi, *out, error)) std::exit(Fail(error));
-    };
-    constexpr int64_t kIntMax = std::numeric_limits<int>::max();
-    constexpr double kLongest = 1e6;  // seconds, for the fault times and the progress period
-    if (a == "--version") {
-      std::fputs(atlas::VersionLine("atlas-fakedev").c_str(), stdout);
-      return 0;
-    }
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    } else if (a == "--log") {
-      log = need(value());
-    } else if (a == "--speed") {
-      num(1e-3, 1000, &speed);
-    } else if (a == "--max-scans") {
-      integer(0, std::numeric_limits<int64_t>::max(), &max_scans);
-    } else if (a == "--dir") {
-      dir = need(value());
-    } else if (a == "--laser-link") {
-      laser_link = need(value());
-    } else if (a == "--sonar-link") {
-      sonar_link = need(value());
-    } else if (a == "--can-socket") {
-      can_socket = need(value());
-    } else if (a == "--only") {
-      only = need(value());
-    } else if (a == "--no-laser") {
-      laser = false;
-    } else if (a == "--no-odometry") {
-      odometry = false;
-    } else if (a == "--no-sonar") {
-      sonar = false;
-    } else if (a == "--lms-power-up-baud") {
-      integer(1, kIntMax, &power_up_baud);
-    } else if (a == "--wait-for-drivers") {
-      wait = true;
-    } else if (a == "--progress-every") {
-      num(0, kLongest, &progress_every);
-    } else if (a == "--fault-device") {
-      fault_device = need(value());
-    } else if (a == "--garbage-every") {
-      integer(0, kIntMax, &faults.garbage_every);
-    } else if (a == "--garbage-bytes") {
-      integer(1, 4096, &faults.garbage_bytes);
-    } else if (a == "--corrupt-every") {
-      integer(0, kIntMax, &faults.corrupt_crc_every);
-    } else if (a == "--truncate-every") {
-      integer(0, kIntMax, &faults.truncate_every);
-    } else if (a == "--jump-every") {
-      integer(0, kIntMax, &faults.jump_every);
-    } else if (a == "--jump-mm") {
-      integer(std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max(),
-              &faults.jump_mm);
-    } else if (a == "--drop-after") {
-      num(0, kLongest, &faults.drop_after_s);
-    } else if (a == "--drop-for") {
-      num(1e-3, kLongest, &faults.drop_for_s);
-      drop_for_given = true;
-    } else if (a == "--stall-after") {
-      num(0, kLongest, &faults.stall_after_s);
-    } else if (a == "--stall-for") {
-      num(1e-3, kLongest, &faults.stall_for_s);
-      stall_for_given = true;
-    } else {
-      return Fail("unknown option " + a);
-    }
-  }
-  if (log.empty()) return Fail("--log FILE is required");
+  constexpr int64_t kIntMax = std::numeric_limits<int>::max();
+  constexpr double kLongest = 1e6;  // seconds, for the fault times and the progress period
+  cli::CommandLine command_line("atlas-fakedev", {"atlas-fakedev --log FILE [options]"},
+                                kDescription, kFooter);
+  CLI::App& app = command_line.app();
+  cli::AddText(app, "--log", "FILE", &log, "the CARMEN log to play (required)");
+  cli::AddNumber(app, "--speed", "F", 1e-3, 1000, &speed,
+                 "playback speed, 1 = real time, 0.001..1000 (default 1)");
+  cli::AddInteger(app, "--max-scans", "N", 0, std::numeric_limits<int64_t>::max(), &max_scans,
+                  "play only the first N scans (default 0: all)");
+  cli::AddText(app, "--dir", "DIR", &dir,
+               "where links and sockets go (default /tmp/atlas-fakedev)");
+  cli::AddText(app, "--laser-link", "PATH", &laser_link,
+               "symlink to the laser's pty (default DIR/laser)");
+  cli::AddText(app, "--sonar-link", "PATH", &sonar_link,
+               "symlink to the sonar's pty (default DIR/sonar)");
+  cli::AddText(app, "--can-socket", "PATH", &can_socket,
+               "the fake CAN bus socket (default DIR/can)");
+  cli::AddChoice(app, "--only", "DEVICE", {"laser", "odometry", "sonar"}, &only,
+                 "run one device: laser, odometry or sonar");
+  bool no_laser = false, no_odometry = false, no_sonar = false;
+  cli::AddFlag(app, "--no-laser", &no_laser, "no laser");
+  cli::AddFlag(app, "--no-odometry", &no_odometry, "no odometry");
+  cli::AddFlag(app, "--no-sonar", &no_sonar, "no sonar");
+  cli::AddInteger(app, "--lms-power-up-baud", "B", 1, kIntMax, &power_up_baud,
+                  "the scanner's rate at power-up: 9600, 19200, 38400 or 500000\n"
+                  "(default 9600)");
+  cli::AddFlag(app, "--wait-for-drivers", &wait,
+               "start playing only when every device has its driver connected\n"
+               "(laser streaming, CAN client connected, P2OS opened)");
+  cli::AddNumber(app, "--progress-every", "S", 0, kLongest, &progress_every,
+                 "print progress every S seconds, 0..1e6 (default 5; 0 = never)");
+  // Applied to --fault-device (default all); the *-every counts are 0 = never.
+  const std::string faults_group = "Fault injection";
+  cli::AddChoice(app, "--fault-device", "D", {"laser", "odometry", "sonar", "all"}, &fault_device,
+                 "laser, odometry, sonar or all: where the faults below go (default all);\n"
+                 "the *-every counts are integers 0..2147483647, 0 = never")
+      ->group(faults_group);
+  cli::AddInteger(app, "--garbage-every", "N", 0, kIntMax, &faults.garbage_every,
+                  "garbage bytes before every Nth message")
+      ->group(faults_group);
+  cli::AddInteger(app, "--garbage-bytes", "N", 1, 4096, &faults.garbage_bytes,
+                  "how many, 1..4096 (default 40)")
+      ->group(faults_group);
+  cli::AddInteger(app, "--corrupt-every", "N", 0, kIntMax, &faults.corrupt_crc_every,
+                  "corrupt the CRC / checksum of every Nth message")
+      ->group(faults_group);
+  cli::AddInteger(app, "--truncate-every", "N", 0, kIntMax, &faults.truncate_every,
+                  "send only half of every Nth message")
+      ->group(faults_group);
+  cli::AddInteger(app, "--jump-every", "N", 0, kIntMax, &faults.jump_every,
+                  "odometry counters jump every Nth 0x311 ...")
+      ->group(faults_group);
+  cli::AddInteger(app, "--jump-mm", "N", std::numeric_limits<int32_t>::min(),
+                  std::numeric_limits<int32_t>::max(), &faults.jump_mm,
+                  "... by N mm, a 32-bit integer (default 500000)")
+      ->group(faults_group);
+  cli::AddNumber(app, "--drop-after", "S", 0, kLongest, &faults.drop_after_s,
+                 "close the device after S s ...")
+      ->group(faults_group);
+  cli::AddNumber(app, "--drop-for", "T", 1e-3, kLongest, &faults.drop_for_s,
+                 "... for T s, then recreate it (the two go together)")
+      ->group(faults_group)
+      ->each([&](const std::string&) { drop_for_given = true; });
+  cli::AddNumber(app, "--stall-after", "S", 0, kLongest, &faults.stall_after_s,
+                 "send nothing from S s ...")
+      ->group(faults_group);
+  cli::AddNumber(app, "--stall-for", "T", 1e-3, kLongest, &faults.stall_for_s,
+                 "... for T s (the two go together)")
+      ->group(faults_group)
+      ->each([&](const std::string&) { stall_for_given = true; });
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  if (no_laser) laser = false;
+  if (no_odometry) odometry = false;
+  if (no_sonar) sonar = false;
+  auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
+  if (log.empty()) return Usage("--log FILE is required");
   if (drop_for_given != (faults.drop_after_s >= 0))
-    return Fail("--drop-after S and --drop-for T go together");
+    return Usage("--drop-after S and --drop-for T go together");
   if (stall_for_given != (faults.stall_after_s >= 0))
-    return Fail("--stall-after S and --stall-for T go together");
+    return Usage("--stall-after S and --stall-for T go together");
   if (!only.empty()) {
-    if (only != "laser" && only != "odometry" && only != "sonar")
-      return Fail("--only must be laser, odometry or sonar, not " + only);
     laser = only == "laser";
     odometry = only == "odometry";
     sonar = only == "sonar";
   }
-  if (!laser && !odometry && !sonar) return Fail("no device left to run");
-  if (fault_device != "all" && fault_device != "laser" && fault_device != "odometry" &&
-      fault_device != "sonar")
-    return Fail("--fault-device must be laser, odometry, sonar or all");
+  if (!laser && !odometry && !sonar) return Usage("no device left to run");
   if (std::string e = faults.Validate(); !e.empty()) return Fail(e);
   auto faults_for = [&](const char* device) {
     return (fault_device == "all" || fault_device == device) ? faults : fake::FaultOptions{};

@@ -2,17 +2,18 @@
 // (mc_mode.h, real_mode.h).
 
 #include "atlas_paths.h"
-#include "tools/eval/tool_modes.h"
+#include "tools/cli/tool_modes.h"
 #include "tools/localmap_eval/mc_mode.h"
 #include "tools/localmap_eval/real_mode.h"
 
 namespace {
 
 constexpr char kUsage[] =
-    "usage: atlas-localmap-eval mc   [--runs N=50] [--minutes M=4] [--seed S=1] [--capacity C=20]\n"
+    "Modes:\n  atlas-localmap-eval mc   [--runs N=50] [--minutes M=4] [--seed S=1] [--capacity "
+    "C=20]\n"
     "                                [--calibration fixed|per-run|off] [--per-run 0|1] [--dump F]\n"
     "                                [--set name=v,...]\n"
-    "       atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
+    "  atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
     "C=100]\n"
     "                                [--png F] [--draw-stretch K=3] [--set name=v,...]\n"
     "                                [--laser-x X=0] [--laser-time-offset S=0] [--scan-match "
@@ -46,9 +47,9 @@ constexpr char kUsage[] =
 }  // namespace
 
 int main(int argc, char** argv) {
-  using atlas::eval::ToolMode;
+  using atlas::cli::ToolMode;
   namespace le = atlas::localmap_eval;
-  return atlas::eval::RunToolMode(
+  return atlas::cli::RunToolMode(
       argc, argv, "atlas-localmap-eval", kUsage,
       {ToolMode{"mc",
                 {"--runs", "--minutes", "--seed", "--capacity", "--per-run", "--dump",

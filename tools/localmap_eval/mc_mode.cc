@@ -29,8 +29,8 @@
 namespace atlas::localmap_eval {
 namespace {
 
-using eval::GetIntegerOption;
-using eval::GetNumberOption;
+using cli::GetIntegerOption;
+using cli::GetNumberOption;
 
 // Seeds S..S+runs-1 are printed as int.
 constexpr int kMaxSeed = 1000000000;
@@ -293,7 +293,7 @@ std::vector<StepNees> RunOnce(uint64_t seed, double minutes, const LocalMapOptio
 
 }  // namespace
 
-int RunMcMode(const eval::ToolOptions& args) {
+int RunMcMode(const cli::ToolOptions& args) {
   double minutes = 4;
   int runs = 50, seed = 1, capacity = 20, per_run = 0;
   std::string error;

@@ -24,8 +24,8 @@
 namespace atlas::localmap_eval {
 namespace {
 
-using eval::GetIntegerOption;
-using eval::GetNumberOption;
+using cli::GetIntegerOption;
+using cli::GetNumberOption;
 
 LocalMapOptions RealFilterOptions(int capacity) {
   LocalMapOptions o;
@@ -60,7 +60,7 @@ struct ScanRecord {
 
 }  // namespace
 
-int RunRealMode(const eval::ToolOptions& args) {
+int RunRealMode(const cli::ToolOptions& args) {
   std::string log_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.clf.gz";
   std::string rel_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.relations";
   if (args.values.count("--log")) log_path = args.values.at("--log");

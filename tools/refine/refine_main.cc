@@ -2,36 +2,30 @@
 // output directory). See --help.
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
-#include "core/common/parse_number.h"
-#include "core/common/version.h"
 #include "core/eval/atlas_relations.h"
 #include "formats/replay_dir.h"
 #include "formats/text_rows.h"
+#include "tools/cli/command_line.h"
 #include "tools/refine/global_refinement.h"
 
 namespace atlas::refine {
 namespace {
 
-constexpr const char* kHelp = R"(Usage: atlas-refine [options] DIR
-
-Arranges all map-frames of an atlas globally by nonlinear least squares (Ceres) over the atlas
+constexpr const char* kDescription =
+    R"(Arranges all map-frames of an atlas globally by nonlinear least squares (Ceres) over the atlas
 graph's edges, each a relative SE(2) constraint weighted by its inverse covariance, starting
 from the Dijkstra projection from frame 0 with frame 0 held fixed. Offline only: the Atlas never
 does this in its step loop (paper, Section I-A).
 
 DIR is an atlas-replay output directory; reads DIR/graph.tsv and DIR/trajectory.tsv and writes
 the refined global trajectory, "timestamp x y theta" as global.tsv (docs/formats.md), to
-DIR/global_refined.tsv (or --out FILE). atlas-replay --refine does the same at the end of a run.
+DIR/global_refined.tsv (or --out FILE). atlas-replay --refine does the same at the end of a run.)";
 
-Options:
-  --out FILE           output trajectory file (default DIR/global_refined.tsv)
-  --max-iterations N   solver iterations (default 100)
-  --version            the version
-  -h, --help           this text
-
-Frames that the edges do not connect to frame 0 cannot be placed: their trajectory rows are
+constexpr const char* kFooter =
+    R"(Frames that the edges do not connect to frame 0 cannot be placed: their trajectory rows are
 left out, and a warning on stderr says how many and which frames. An edge whose covariance is
 not usable is an error when graph.tsv is read (file:line).
 
@@ -39,40 +33,20 @@ Exit status: 0 written (warnings on stderr), 1 bad input or the solver failed (m
 stderr), 2 bad command line.
 )";
 
-int Usage(const std::string& what) {
-  std::fprintf(stderr, "atlas-refine: %s\nTry 'atlas-refine --help'.\n", what.c_str());
-  return 2;
-}
-
 int Main(int argc, char** argv) {
   std::string dir, out;
   RefineOptions options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--version") {
-      std::fputs(atlas::VersionLine("atlas-refine").c_str(), stdout);
-      return 0;
-    }
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    } else if (a == "--out" || a == "--max-iterations") {
-      if (i + 1 >= argc) return Usage(a + " needs a value");
-      const std::string v = argv[++i];
-      if (a == "--out") {
-        out = v;
-      } else if (std::string error;
-                 !IntegerArgument(a, v.c_str(), 1, 100000, options.max_iterations, error)) {
-        return Usage(error);
-      }
-    } else if (!a.empty() && a[0] == '-') {
-      return Usage("unknown option " + a);
-    } else if (dir.empty()) {
-      dir = a;
-    } else {
-      return Usage("one DIR only");
-    }
-  }
+  cli::CommandLine command_line("atlas-refine", {"atlas-refine [options] DIR"}, kDescription,
+                                kFooter);
+  CLI::App& app = command_line.app();
+  app.add_option("DIR", dir, "an atlas-replay output directory")->type_name("");
+  cli::AddText(app, "-o,--out", "FILE", &out,
+               "output trajectory file (default DIR/global_refined.tsv)");
+  cli::AddInteger(
+      app, "--max-iterations", "N", 1, 100000, &options.max_iterations,
+      "solver iterations (default " + std::to_string(RefineOptions{}.max_iterations) + ")");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
   if (dir.empty()) return Usage("no DIR given (an atlas-replay output directory)");
   if (out.empty()) out = dir + "/global_refined.tsv";
 

@@ -3,11 +3,11 @@
 
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
-#include "core/common/parse_number.h"
-#include "core/common/version.h"
 #include "core/eval/atlas_relations.h"
+#include "tools/cli/command_line.h"
 #include "tools/refine/global_refinement.h"
 #include "tools/render/atlas_drawing.h"
 #include "tools/render/canvas.h"
@@ -16,47 +16,16 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: atlas-render --run DIR [--png FILE] [--svg FILE] [options]
-       atlas-render --atlas DIR [--projection F | --whole | --timeline | --timeline-frames]
-                    [--png FILE] [--svg FILE] [options]
-
---atlas DIR draws an atlas-replay output directory (graph.tsv, maps.tsv, points.tsv,
-trajectory.tsv, global.tsv, timing.tsv; docs/formats.md):
-  --projection F     the Dijkstra projection from frame F (default 0): every reached frame's
-                     lines (and laser points, if points.tsv is there) at its projected
-                     pose, its origin and 3-sigma position ellipse, the projection tree
-                     (paper, Fig. 2 and 10). Default file DIR/projection-F.png
-  --whole            the whole run: every frame from frame 0 and the robot's global trajectory
-                     (Fig. 8). Default file DIR/whole.png
-  --refined          with --whole or --projection: frames placed by global least squares
-                     (the same refinement as atlas-replay --refine) instead of the projection
-  --timeline         step time and the dominant frame id over time (Fig. 7); DIR/timeline.png
-  --timeline-frames  step time against the number of frames; DIR/timeline-frames.png
-  --budget MS        step budget drawn on the timelines (default 10)
-  --cpu              timelines: plot each step's CPU time (step_cpu.tsv) instead of its wall
-                     time (on a shared machine wall time includes other processes' turns)
-  --no-ellipses      no uncertainty ellipses;  --no-labels: no frame ids
-
-Draws an atlas-sim output directory (world.txt, truth.tsv, run.clf): the walls, the true
-trajectory, the odometry trajectory (started at the true start pose), laser returns of a
+constexpr const char* kDescription =
+    R"(Draws an atlas-sim output directory (--run DIR: world.txt, truth.tsv, run.clf): the walls, the
+true trajectory, the odometry trajectory (started at the true start pose), laser returns of a
 thinned-out set of scans placed at the true poses, start and end, a legend and a scale bar.
 With neither --png nor --svg, writes DIR/run.png.
+Or draws an atlas-replay output directory (--atlas DIR: graph.tsv, maps.tsv, points.tsv,
+trajectory.tsv, global.tsv, timing.tsv; docs/formats.md) as one of the pictures below.)";
 
-options:
-  --run DIR          the atlas-sim output directory to draw
-  --png FILE         write a PNG picture
-  --svg FILE         write an SVG picture
-  --width PX         picture width in pixels (default 1600); the height follows the building
-  --scans N          draw about N scans, evenly spread over the run (default 400; 0 = none)
-  --no-odometry      do not draw the odometry trajectory
-  --odometry-km X    draw the odometry of the first X km only (default 1; 0 = all)
-  --fit-odometry     fit the view to the odometry too (by default it is clipped to the world)
-  --route-graph      draw the world's route graph (dashed green)
-  --title TEXT       title line (default: a summary of the run)
-  --version          the version
-  --help             this text
-
-Input files are checked as they are read: a malformed line (also in run.clf: a line that is
+constexpr const char* kFooter =
+    R"(Input files are checked as they are read: a malformed line (also in run.clf: a line that is
 not a CARMEN message, or a damaged ODOM/FLASER line), a missing or empty file the picture
 needs, or files that disagree (an edge naming a frame the run does not have) is an error
 naming the file and line.
@@ -69,12 +38,6 @@ stderr), 2 bad command line.
 int Fail(const std::string& message) {
   std::fprintf(stderr, "atlas-render: %s\n", message.c_str());
   return 1;
-}
-
-// A bad command line: exit status 2.
-int Usage(const std::string& message) {
-  std::fprintf(stderr, "atlas-render: %s\n(atlas-render --help for usage)\n", message.c_str());
-  return 2;
 }
 
 enum class AtlasPicture { kProjection, kWhole, kTimeline, kTimelineFrames };
@@ -182,8 +145,10 @@ int RenderAtlas(AtlasRequest req) {
   ViewTransform view;
   if (const std::string e = LayoutAtlas(run, graph, req.draw, req.draw.refined ? &refined : nullptr,
                                         &layout, &height, &view);
-      !e.empty())
-    return Usage("--projection: " + e);
+      !e.empty()) {
+    std::fprintf(stderr, "atlas-render: --projection: %s\nTry 'atlas-render --help'.\n", e.c_str());
+    return atlas::cli::kExitUsage;
+  }
   return WriteCanvases(req, req.draw.width_px, height, view,
                        [&](Canvas& c) { DrawAtlasProjection(c, run, graph, layout, req.draw); });
 }
@@ -197,101 +162,84 @@ int main(int argc, char** argv) {
   RunReadOptions read;
   read.max_scans = 400;
   AtlasRequest atlas_req;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--version") {
-      std::fputs(atlas::VersionLine("atlas-render").c_str(), stdout);
-      return 0;
-    }
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (a == "--whole") {
-      atlas_req.picture = AtlasPicture::kWhole;
-      atlas_req.draw.trajectory = true;
-      atlas_req.draw.ellipses = false;
-      atlas_req.draw.source = 0;
-      continue;
-    }
-    if (a == "--timeline" || a == "--timeline-frames") {
-      atlas_req.picture =
-          a == "--timeline" ? AtlasPicture::kTimeline : AtlasPicture::kTimelineFrames;
-      continue;
-    }
-    if (a == "--cpu") {
-      atlas_req.cpu = true;
-      continue;
-    }
-    if (a == "--refined") {
-      atlas_req.draw.refined = true;
-      continue;
-    }
-    if (a == "--no-ellipses") {
-      atlas_req.draw.ellipses = false;
-      continue;
-    }
-    if (a == "--no-labels") {
-      atlas_req.draw.frame_labels = false;
-      continue;
-    }
-    if (a == "--atlas" || a == "--projection" || a == "--budget") {
-      if (i + 1 >= argc) return Usage("option " + a + " needs a value");
-      const std::string v = argv[++i];
-      if (a == "--atlas") {
-        atlas_req.dir = v;
-        continue;
-      }
-      std::string error;
-      if (a == "--budget") {
-        if (!atlas::NumberArgument(a, v.c_str(), 0, 1e9, atlas_req.budget_ms, error))
-          return Usage(error);
-      } else {
-        if (!atlas::IntegerArgument(a, v.c_str(), 0, std::numeric_limits<atlas::FrameId>::max(),
-                                    atlas_req.draw.source, error))
-          return Usage(error);
-        atlas_req.picture = AtlasPicture::kProjection;
-      }
-      continue;
-    }
-    if (a == "--no-odometry") {
-      draw.draw_odometry = false;
-      continue;
-    }
-    if (a == "--fit-odometry") {
-      draw.fit_odometry = true;
-      continue;
-    }
-    if (a == "--route-graph") {
-      draw.draw_route_graph = true;
-      continue;
-    }
-    if (a != "--run" && a != "--png" && a != "--svg" && a != "--width" && a != "--scans" &&
-        a != "--odometry-km" && a != "--title")
-      return Usage("unknown option '" + a + "'");
-    if (i + 1 >= argc) return Usage("option " + a + " needs a value");
-    const std::string v = argv[++i];
-    std::string error;
-    if (a == "--run") {
-      dir = v;
-    } else if (a == "--png") {
-      png = v;
-    } else if (a == "--svg") {
-      svg = v;
-    } else if (a == "--width") {
-      if (!atlas::IntegerArgument(a, v.c_str(), 200, 20000, draw.width_px, error))
-        return Usage(error);
-    } else if (a == "--scans") {
-      if (!atlas::IntegerArgument(a, v.c_str(), 0, 1000000, read.max_scans, error))
-        return Usage(error);
-    } else if (a == "--odometry-km") {
-      double km = 0.0;
-      if (!atlas::NumberArgument(a, v.c_str(), 0, 1e6, km, error)) return Usage(error);
-      draw.odometry_length_m = 1000.0 * km;
-    } else if (a == "--title") {
-      draw.title = v;
-    }
+  atlas::cli::CommandLine command_line(
+      "atlas-render",
+      {"atlas-render --run DIR [--png FILE] [--svg FILE] [options]",
+       "atlas-render --atlas DIR [--projection F | --whole | --timeline | --timeline-frames]",
+       "             [--png FILE] [--svg FILE] [options]"},
+      kDescription, kFooter);
+  CLI::App& app = command_line.app();
+  namespace cli = atlas::cli;
+  const std::string atlas_group = "An atlas (--atlas DIR)";
+  cli::AddText(app, "--atlas", "DIR", &atlas_req.dir, "the atlas-replay output directory to draw")
+      ->group(atlas_group);
+  cli::AddInteger(app, "--projection", "F", 0, std::numeric_limits<atlas::FrameId>::max(),
+                  &atlas_req.draw.source,
+                  "the Dijkstra projection from frame F (default 0): every reached frame's\n"
+                  "lines (and laser points, if points.tsv is there) at its projected\n"
+                  "pose, its origin and 3-sigma position ellipse, the projection tree\n"
+                  "(paper, Fig. 2 and 10). Default file DIR/projection-F.png")
+      ->group(atlas_group);
+  bool whole = false, timeline = false, timeline_frames = false;
+  cli::AddFlag(app, "--whole", &whole,
+               "the whole run: every frame from frame 0 and the robot's global trajectory\n"
+               "(Fig. 8). Default file DIR/whole.png")
+      ->group(atlas_group);
+  cli::AddFlag(app, "--refined", &atlas_req.draw.refined,
+               "with --whole or --projection: frames placed by global least squares\n"
+               "(the same refinement as atlas-replay --refine) instead of the projection")
+      ->group(atlas_group);
+  cli::AddFlag(app, "--timeline", &timeline,
+               "step time and the dominant frame id over time (Fig. 7); DIR/timeline.png")
+      ->group(atlas_group);
+  cli::AddFlag(app, "--timeline-frames", &timeline_frames,
+               "step time against the number of frames; DIR/timeline-frames.png")
+      ->group(atlas_group);
+  cli::AddNumber(app, "--budget", "MS", 0, 1e9, &atlas_req.budget_ms,
+                 "step budget drawn on the timelines (default 10)")
+      ->group(atlas_group);
+  cli::AddFlag(app, "--cpu", &atlas_req.cpu,
+               "timelines: plot each step's CPU time (step_cpu.tsv) instead of its wall\n"
+               "time (on a shared machine wall time includes other processes' turns)")
+      ->group(atlas_group);
+  bool no_ellipses = false, no_labels = false;
+  cli::AddFlag(app, "--no-ellipses", &no_ellipses, "no uncertainty ellipses")->group(atlas_group);
+  cli::AddFlag(app, "--no-labels", &no_labels, "no frame ids")->group(atlas_group);
+  cli::AddText(app, "--run", "DIR", &dir, "the atlas-sim output directory to draw");
+  cli::AddText(app, "--png", "FILE", &png, "write a PNG picture");
+  cli::AddText(app, "--svg", "FILE", &svg, "write an SVG picture");
+  cli::AddInteger(app, "--width", "PX", 200, 20000, &draw.width_px,
+                  "picture width in pixels (default 1600); the height follows the building");
+  cli::AddInteger(app, "--scans", "N", 0, 1000000, &read.max_scans,
+                  "draw about N scans, evenly spread over the run (default 400; 0 = none)");
+  bool no_odometry = false;
+  cli::AddFlag(app, "--no-odometry", &no_odometry, "do not draw the odometry trajectory");
+  cli::AddNumber(
+      app, "--odometry-km", "X", 0, 1e6, [&](double km) { draw.odometry_length_m = 1000.0 * km; },
+      "draw the odometry of the first X km only (default 1; 0 = all)");
+  cli::AddFlag(app, "--fit-odometry", &draw.fit_odometry,
+               "fit the view to the odometry too (by default it is clipped to the world)");
+  cli::AddFlag(app, "--route-graph", &draw.draw_route_graph,
+               "draw the world's route graph (dashed green)");
+  cli::AddText(app, "--title", "TEXT", &draw.title, "title line (default: a summary of the run)");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
+  if (whole + timeline + timeline_frames > 1 ||
+      ((whole || timeline || timeline_frames) && app.count("--projection") > 0))
+    return Usage(
+        "--projection, --whole, --timeline and --timeline-frames are different pictures: "
+        "give one");
+  if (whole) {
+    atlas_req.picture = AtlasPicture::kWhole;
+    atlas_req.draw.trajectory = true;
+    atlas_req.draw.ellipses = false;
+    atlas_req.draw.source = 0;
   }
+  if (timeline) atlas_req.picture = AtlasPicture::kTimeline;
+  if (timeline_frames) atlas_req.picture = AtlasPicture::kTimelineFrames;
+  if (no_ellipses) atlas_req.draw.ellipses = false;
+  if (no_labels) atlas_req.draw.frame_labels = false;
+  if (no_odometry) draw.draw_odometry = false;
   if (!atlas_req.dir.empty()) {
     if (!dir.empty()) return Usage("give --run DIR or --atlas DIR, not both");
     atlas_req.png = png;

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
-#include "core/common/parse_number.h"
 #include "core/common/version.h"
 #include "formats/config/config_loader.h"
 #include "formats/config/mapper_config.h"
@@ -20,17 +20,17 @@
 #include "replay/replay_run.h"
 #include "replay/replay_source.h"
 #include "sim/reference_odometry.h"
+#include "tools/cli/carmen_log_options.h"
+#include "tools/cli/command_line.h"
+#include "tools/cli/odometry_noise_options.h"
 #include "tools/replay/progress.h"
 #include "tools/replay/replay_refiner.h"
 
 namespace atlas::replay {
 namespace {
 
-constexpr const char* kHelp = R"(Usage: atlas-replay [options] LOG
-       atlas-replay [options] SIMDIR
-       atlas-replay --sweep-laser-time-offset FROM:TO:STEP [options] LOG|SIMDIR
-
-Runs a CARMEN log (plain or gzip; ODOM and laser lines), or an lcm-logger file with atlasd's
+constexpr const char* kDescription =
+    R"(Runs a CARMEN log (plain or gzip; ODOM and laser lines), or an lcm-logger file with atlasd's
 raw channels (lcm.channels.raw_*, from --config), through the Atlas as fast as it can, with
 atlasd's step loop (odometry interpolated to each scan's stamp, every scan stepped). `atlasd
 --replay LOG --out DIR --config FILE` is the same replay: it writes the same files.
@@ -51,61 +51,13 @@ Writes into --out DIR (docs/formats.md, "Replay output"):
                    observations matched bootstrapped x y theta sx sy stheta   (every live
                    hypothesis after each step, its pose in its own frame)
 Score global.tsv with: atlas-eval --relations FILE.relations DIR/global.tsv
-                  or:  atlas-eval --reference DIR/reference.tsv DIR/global.tsv
+                  or:  atlas-eval --reference DIR/reference.tsv DIR/global.tsv)";
 
-Options:
-  --out DIR            output directory, created if missing (default: replay-out)
-  --refine             also arrange all frames by global least squares after the run (offline;
-                       never in the step loop) and write global_refined.tsv
-  --hypotheses         also write hypotheses.tsv: which hypotheses were alive at each step,
-                       in which frame, juvenile or mature, with their q (Section III-B, III-E)
-  --corrected          a Radish "corrected" log: line order is the clock, its poses are the
-                       reference; wheel odometry is synthesised from them with seeded noise:
-    --seed N             random seed (default 1)
-    --odometry-noise LEVEL  default | realistic (below)
-    --wheel-noise V      wheel distance variance per metre rolled, m^2/m (default 5e-6)
-    --left-scale E       left wheel radius error, relative (default 0.0002)
-    --right-scale E      right wheel radius error, relative (default -0.0002)
-    --track-width-error E  relative track width error (default 0.002)
-    --line-period S      seconds per line for the line-order clock (default 0.05)
-  --reference FILE     a trajectory file (atlas-sim's truth.tsv) whose poses within 1 ms of a
-                       scan are its reference: writes reference.tsv and closures.tsv as
-                       --corrected does (not with --corrected)
-  --log-max-range M    ranges >= M metres in the log are no-return (aces-corrected: 50)
-  --max-scans N        step only the first N scans (default: all)
-  --config FILE        atlasd's configuration file: the mapper ([atlas], [noise.*], laser
-                       max_range_m) and the step loop ([loop]) are taken from it, so that
-                       the replay maps as atlasd would (devices, LCM and state are ignored);
-                       the options below override it. Without it: the defaults shown below
-                       and core/localmap's noise models
-  --max-range M        ranges beyond M metres are no-return for the maps (default 8)
-  --laser-time-offset S  a scan was taken at its stamp + S seconds (-1..1; negative: before
-                       the stamp; default 0 or the config's laser.time_offset_s): the odometry
-                       is looked up there; trajectory rows keep the scan stamps. mit-csail
-                       (361 beams at 38400 baud, stamped at arrival): about -0.1
-  --sweep-laser-time-offset FROM:TO:STEP
-                       calibrate the offset without ground truth: replay once per offset
-                       (into OUT/offset_<S>/) and print, per offset, the mean and rms |heading
-                       correction| of the atlas between consecutive scans in one frame (the
-                       atlas's heading change minus the odometry's, odometry at stamp + offset);
-                       the smallest mean is the best offset (also OUT/sweep.tsv). Needs a run
-                       with turns. Example: --sweep-laser-time-offset -0.2:0:0.02
-  --map-capacity N     features per map-frame (default 10)
-  --max-hypotheses N   live hypotheses (default 4)
-  --skip-bad-lines     count malformed log lines instead of stopping at the first
-  --quiet              no progress on stderr
-  --version            the version
-  -h, --help           this text
-
-Exit status: 0 done, 1 the log could not be read or the output not written (or a sweep scored
+constexpr const char* kFooter =
+    R"(Exit status: 0 done, 1 the log could not be read or the output not written (or a sweep scored
 no pair of scans), 2 bad command line,
 78 the --config file was rejected (each error with its key, line and column).
 )";
-
-int Usage(const std::string& what) {
-  std::fprintf(stderr, "atlas-replay: %s\nTry 'atlas-replay --help'.\n", what.c_str());
-  return 2;
-}
 
 int Sweep(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& options,
           const OffsetRange& range, const std::string& out_dir, bool quiet,
@@ -132,19 +84,87 @@ int Sweep(const std::vector<carmen::CarmenEvent>& events, const ReplayOptions& o
 }
 
 int Main(int argc, char** argv) {
-  std::string log_path, out_dir = "replay-out";
+  std::string log_path, out_dir = "replay-out", config_path;
   ReplayOptions options;
   carmen::CarmenLogOptions log_options;
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
   std::string reference_path;
-  bool quiet = false, corrected = false, sweep = false;
+  bool quiet = false, corrected = false, sweep = false, refine = false;
   OffsetRange sweep_range;
+  // What the command line sets over the --config file's values.
+  std::optional<double> max_range_m, laser_time_offset_s;
+  int map_capacity = 0, max_hypotheses = 0;  // 0: not given
+
+  cli::CommandLine command_line(
+      "atlas-replay",
+      {"atlas-replay [options] LOG", "atlas-replay [options] SIMDIR",
+       "atlas-replay --sweep-laser-time-offset FROM:TO:STEP [options] LOG|SIMDIR"},
+      kDescription, std::string(kFooter) + kOdometryNoiseHelp);
+  CLI::App& app = command_line.app();
+  app.add_option("LOG", log_path, "the log (or SIMDIR) to replay")->type_name("");
+  cli::AddText(app, "-o,--out", "DIR", &out_dir,
+               "output directory, created if missing (default: replay-out)");
+  cli::AddFlag(app, "--refine", &refine,
+               "also arrange all frames by global least squares after the run (offline;\n"
+               "never in the step loop) and write global_refined.tsv");
+  cli::AddFlag(app, "--hypotheses", &options.hypotheses,
+               "also write hypotheses.tsv: which hypotheses were alive at each step,\n"
+               "in which frame, juvenile or mature, with their q (Section III-B, III-E)");
+  cli::AddText(app, "--reference", "FILE", &reference_path,
+               "a trajectory file (atlas-sim's truth.tsv) whose poses within 1 ms of a\n"
+               "scan are its reference: writes reference.tsv and closures.tsv as\n"
+               "--corrected does (not with --corrected)");
+  cli::AddInteger(app, "--max-scans", "N", 1, std::numeric_limits<int64_t>::max(),
+                  &options.max_scans, "step only the first N scans (default: all)");
+  cli::AddText(app, "--config", "FILE", &config_path,
+               "atlasd's configuration file: the mapper ([atlas], [noise.*], laser\n"
+               "max_range_m) and the step loop ([loop]) are taken from it, so that\n"
+               "the replay maps as atlasd would (devices, LCM and state are ignored);\n"
+               "the options below override it. Without it: the defaults shown below\n"
+               "and core/localmap's noise models");
+  cli::AddNumber(
+      app, "--laser-max-range", "M", 0.01, 1e6, [&](double m) { max_range_m = m; },
+      "the laser's range for mapping: returns beyond M metres are no-return\n"
+      "(default " +
+          cli::HelpNumber(StepLoopOptions{}.max_range_m) + ", or the config's laser.max_range_m)");
+  cli::AddNumber(
+      app, "--laser-time-offset", "S", -1, 1, [&](double s) { laser_time_offset_s = s; },
+      "a scan was taken at its stamp + S seconds (-1..1; negative: before\n"
+      "the stamp; default 0 or the config's laser.time_offset_s): the odometry\n"
+      "is looked up there; trajectory rows keep the scan stamps. mit-csail\n"
+      "(361 beams at 38400 baud, stamped at arrival): about -0.1");
+  cli::AddValue(
+      app, "--sweep-laser-time-offset", "FROM:TO:STEP",
+      [&](const std::string& v) {
+        std::string error;
+        if (!ParseOffsetRange(v, &sweep_range, &error))
+          return "--sweep-laser-time-offset: " + error;
+        sweep = true;
+        return std::string();
+      },
+      "calibrate the offset without ground truth: replay once per offset\n"
+      "(into OUT/offset_<S>/) and print, per offset, the mean and rms |heading\n"
+      "correction| of the atlas between consecutive scans in one frame (the\n"
+      "atlas's heading change minus the odometry's, odometry at stamp + offset);\n"
+      "the smallest mean is the best offset (also OUT/sweep.tsv). Needs a run\n"
+      "with turns. Example: --sweep-laser-time-offset -0.2:0:0.02");
+  cli::AddInteger(
+      app, "--map-capacity", "N", 1, 10000, &map_capacity,
+      "features per map-frame (default " + std::to_string(MapperSettings{}.map_capacity) + ")");
+  cli::AddInteger(
+      app, "--max-hypotheses", "N", 1, 1000, &max_hypotheses,
+      "live hypotheses (default " + std::to_string(MapperSettings{}.max_hypotheses) + ")");
+  cli::AddFlag(app, "--quiet", &quiet, "no progress on stderr");
+  const std::string log_group = "Reading the log";
+  cli::AddCarmenLogOptions(app, log_group, &log_options, &corrected);
+  const std::string noise_group = "Synthesised odometry (with --corrected)";
+  cli::AddSeed(app, "--seed", &seed, "random seed (default 1)")->group(noise_group);
+  cli::AddOdometryNoiseOptions(app, noise_group, &noise);
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
   LcmChannels channels;  // of an lcm-logger file: the configuration's raw channels
-  // --config first, so that the other options override what it sets.
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::string(argv[i]) != "--config") continue;
-    const ConfigResult config = LoadConfigFile(argv[i + 1], ValidateMapperOptions);
+  if (!config_path.empty()) {
+    const ConfigResult config = LoadConfigFile(config_path, ValidateMapperOptions);
     if (!config.ok()) {
       std::fprintf(stderr, "atlas-replay: configuration rejected:\n");
       for (const ConfigError& e : config.errors)
@@ -155,95 +175,13 @@ int Main(int argc, char** argv) {
     options.loop = ToStepLoopOptions(config.options);
     channels = config.options.lcm.channels;
   }
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-    std::string error;
-    // The next argument as a number (an integer, a seed) into `out`; false with `error` set.
-    auto number = [&](double lo, double hi, double& out) {
-      const char* v = value();
-      if (v == nullptr) error = a + " needs a value";
-      return v != nullptr && NumberArgument(a, v, lo, hi, out, error);
-    };
-    auto integer = [&](int64_t lo, int64_t hi, auto& out) {
-      const char* v = value();
-      if (v == nullptr) error = a + " needs a value";
-      return v != nullptr && IntegerArgument(a, v, lo, hi, out, error);
-    };
-    if (a == "--version") {
-      std::fputs(atlas::VersionLine("atlas-replay").c_str(), stdout);
-      return 0;
-    }
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      std::fputs(kOdometryNoiseHelp, stdout);
-      return 0;
-    } else if (a == "--out") {
-      const char* v = value();
-      if (v == nullptr || *v == '\0') return Usage("--out needs a directory");
-      out_dir = v;
-    } else if (a == "--config") {
-      if (value() == nullptr) return Usage("--config needs a file");
-    } else if (a == "--max-scans") {
-      if (!integer(1, std::numeric_limits<int64_t>::max(), options.max_scans)) return Usage(error);
-    } else if (a == "--max-range") {
-      if (!number(0.01, 1e6, options.loop.max_range_m)) return Usage(error);
-    } else if (a == "--map-capacity") {
-      if (!integer(1, 10000, options.mapper.map_capacity)) return Usage(error);
-    } else if (a == "--max-hypotheses") {
-      if (!integer(1, 1000, options.mapper.max_hypotheses)) return Usage(error);
-    } else if (a == "--laser-time-offset") {
-      double d = 0.0;
-      if (!number(-1, 1, d)) return Usage(error);
-      options.loop.laser_time_offset = FromSeconds(d).time_since_epoch();
-    } else if (a == "--sweep-laser-time-offset") {
-      const char* v = value();
-      if (v == nullptr) return Usage("--sweep-laser-time-offset needs FROM:TO:STEP");
-      if (!ParseOffsetRange(v, &sweep_range, &error))
-        return Usage("--sweep-laser-time-offset: " + error);
-      sweep = true;
-    } else if (a == "--refine") {
-      options.refine = MakeRefiner(refine::RefineOptions{});
-    } else if (a == "--hypotheses") {
-      options.hypotheses = true;
-    } else if (a == "--corrected") {
-      corrected = true;
-    } else if (a == "--seed") {
-      const char* v = value();
-      if (v == nullptr) return Usage("--seed needs a value");
-      if (!SeedArgument(a, v, seed, error)) return Usage(error);
-    } else if (a == "--odometry-noise") {
-      const char* v = value();
-      if (v == nullptr || !SetOdometryNoiseLevel(v, &noise))
-        return Usage("--odometry-noise needs default or realistic");
-    } else if (a == "--reference") {
-      const char* v = value();
-      if (v == nullptr || *v == '\0') return Usage("--reference needs a file");
-      reference_path = v;
-    } else if (a == "--wheel-noise") {
-      if (!number(0, 1, noise.wheel_noise_per_m)) return Usage(error);
-    } else if (a == "--left-scale") {
-      if (!number(-0.5, 0.5, noise.left_scale_error)) return Usage(error);
-    } else if (a == "--right-scale") {
-      if (!number(-0.5, 0.5, noise.right_scale_error)) return Usage(error);
-    } else if (a == "--track-width-error") {
-      if (!number(-0.5, 0.5, noise.track_width_error)) return Usage(error);
-    } else if (a == "--line-period") {
-      if (!number(1e-6, 1, log_options.line_period_s)) return Usage(error);
-    } else if (a == "--log-max-range") {
-      if (!number(0, 1e6, log_options.max_range_m)) return Usage(error);
-    } else if (a == "--skip-bad-lines") {
-      log_options.skip_bad_lines = true;
-    } else if (a == "--quiet") {
-      quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      return Usage("unknown option " + a);
-    } else if (log_path.empty()) {
-      log_path = a;
-    } else {
-      return Usage("one LOG only (got " + log_path + " and " + a + ")");
-    }
-  }
+  if (max_range_m) options.loop.max_range_m = *max_range_m;
+  if (laser_time_offset_s)
+    options.loop.laser_time_offset = FromSeconds(*laser_time_offset_s).time_since_epoch();
+  if (map_capacity > 0) options.mapper.map_capacity = map_capacity;
+  if (max_hypotheses > 0) options.mapper.max_hypotheses = max_hypotheses;
+  if (refine) options.refine = MakeRefiner(refine::RefineOptions{});
+  auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
   if (log_path.empty()) return Usage("no LOG given");
   if (corrected && !reference_path.empty())
     return Usage("--reference and --corrected both give the reference: give one");

@@ -13,58 +13,26 @@
 #include <iterator>
 #include <string>
 
-#include "core/common/parse_number.h"
-#include "core/common/version.h"
 #include "sim/building_generator.h"
 #include "sim/building_kinds.h"
 #include "sim/carmen_writer.h"
 #include "sim/simulation.h"
+#include "tools/cli/command_line.h"
+#include "tools/cli/odometry_noise_options.h"
 
 namespace {
 
 using namespace atlas;
 using namespace atlas::sim;
 
-constexpr const char* kUsage = R"(usage: atlas-sim [options] --out DIR
-
-Simulates a differential-drive robot driving a route through a building (generated, or read
+constexpr const char* kDescription =
+    R"(Simulates a differential-drive robot driving a route through a building (generated, or read
 from a world file) with a SICK-like laser, a sonar ring and noisy wheel odometry, and writes:
   DIR/world.txt   the world (walls and route graph; 'atlas-world 1' format)
   DIR/truth.tsv   ground truth, one row per odometry step: timestamp x y theta
   DIR/run.clf     CARMEN log: ODOM lines, FLASER lines (odometry poses in the odometry
                   fields), SONAR lines (project-specific, see docs/formats.md)
-Runs are reproducible from --seed.
-
-options:
-  --out DIR               output directory (created; files in it are overwritten)
-  --kind NAME             the kind of building to generate (default office): office, curved,
-                          clutter, glass, corridor, hall, campus, people (sim/building_kinds.h);
-                          the laser's range defaults to the kind's (campus 80 m)
-  --rooms N               generate an office with at least N rooms, 1..100000 (default 24)
-  --world FILE            drive through this world file instead of generating one (not with
-                          --rooms or --kind)
-  --length-km X           route length in km (default 0.5)
-  --seed N                random seed for building, route and sensor noise, an integer in
-                          [0, 18446744073709551615] (default 1)
-  --speed M_PER_S         top speed (default 0.8)
-  --odometry-hz HZ        odometry and ground-truth rate (default 50)
-  --laser-beams 181|361   laser beams over 180 degrees (default 181)
-  --laser-hz HZ           laser scan rate (default 10)
-  --laser-max-range M     laser maximum range (default 30; the campus 80)
-  --laser-noise M         laser range noise sigma (default 0.01)
-  --no-laser              no laser
-  --sonar none|p3dx|b21   sonar ring: 16 P3-DX or 24 B21-like transducers (default p3dx)
-  --sonar-hz HZ           sonar readings per second (default 10)
-  --odometry-noise LEVEL  default | realistic (below)
-  --track-width M         odometry track width (default 0.4)
-  --wheel-noise V         wheel distance variance per metre, m^2/m (default 5e-6)
-  --left-scale-error E    left wheel radius error, relative (default 0.0002)
-  --right-scale-error E   right wheel radius error, relative (default -0.0002)
-  --track-width-error E   track width error, relative (default 0.002)
-  --quiet                 no progress output
-  --version               the version
-  --help                  this text
-)";
+Runs are reproducible from --seed.)";
 
 int Fail(const std::string& message) {
   std::fprintf(stderr, "atlas-sim: %s\n(atlas-sim --help for usage)\n", message.c_str());
@@ -141,134 +109,87 @@ int main(int argc, char** argv) {
   sim.sonar = true;
   BuildingOptions building;
   std::string out_dir, world_file, sonar_kind = "p3dx";
-  bool quiet = false, rooms_given = false, kind_given = false, range_given = false;
+  bool quiet = false, rooms_given = false, kind_given = false, range_given = false,
+       no_laser = false;
   BuildingKind kind = BuildingKind::kOffice;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--version") {
-      std::fputs(atlas::VersionLine("atlas-sim").c_str(), stdout);
-      return 0;
-    }
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      std::fputs(kOdometryNoiseHelp, stdout);
-      return 0;
-    }
-    if (a == "--no-laser") {
-      sim.laser = false;
-      continue;
-    }
-    if (a == "--quiet") {
-      quiet = true;
-      continue;
-    }
-    static const char* const kWithValue[] = {"--out",
-                                             "--world",
-                                             "--rooms",
-                                             "--kind",
-                                             "--odometry-noise",
-                                             "--length-km",
-                                             "--seed",
-                                             "--speed",
-                                             "--odometry-hz",
-                                             "--laser-beams",
-                                             "--laser-hz",
-                                             "--laser-max-range",
-                                             "--laser-noise",
-                                             "--sonar",
-                                             "--sonar-hz",
-                                             "--track-width",
-                                             "--wheel-noise",
-                                             "--left-scale-error",
-                                             "--right-scale-error",
-                                             "--track-width-error"};
-    if (std::find(std::begin(kWithValue), std::end(kWithValue), a) == std::end(kWithValue))
-      return Fail("unknown option '" + a + "'");
-    if (i + 1 >= argc) return Fail("option " + a + " needs a value");
-    const char* v = argv[++i];
-    std::string error;
-    auto number = [&](double lo, double hi) {
-      double x = 0.0;
-      if (!NumberArgument(a, v, lo, hi, x, error)) std::exit(Fail(error));
-      return x;
-    };
-    auto integer = [&](int64_t lo, int64_t hi, auto* out) {
-      if (!IntegerArgument(a, v, lo, hi, *out, error)) std::exit(Fail(error));
-    };
-    if (a == "--out") {
-      out_dir = v;
-    } else if (a == "--world") {
-      world_file = v;
-    } else if (a == "--kind") {
-      if (!ParseBuildingKind(v, &kind))
-        return Fail(
-            "--kind must be one of office, curved, clutter, glass, corridor, hall, "
-            "campus, people, not '" +
-            std::string(v) + "'");
-      kind_given = true;
-    } else if (a == "--odometry-noise") {
-      if (!SetOdometryNoiseLevel(v, &sim.odometry_options))
-        return Fail("--odometry-noise must be default or realistic, not '" + std::string(v) + "'");
-    } else if (a == "--rooms") {
-      integer(1, 100000, &building.min_rooms);
-      rooms_given = true;
-    } else if (a == "--length-km") {
-      sim.length_m = 1000.0 * number(1e-4, 10000);
-    } else if (a == "--seed") {
-      if (!SeedArgument(a, v, sim.seed, error)) return Fail(error);
-    } else if (a == "--speed") {
-      sim.motion_options.max_speed = number(0.05, 5);
-    } else if (a == "--odometry-hz") {
-      sim.odometry_hz = number(1, 1000);
-    } else if (a == "--laser-beams") {
-      integer(1, 100000, &sim.laser_options.beams);
-      if (sim.laser_options.beams != 181 && sim.laser_options.beams != 361)
-        return Fail(
-            "--laser-beams must be 181 or 361 (1 or 0.5 degree over 180 degrees, as a "
-            "SICK LMS 2xx), not " +
-            std::string(v));
-    } else if (a == "--laser-hz") {
-      sim.laser_options.rate_hz = number(0.1, 1000);
-    } else if (a == "--laser-max-range") {
-      sim.laser_options.max_range = number(0.5, 1000);
-      range_given = true;
-    } else if (a == "--laser-noise") {
-      sim.laser_options.range_sigma = number(0, 1);
-    } else if (a == "--sonar") {
-      sonar_kind = v;
-    } else if (a == "--sonar-hz") {
-      sim.sonar_options.reading_hz = number(0.1, 1000);
-    } else if (a == "--track-width") {
-      sim.odometry_options.track_width_m = number(0.05, 10);
-    } else if (a == "--wheel-noise") {
-      sim.odometry_options.wheel_noise_per_m = number(0, 1);
-    } else if (a == "--left-scale-error") {
-      sim.odometry_options.left_scale_error = number(-0.5, 0.5);
-    } else if (a == "--right-scale-error") {
-      sim.odometry_options.right_scale_error = number(-0.5, 0.5);
-    } else if (a == "--track-width-error") {
-      sim.odometry_options.track_width_error = number(-0.5, 0.5);
-    }
-  }
-  if (out_dir.empty()) return Fail("--out DIR is required (where to write the run)");
+  cli::CommandLine command_line("atlas-sim", {"atlas-sim [options] --out DIR"}, kDescription,
+                                kOdometryNoiseHelp);
+  CLI::App& app = command_line.app();
+  cli::AddText(app, "-o,--out", "DIR", &out_dir,
+               "output directory (created; files in it are overwritten)");
+  cli::AddValue(
+      app, "--kind", "NAME",
+      [&](const std::string& v) -> std::string {
+        if (!ParseBuildingKind(v, &kind))
+          return "--kind must be one of office, curved, clutter, glass, corridor, hall, campus, "
+                 "people, got '" +
+                 v + "'";
+        kind_given = true;
+        return "";
+      },
+      "the kind of building to generate (default office): office, curved,\n"
+      "clutter, glass, corridor, hall, campus, people (sim/building_kinds.h);\n"
+      "the laser's range defaults to the kind's (campus 80 m)");
+  cli::AddInteger(app, "--rooms", "N", 1, 100000, &building.min_rooms,
+                  "generate an office with at least N rooms (default 24)")
+      ->each([&](const std::string&) { rooms_given = true; });
+  cli::AddText(app, "--world", "FILE", &world_file,
+               "drive through this world file instead of generating one (not with\n"
+               "--rooms or --kind)");
+  cli::AddNumber(
+      app, "--length-km", "X", 1e-4, 10000, [&](double km) { sim.length_m = 1000 * km; },
+      "route length in km (default 0.5)");
+  cli::AddSeed(app, "--seed", &sim.seed,
+               "random seed for building, route and sensor noise (default 1)");
+  cli::AddNumber(app, "--speed", "M_PER_S", 0.05, 5, &sim.motion_options.max_speed,
+                 "top speed (default 0.8)");
+  cli::AddNumber(app, "--odometry-hz", "HZ", 1, 1000, &sim.odometry_hz,
+                 "odometry and ground-truth rate (default 50)");
+  cli::AddValue(
+      app, "--laser-beams", "181|361",
+      [&](const std::string& v) -> std::string {
+        if (v != "181" && v != "361")
+          return "--laser-beams must be 181 or 361 (1 or 0.5 degree over 180 degrees, as a "
+                 "SICK LMS 2xx), got '" +
+                 v + "'";
+        sim.laser_options.beams = std::stoi(v);
+        return "";
+      },
+      "laser beams over 180 degrees (default 181)");
+  cli::AddNumber(app, "--laser-hz", "HZ", 0.1, 1000, &sim.laser_options.rate_hz,
+                 "laser scan rate (default 10)");
+  cli::AddNumber(app, "--laser-max-range", "M", 0.5, 1000, &sim.laser_options.max_range,
+                 "laser maximum range (default 30; the campus 80)")
+      ->each([&](const std::string&) { range_given = true; });
+  cli::AddNumber(app, "--laser-noise", "M", 0, 1, &sim.laser_options.range_sigma,
+                 "laser range noise sigma (default 0.01)");
+  cli::AddFlag(app, "--no-laser", &no_laser, "no laser");
+  cli::AddChoice(app, "--sonar", "RING", {"none", "p3dx", "b21"}, &sonar_kind,
+                 "sonar ring: none, 16 P3-DX or 24 B21-like transducers (default p3dx)");
+  cli::AddNumber(app, "--sonar-hz", "HZ", 0.1, 1000, &sim.sonar_options.reading_hz,
+                 "sonar readings per second (default 10)");
+  cli::AddOdometryNoiseOptions(app, "Odometry", &sim.odometry_options);
+  cli::AddFlag(app, "--quiet", &quiet, "no progress output");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  if (no_laser) sim.laser = false;
+  if (out_dir.empty()) return command_line.Usage("--out DIR is required (where to write the run)");
   if ((rooms_given || kind_given) && !world_file.empty())
-    return Fail("--rooms and --kind generate a building; --world reads one: give one of them");
+    return command_line.Usage(
+        "--rooms and --kind generate a building; --world reads one: give one of them");
   if (rooms_given && kind != BuildingKind::kOffice)
-    return Fail("--rooms sizes an office; --kind " + std::string(ToString(kind)) +
-                " has its own size");
+    return command_line.Usage("--rooms sizes an office; --kind " + std::string(ToString(kind)) +
+                              " has its own size");
   if (!range_given) sim.laser_options.max_range = KindLaserMaxRange(kind);
   if (sonar_kind == "none") {
     sim.sonar = false;
   } else if (sonar_kind == "p3dx") {
     sim.sonar_options.ring = P3dxSonarRing();
-  } else if (sonar_kind == "b21") {
-    sim.sonar_options.ring = B21SonarRing();
   } else {
-    return Fail("--sonar must be none, p3dx or b21, not '" + sonar_kind + "'");
+    sim.sonar_options.ring = B21SonarRing();
   }
   sim.start_time = 1000.0;
-  if (std::string e = sim.Validate(); !e.empty()) return Fail(e);
-  if (std::string e = building.Validate(); !e.empty()) return Fail(e);
+  if (std::string e = sim.Validate(); !e.empty()) return command_line.Usage(e);
+  if (std::string e = building.Validate(); !e.empty()) return command_line.Usage(e);
 
   World world;
   if (world_file.empty()) {

@@ -18,8 +18,8 @@
 namespace atlas::sonar_eval {
 namespace {
 
-using eval::GetIntegerOption;
-using eval::GetNumberOption;
+using cli::GetIntegerOption;
+using cli::GetNumberOption;
 
 // The wall whose echo the transducer at `sensor` (world) reports, as the simulator decides it
 // (drivers/sim SonarModel::Fire: nearest ray of the cone meeting a wall within the critical
@@ -47,7 +47,7 @@ int EchoingWall(const sim::RayCaster& caster, const sim::SonarOptions& so, const
 
 }  // namespace
 
-int RunAssocMode(const eval::ToolOptions& args) {
+int RunAssocMode(const cli::ToolOptions& args) {
   int ring = 24, seed = 1, capacity = 40, show = 10;
   double km = 0.15;
   AlcoveLoopOptions loop;

@@ -27,8 +27,8 @@
 namespace atlas::sonar_eval {
 namespace {
 
-using eval::GetIntegerOption;
-using eval::GetNumberOption;
+using cli::GetIntegerOption;
+using cli::GetNumberOption;
 
 // Mean over runs of the per-step NEES (steps where every run has a value), against the 95 %
 // band of chi-square(3 runs) / runs, as atlas-localmap-eval mc does for one map.
@@ -173,7 +173,7 @@ struct TraceWriter {
 
 }  // namespace
 
-int RunAtlasMode(const eval::ToolOptions& args) {
+int RunAtlasMode(const cli::ToolOptions& args) {
   const AtlasOptions sonar_defaults = SonarAtlasOptions();
   int ring = 24, seed = 1, rooms = 6, capacity = 10, runs = 1, laser = 1, sonar_w = 1,
       probation = -1;

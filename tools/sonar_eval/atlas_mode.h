@@ -6,10 +6,10 @@
 // NEES of the dominant pose in its frame averaged over the runs against its 95 % band, and
 // relative-pose errors (5 s, 30 s) next to dead reckoning (sonar_atlas_run.h).
 
-#include "tools/eval/tool_options.h"
+#include "tools/cli/tool_options.h"
 
 namespace atlas::sonar_eval {
 
-int RunAtlasMode(const eval::ToolOptions& args);
+int RunAtlasMode(const cli::ToolOptions& args);
 
 }  // namespace atlas::sonar_eval

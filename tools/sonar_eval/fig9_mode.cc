@@ -15,8 +15,8 @@
 namespace atlas::sonar_eval {
 namespace {
 
-using eval::GetIntegerOption;
-using eval::GetNumberOption;
+using cli::GetIntegerOption;
+using cli::GetNumberOption;
 
 void Arc(draw::Canvas& c, const Pose2& sensor, double range, double half, const draw::Stroke& s) {
   std::vector<Vec2> pts;
@@ -29,7 +29,7 @@ void Arc(draw::Canvas& c, const Pose2& sensor, double range, double half, const 
 
 }  // namespace
 
-int RunFig9Mode(const eval::ToolOptions& args) {
+int RunFig9Mode(const cli::ToolOptions& args) {
   int ring = 24, seed = 1, lines = 4, phantoms = 0;
   double minutes = 3;
   std::string error;

@@ -21,8 +21,8 @@
 namespace atlas::sonar_eval {
 namespace {
 
-using eval::GetIntegerOption;
-using eval::GetNumberOption;
+using cli::GetIntegerOption;
+using cli::GetNumberOption;
 
 struct Step {
   Pose2 truth, sonar, laser, odometry;
@@ -123,7 +123,7 @@ void AddRelativeErrors(const std::vector<Step>& steps, int gap, Pose2 Step::*whi
 
 }  // namespace
 
-int RunMcMode(const eval::ToolOptions& args) {
+int RunMcMode(const cli::ToolOptions& args) {
   double minutes = 3;
   int runs = 20, ring = 24, seed = 1, capacity = 20;
   std::string error;

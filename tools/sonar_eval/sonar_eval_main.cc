@@ -1,7 +1,7 @@
 // atlas-sonar-eval: evaluation of sonar-only line mapping; one file per mode (mc_mode.h,
 // fig9_mode.h, atlas_mode.h, assoc_mode.h).
 
-#include "tools/eval/tool_modes.h"
+#include "tools/cli/tool_modes.h"
 #include "tools/sonar_eval/assoc_mode.h"
 #include "tools/sonar_eval/atlas_mode.h"
 #include "tools/sonar_eval/fig9_mode.h"
@@ -10,17 +10,18 @@
 namespace {
 
 constexpr char kUsage[] =
-    "usage: atlas-sonar-eval mc   [--runs N=20] [--minutes M=3] [--ring 16|24 (24)] [--seed S=1]\n"
+    "Modes:\n  atlas-sonar-eval mc   [--runs N=20] [--minutes M=3] [--ring 16|24 (24)] [--seed "
+    "S=1]\n"
     "                             [--capacity C=20]\n"
-    "       atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
+    "  atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
     "                             [--lines K=4] [--phantoms 0|1 (0)] [--minutes M=3]\n"
-    "       atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
+    "  atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
     "                             [--seed S=1] [--runs N=1] [--km K=0.4] [--capacity C=10]\n"
     "                             [--laser 0|1 (1)] [--trace FILE] [--sonar-w 0|1 (1)]\n"
     "                             [--probation N]\n"
     "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
     "                             [--loop-length L=36] [--loop-width W=14]\n"
-    "       atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
+    "  atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
     "                             [--seed S=1] [--km K=0.15] [--capacity C=40] [--show N=10]\n"
     "\n"
     "The sonar maps use core/sonar's options and the sonar atlas core/atlas's with\n"
@@ -59,9 +60,9 @@ constexpr char kUsage[] =
 }  // namespace
 
 int main(int argc, char** argv) {
-  using atlas::eval::ToolMode;
+  using atlas::cli::ToolMode;
   namespace se = atlas::sonar_eval;
-  return atlas::eval::RunToolMode(
+  return atlas::cli::RunToolMode(
       argc, argv, "atlas-sonar-eval", kUsage,
       {ToolMode{"mc", {"--runs", "--minutes", "--ring", "--seed", "--capacity"}, se::RunMcMode},
        ToolMode{

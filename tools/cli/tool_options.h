@@ -1,25 +1,21 @@
 #pragma once
-// The "--key value" options of the evaluation tools' modes; their values are checked by
-// core/common/parse_number.h (NumberArgument, IntegerArgument, SeedArgument).
+// The option values of one mode of an evaluation tool ("atlas-sonar-eval mc --runs 5"), as read
+// by RunToolMode (tool_modes.h), and their checks as numbers (core/common/parse_number.h:
+// NumberArgument, IntegerArgument, SeedArgument), made by the mode that takes them.
 
 #include <concepts>
 #include <cstdint>
 #include <map>
 #include <string>
-#include <vector>
 
 #include "core/common/parse_number.h"
 
-namespace atlas::eval {
+namespace atlas::cli {
 
-// Options of the form "--key value" from argv[first..] (the evaluation tools' modes). A key not
-// in `known`, or one without a value, sets `error` (naming it) and stops parsing.
+// The options given, by name ("--runs" -> "5"); an option not given has no entry.
 struct ToolOptions {
   std::map<std::string, std::string> values;
-  std::string error;
 };
-ToolOptions ParseToolOptions(int argc, char** argv, int first,
-                             const std::vector<std::string>& known);
 // Reads option `key` as a number in [lo, hi] into `out`; true when absent (out unchanged) or
 // valid, else false with `error` naming the key, the range and the value given.
 bool GetNumberOption(const ToolOptions& options, const std::string& key, double lo, double hi,
@@ -34,4 +30,4 @@ bool GetIntegerOption(const ToolOptions& options, const std::string& key, int64_
 bool GetSeedOption(const ToolOptions& options, const std::string& key, uint64_t& out,
                    std::string& error);
 
-}  // namespace atlas::eval
+}  // namespace atlas::cli

@@ -1,0 +1,37 @@
+#include "tools/cli/tool_modes.h"
+
+#include "tools/cli/command_line.h"
+
+namespace atlas::cli {
+
+int RunToolMode(int argc, char** argv, const char* tool, const std::string& modes_help,
+                const std::vector<ToolMode>& modes) {
+  CommandLine command_line(tool, {std::string(tool) + " MODE [options]"}, modes_help);
+  ToolOptions options;
+  std::string names;
+  for (const ToolMode& mode : modes) {
+    CLI::App* sub = command_line.app().add_subcommand(mode.name);
+    sub->group("Modes");
+    for (const std::string& key : mode.keys) {
+      AddValue(
+          *sub, key, "VALUE",
+          [&options, key](const std::string& v) {
+            options.values[key] = v;
+            return std::string();
+          },
+          "");
+    }
+    names += (names.empty() ? "" : ", ") + std::string(mode.name);
+  }
+  bool known = argc < 2 || argv[1][0] == '-';
+  for (const ToolMode& mode : modes) known = known || std::string(argv[1]) == mode.name;
+  if (!known)
+    return command_line.Usage("unknown MODE '" + std::string(argv[1]) + "' (" + names + ")");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  for (const ToolMode& mode : modes) {
+    if (command_line.app().got_subcommand(mode.name)) return mode.run(options);
+  }
+  return command_line.Usage("no MODE given (" + names + ")");
+}
+
+}  // namespace atlas::cli
