@@ -49,6 +49,7 @@ std::string ScanAlignmentOptions::Validate() const {
   if (!(min_score >= 0.0 && min_score < 1.0)) return "grid alignment: min_score must be in [0, 1)";
   if (!(degenerate_ratio > 0.0 && degenerate_ratio < 1.0))
     return "grid alignment: degenerate_ratio must be in (0, 1)";
+  if (!Positive(normal_radius)) return "grid alignment: normal_radius must be > 0";
   if (!Positive(unconstrained_sigma)) return "grid alignment: unconstrained_sigma must be > 0";
   if (!Positive(min_residual_sigma)) return "grid alignment: min_residual_sigma must be > 0";
   return "";

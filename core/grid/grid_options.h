@@ -50,10 +50,10 @@ struct ScanAlignmentOptions {
   double convergence_step = 0.001;
   int min_points = 20;
   double min_score = 0.3;  // mean probability of the points at the correlative optimum
-  // A direction of (x, y, theta x rms radius) whose response curvature is below this fraction
-  // of the largest is reported as unconstrained (a corridor's length). On the test corridor the
-  // length scores -0.01 and the heading 0.013; in the test room the weakest direction 0.08.
-  double degenerate_ratio = 0.005;
+  // A direction of (x, y, theta x rms radius) whose surface information (scan_alignment.h)
+  // is below this fraction of the largest is reported as unconstrained (a corridor's length).
+  double degenerate_ratio = 0.01;
+  double normal_radius = 0.3;  // metres: the neighbours a point's surface normal is fitted to
   double unconstrained_sigma = 10.0;  // metres (radians x rms radius) given to such directions
   double min_residual_sigma = 0.05;   // floor of the residual scale of the covariance
   std::string Validate() const;

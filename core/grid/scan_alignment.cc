@@ -36,40 +36,52 @@ double Evaluate(const InterpolatedGrid& map, const std::vector<Vec2>& points, co
   return cost;
 }
 
-// -d^2 s / dd^2 of the quadratic fitted by least squares to the scores of the placements of
-// `window` (heading, y, x order) within `cells` cells and `steps` heading steps of `best`,
-// d = (x, y, theta) relative to `best`.
-Mat3 ResponseCurvature(const std::vector<double>& scores, const SearchWindow& window,
-                       const Placement& best, int cells, int steps, double resolution) {
-  using Vec10 = Eigen::Matrix<double, 10, 1>;
-  Eigen::Matrix<double, 10, 10> normal = Eigen::Matrix<double, 10, 10>::Zero();
-  Vec10 rhs = Vec10::Zero();
-  size_t i = 0;
-  for (int h = 0; h < window.headings(); ++h) {
-    for (int y = -window.linear_cells; y <= window.linear_cells; ++y) {
-      for (int x = -window.linear_cells; x <= window.linear_cells; ++x, ++i) {
-        // In cells and heading steps, so that the system is well scaled.
-        const double a = x - best.x, b = y - best.y, c = h - best.heading;
-        if (std::abs(a) > cells || std::abs(b) > cells || std::abs(c) > steps) continue;
-        Vec10 f;
-        f << 1.0, a, b, c, 0.5 * a * a, 0.5 * b * b, 0.5 * c * c, a * b, a * c, b * c;
-        normal += f * f.transpose();
-        rhs += f * scores[i];
+// The information of the scan's surfaces (Censi 2007, point-to-line): every point of `points`
+// (scan order) explained by `map` at `x` (probability at least 0.5) whose neighbours within
+// `radius` (up to 3 either side in sequence) lie on a line contributes j j^T with
+// j = (n, n . d(T_x q)/d theta), n the line's normal; a point whose neighbours do not lie on a
+// line (a corner, a chair leg) contributes its translation and rotation in every direction
+// (half of each); a point without two such neighbours, nothing.
+constexpr int kNeighbours = 6;
+
+Mat3 SurfaceInformation(const InterpolatedGrid& map, const std::vector<Vec2>& points,
+                        const Pose2& x, double radius, double max_flatness) {
+  const RigidTransform t(x);
+  Mat3 info = Mat3::Zero();
+  const int n = static_cast<int>(points.size());
+  for (int i = 0; i < n; ++i) {
+    const Vec2& q = points[i];
+    if (map.Evaluate(t.Apply(q), nullptr) < 0.5) continue;
+    Vec2 mean = Vec2::Zero();
+    int count = 0;
+    for (int j = std::max(0, i - kNeighbours); j <= std::min(n - 1, i + kNeighbours); ++j) {
+      if ((points[j] - q).norm() > radius) continue;
+      mean += points[j];
+      ++count;
+    }
+    if (count < 3) continue;
+    mean /= count;
+    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+    for (int j = std::max(0, i - kNeighbours); j <= std::min(n - 1, i + kNeighbours); ++j) {
+      if ((points[j] - q).norm() > radius) continue;
+      scatter += (points[j] - mean) * (points[j] - mean).transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> line(scatter);
+    const Vec2 d_theta(-t.s * q.x() - t.c * q.y(), t.c * q.x() - t.s * q.y());
+    if (line.eigenvalues()(0) <= max_flatness * line.eigenvalues()(1)) {
+      const Vec2 n0 = line.eigenvectors().col(0);
+      const Vec2 normal(t.c * n0.x() - t.s * n0.y(), t.s * n0.x() + t.c * n0.y());
+      const Vec3 j(normal.x(), normal.y(), normal.dot(d_theta));
+      info += j * j.transpose();
+    } else {
+      for (const Vec2& normal : {Vec2(1.0, 0.0), Vec2(0.0, 1.0)}) {
+        const Vec3 j(normal.x(), normal.y(), normal.dot(d_theta));
+        info += 0.5 * j * j.transpose();
       }
     }
   }
-  // Directions the window does not span (one heading, no translation) have no curvature.
-  normal.diagonal() += Vec10::Constant(1e-9 * normal.trace());
-  const Vec10 q = normal.ldlt().solve(rhs);
-  Mat3 hessian;
-  hessian << q(4), q(7), q(8), q(7), q(5), q(9), q(8), q(9), q(6);
-  const Vec3 unit(1.0 / resolution, 1.0 / resolution, 1.0 / window.angular_step);
-  return -(unit.asDiagonal() * hessian * unit.asDiagonal());
+  return info;
 }
-
-// Half-width of the response curvature's fit, cells; in heading, the steps that move a point
-// at the rms radius as far. Narrower, the cell-scale texture of the grid dominates the fit.
-constexpr int kCurvatureCells = 2;
 
 }  // namespace
 
@@ -98,7 +110,6 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
       MakeSearchWindow(options_.linear_window, options_.angular_window, r,
                        AngularSearchStep(points, r, options_.min_angular_step));
   DiscretizeScans(grid.limits(), points, initial, window, &scans_);
-  scores_.clear();
   // Ranked by the sum of stored values, unknown counted as 1: the probability is affine in the
   // value and an unknown cell has the probability of value 1.
   const std::vector<uint16_t>& values = grid.values();
@@ -115,11 +126,6 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
           const CellIndex c{cells[i].x + x, cells[i].y + y};
           sum += l.Contains(c) ? std::max<uint16_t>(values[l.IndexOf(c)], 1) : 1;
         }
-        scores_.push_back(
-            grid.ProbabilityOfValue(0) +
-            (grid.ProbabilityOfValue(ProbabilityGrid::kMaxValue) - grid.ProbabilityOfValue(0)) *
-                (static_cast<double>(sum) / scans_.points - 1.0) /
-                (ProbabilityGrid::kMaxValue - 1));
         const int dh = h - window.angular_steps;
         const long distance = static_cast<long>(x) * x + y * y + dh * dh;
         if (sum > best_sum || (sum == best_sum && distance < best_distance)) {
@@ -130,10 +136,10 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
       }
     }
   }
-  out->correlative_score = *std::max_element(scores_.begin(), scores_.end());
-  const int steps = std::max(
-      1, static_cast<int>(std::lround(kCurvatureCells * r / (out->radius * window.angular_step))));
-  out->response_curvature = ResponseCurvature(scores_, window, best, kCurvatureCells, steps, r);
+  out->correlative_score =
+      grid.ProbabilityOfValue(0) +
+      (grid.ProbabilityOfValue(ProbabilityGrid::kMaxValue) - grid.ProbabilityOfValue(0)) *
+          (static_cast<double>(best_sum) / scans_.points - 1.0) / (ProbabilityGrid::kMaxValue - 1);
   return PlacementPose(best, initial, window, r);
 }
 
@@ -186,12 +192,14 @@ AlignmentResult ScanAligner::Align(const ProbabilityGrid& grid, const std::vecto
   Mat3 scaled_cov =
       s2 * (s_diagonal * h * s_diagonal).completeOrthogonalDecomposition().pseudoInverse();
 
-  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(s_diagonal * out.response_curvature * s_diagonal);
-  const Vec3 curvatures = eigen.eigenvalues();  // ascending
+  out.surface_information = SurfaceInformation(map, points, x, options_.normal_radius, 0.2);
+  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(s_diagonal * out.surface_information *
+                                                  s_diagonal);
+  const Vec3 strengths = eigen.eigenvalues();  // ascending
   Mat3 keep = Mat3::Identity();
   Mat3 free_part = Mat3::Zero();
   for (int i = 0; i < 3; ++i) {
-    if (curvatures(i) > options_.degenerate_ratio * curvatures(2) && curvatures(i) > 0.0) continue;
+    if (strengths(i) > options_.degenerate_ratio * strengths(2) && strengths(i) > 0.0) continue;
     const Vec3 v = eigen.eigenvectors().col(i);
     out.unconstrained_directions.col(out.unconstrained++) = v;
     keep -= v * v.transpose();

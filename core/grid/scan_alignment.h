@@ -10,17 +10,20 @@
 //     with q_i the scan's points (scan frame) and M the bicubic probability.
 //  3. Covariance from the match: H = J^T J at x*, s^2 = sum_i r_i^2 / (n - 3) (at least
 //     min_residual_sigma^2), C = s^2 H^+ (pseudo-inverse).
-//  4. Directions the grid does not fix (a corridor's length, a lone wall), from the response
-//     curvature of the correlative search (Olson 2009, Section III-C): a quadratic fitted by
-//     least squares to the mean scores within 2 cells of the correlative optimum (and the
-//     heading steps that move a point at radius L as far) gives A = -d^2 score / dx^2.
-//     Along a corridor the score is flat there while J^T J is not small: the grid's
-//     cell-scale texture along a wall feeds J^T J (0.15 of its largest eigenvalue on the test
-//     corridor) but averages out in the fit (-0.01).
-//     In the coordinates (x, y, L theta), L the points' rms radius so that metres and radians
-//     compare, eigen-directions of A below degenerate_ratio times its largest eigenvalue are
-//     "unconstrained": they are reported, and C gets unconstrained_sigma along them (their
-//     share of C removed first), so that the caller takes the odometry there.
+//  4. Directions the grid does not fix (a corridor's length, a lone wall), from the scan's own
+//     surfaces (point-to-line information, Censi 2007): each point explained at x* (probability
+//     at least 0.5) whose neighbours in scan order within normal_radius lie on a line adds
+//     j j^T, j = (n, n . d(T_x q)/d theta), n the line's normal; one whose neighbours do not (a
+//     corner, a chair leg) adds half of it for both axes. In the coordinates (x, y, L theta),
+//     L the points' rms radius so that metres and radians compare, eigen-directions of this G
+//     below degenerate_ratio times its largest eigenvalue are "unconstrained": they are
+//     reported, and C gets unconstrained_sigma along them (their share of C removed first),
+//     so that the caller takes the odometry there. J^T J cannot tell: the grid's cell-scale
+//     texture along a wall (where scans were inserted from) feeds it in every direction, and so
+//     does the response of the correlative search (its fit over a few cells scored the test
+//     corridor's length like the room's weakest direction at some steps). On the test
+//     corridor G's length scores 0.0006-0.003 of its largest, in the test room the weakest
+//     direction 0.05-0.2 (0.01 while the grid holds one scan).
 //
 // Typed outcomes, never throws. Work is bounded: (2 linear_window / r + 1)^2 x headings x
 // points lookups, then at most max_iterations passes over the points.
@@ -46,8 +49,8 @@ struct AlignmentResult {
   AlignmentOutcome outcome = AlignmentOutcome::kTooFewPoints;
   // The scan's pose in the submap frame; the initial pose (zero covariance) unless aligned.
   UncertainPose pose;
-  Mat3 information = Mat3::Zero();         // H / s^2, over (x, y, theta)
-  Mat3 response_curvature = Mat3::Zero();  // A, over (x, y, theta), mean score per unit^2
+  Mat3 information = Mat3::Zero();          // H / s^2, over (x, y, theta)
+  Mat3 surface_information = Mat3::Zero();  // G above, over (x, y, theta)
   // Columns 0 .. unconstrained-1: unit directions of (x, y, radius theta) that the grid does
   // not fix.
   int unconstrained = 0;
@@ -70,14 +73,12 @@ class ScanAligner {
   const ScanAlignmentOptions& options() const { return options_; }
 
  private:
-  // The correlative optimum around `initial`; fills out's correlative_score and
-  // response_curvature.
+  // The correlative optimum around `initial`; fills out's correlative_score.
   Pose2 CorrelativeSearch(const ProbabilityGrid& grid, const std::vector<Vec2>& points,
                           const Pose2& initial, AlignmentResult* out);
 
   ScanAlignmentOptions options_;
-  DiscreteScans scans_;         // scratch
-  std::vector<double> scores_;  // scratch: mean score of every placement
+  DiscreteScans scans_;  // scratch
 };
 
 }  // namespace atlas
