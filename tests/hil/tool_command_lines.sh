@@ -76,4 +76,13 @@ check atlas-localmap-eval --runs 0 mc
 check atlas-lcm-log-summary --poses "$WORK/p"
 grep -q "^atlas-lcm-log-summary: no LOGFILE given" "$WORK/eq.err" || fail "$(cat "$WORK/eq.err")"
 check atlas-pose-latency --seconds 0
+check atlas-export --resolution 0.5
+grep -q "^atlas-export: no DIR given" "$WORK/eq.err" || fail "$(cat "$WORK/eq.err")"
+check atlas-export --out x
+check atlas-view --port 65536
+grep -q "^atlas-view: --port must be an integer in \[0, 65535\], got '65536'" "$WORK/eq.err" ||
+  fail "$(cat "$WORK/eq.err")"
+check atlas-view --channel pose=ATLAS_GRAPH
+grep -q "^atlas-view: --channel: two roles share the channel 'ATLAS_GRAPH'" "$WORK/eq.err" ||
+  fail "$(cat "$WORK/eq.err")"
 pass "$# tools: --help, --version, unknown options, missing values and --opt=value"

@@ -1,6 +1,7 @@
 #include "tools/cli/command_line.h"
 
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <sstream>
 
@@ -50,13 +51,16 @@ std::string LongName(const std::string& names) {
 }
 
 std::string HelpNumber(double value) {
-  char text[32];
+  // The fewest digits may not be the shortest text: 60 is "6e+01" with one digit, "60" with two.
+  std::string best;
   for (int digits = 1; digits <= 17; ++digits) {
+    char text[32];
     std::snprintf(text, sizeof text, "%.*g", digits, value);
     double back = 0.0;
-    if (ParseNumber(text, &back) && back == value) break;
+    if (ParseNumber(text, &back) && back == value && (best.empty() || strlen(text) < best.size()))
+      best = text;
   }
-  return text;
+  return best;
 }
 
 CommandLine::CommandLine(std::string tool, std::vector<std::string> usage, std::string description,

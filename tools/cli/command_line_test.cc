@@ -107,6 +107,9 @@ TEST(CommandLine, HelpNumbersReadBack) {
   EXPECT_EQ(HelpNumber(0.0002), "0.0002");
   EXPECT_EQ(HelpNumber(5e-6), "5e-06");
   EXPECT_EQ(HelpNumber(8.0), "8");
+  EXPECT_EQ(HelpNumber(60.0), "60");
+  EXPECT_EQ(HelpNumber(1000.0), "1000");
+  EXPECT_EQ(HelpNumber(1e6), "1e+06");
   EXPECT_EQ(HelpNumber(0.1 + 0.2), "0.30000000000000004");
   EXPECT_EQ(LongName("-o,--out"), "--out");
 }

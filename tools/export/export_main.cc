@@ -6,18 +6,16 @@
 #include <optional>
 #include <string>
 
-#include "core/common/parse_number.h"
-#include "core/common/version.h"
 #include "formats/replay_dir.h"
 #include "formats/text_rows.h"
+#include "tools/cli/command_line.h"
 #include "tools/export/export_files.h"
 
 namespace atlas::exporter {
 namespace {
 
-constexpr const char* kHelp = R"(Usage: atlas-export [options] DIR
-
-Writes the atlas in DIR (an atlas-replay output directory, or what atlasd --export-atlas
+constexpr const char* kDescription =
+    R"(Writes the atlas in DIR (an atlas-replay output directory, or what atlasd --export-atlas
 writes: graph.tsv, points.tsv, and trajectory.tsv when present) in the formats other tools
 read, every frame placed by the Dijkstra projection from the reference frame:
 
@@ -28,94 +26,55 @@ read, every frame placed by the Dijkstra projection from the reference frame:
   OUT/points.ply      the laser points each frame keeps, placed (ASCII PLY)
   OUT/map.pgm         occupancy grid in ROS map_server's layout: the cells holding a point
   OUT/map.yaml        occupied (black), every other cell unknown (grey); no free space, as
-                      the kept points do not say where they were seen from
+                      the kept points do not say where they were seen from)";
 
-Options:
-  --out OUT            output directory (default DIR/export; made if missing)
-  --reference F        the frame the others are placed in (default 0)
-  --resolution M       occupancy grid cell, metres (0.01 to 10; default 0.1, the kept points'
-                       cell)
-  --version            the version
-  -h, --help           this text
-
-Frames the projection does not reach (another component of the graph) are left out with what
+constexpr const char* kFooter =
+    R"(Frames the projection does not reach (another component of the graph) are left out with what
 they hold, and counted on stderr. docs/formats.md describes every file.
 
 Exit status: 0 written, 1 bad input or a file that cannot be written, 2 bad command line.
 )";
 
-struct Arguments {
+int Main(int argc, char** argv) {
   std::string dir, out;
   ExportOptions options;
-};
+  cli::CommandLine command_line("atlas-export", {"atlas-export [options] DIR"}, kDescription,
+                                kFooter);
+  CLI::App& app = command_line.app();
+  app.add_option("DIR", dir, "an atlas-replay output directory")->type_name("");
+  cli::AddText(app, "--out", "OUT", &out, "output directory (default DIR/export; made if missing)");
+  cli::AddInteger(app, "--reference", "F", 0, 100000000, &options.reference,
+                  "the frame the others are placed in (default " +
+                      std::to_string(ExportOptions{}.reference) + ")");
+  cli::AddNumber(app, "--resolution", "M", 0.01, 10, &options.resolution_m,
+                 "occupancy grid cell, metres (0.01 to 10; default " +
+                     cli::HelpNumber(ExportOptions{}.resolution_m) +
+                     ", the kept\n"
+                     "points' cell)");
+  if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
+  if (dir.empty()) return command_line.Usage("no DIR given (an atlas-replay output directory)");
+  if (out.empty()) out = dir + "/export";
 
-int Usage(const std::string& what) {
-  std::fprintf(stderr, "atlas-export: %s\nTry 'atlas-export --help'.\n", what.c_str());
-  return 2;
-}
-
-// The command line into `args`; an exit code when the run ends here (--help, --version, an
-// error).
-std::optional<int> ParseArguments(int argc, char** argv, Arguments* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--version") {
-      std::fputs(VersionLine("atlas-export").c_str(), stdout);
-      return 0;
-    }
-    if (a == "-h" || a == "--help") {
-      std::fputs(kHelp, stdout);
-      return 0;
-    }
-    if (a == "--out" || a == "--reference" || a == "--resolution") {
-      if (i + 1 >= argc) return Usage(a + " needs a value");
-      const char* v = argv[++i];
-      std::string error;
-      if (a == "--out") {
-        args->out = v;
-      } else if (a == "--reference") {
-        if (!IntegerArgument(a, v, 0, 100000000, args->options.reference, error))
-          return Usage(error);
-      } else if (!NumberArgument(a, v, 0.01, 10.0, args->options.resolution_m, error)) {
-        return Usage(error);
-      }
-    } else if (!a.empty() && a[0] == '-') {
-      return Usage("unknown option " + a);
-    } else if (args->dir.empty()) {
-      args->dir = a;
-    } else {
-      return Usage("one DIR only");
-    }
-  }
-  if (args->dir.empty()) return Usage("no DIR given (an atlas-replay output directory)");
-  if (args->out.empty()) args->out = args->dir + "/export";
-  return std::nullopt;
-}
-
-int Main(int argc, char** argv) {
-  Arguments args;
-  if (const std::optional<int> code = ParseArguments(argc, argv, &args)) return *code;
   formats::ReplayFilesWanted wanted;
   wanted.trajectory = false;
   formats::ReplayOutput run;
-  if (std::string e = formats::ReadReplayOutput(args.dir, wanted, &run); !e.empty()) {
+  if (std::string e = formats::ReadReplayOutput(dir, wanted, &run); !e.empty()) {
     std::fprintf(stderr, "atlas-export: %s\n", e.c_str());
     return 1;
   }
   ExportFiles files;
-  if (std::string e = MakeExportFiles(run, args.options, "map.pgm", &files); !e.empty()) {
-    std::fprintf(stderr, "atlas-export: %s: %s\n", args.dir.c_str(), e.c_str());
+  if (std::string e = MakeExportFiles(run, options, "map.pgm", &files); !e.empty()) {
+    std::fprintf(stderr, "atlas-export: %s: %s\n", dir.c_str(), e.c_str());
     return 1;
   }
   std::error_code ec;
-  std::filesystem::create_directories(args.out, ec);
+  std::filesystem::create_directories(out, ec);
   if (ec) {
-    std::fprintf(stderr, "atlas-export: cannot create %s: %s\n", args.out.c_str(),
-                 ec.message().c_str());
+    std::fprintf(stderr, "atlas-export: cannot create %s: %s\n", out.c_str(), ec.message().c_str());
     return 1;
   }
   const auto write = [&](const char* name, const std::string& text, const std::string& what) {
-    const std::string path = args.out + "/" + name;
+    const std::string path = out + "/" + name;
     if (std::string e = formats::WriteTextFile(path, text); !e.empty()) {
       std::fprintf(stderr, "atlas-export: %s\n", e.c_str());
       return false;
@@ -140,17 +99,17 @@ int Main(int argc, char** argv) {
   }
   if (!files.has_trajectory)
     std::fprintf(stderr, "atlas-export: %s has no trajectory.tsv rows: no trajectory.tum\n",
-                 args.dir.c_str());
+                 dir.c_str());
   if (!files.has_points)
     std::fprintf(stderr,
                  "atlas-export: no placed laser points (%s/points.tsv missing or empty): "
                  "no points.ply, map.pgm, map.yaml\n",
-                 args.dir.c_str());
+                 dir.c_str());
   if (files.placed_frames < files.frames)
     std::fprintf(stderr,
                  "atlas-export: warning: %d of %d frames are not connected to frame %d and are "
                  "left out: %d of %d edges, %d of %d trajectory rows, %d of %d points\n",
-                 files.frames - files.placed_frames, files.frames, args.options.reference,
+                 files.frames - files.placed_frames, files.frames, options.reference,
                  files.edges - files.edges_written, files.edges,
                  files.trajectory_rows - files.trajectory_written, files.trajectory_rows,
                  files.points - files.points_written, files.points);

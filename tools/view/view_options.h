@@ -1,9 +1,10 @@
 #pragma once
-// atlas-view's options: its command line (--help; docs/atlas-view.md), parsed and validated
-// once. Where the page is served, which of atlasd's LCM channels (docs/lcm.md) are read, and the
-// fixed budgets that bound the server: event streams at once, page updates per second, frames
-// drawn.
+// atlas-view's options: its command line (--help; docs/atlas-view.md), read with the tools'
+// convention (tools/cli/command_line.h) and validated once. Where the page is served, which of
+// atlasd's LCM channels (docs/lcm.md) are read, and the fixed budgets that bound the server:
+// event streams at once, page updates per second, frames drawn.
 
+#include <optional>
 #include <string>
 
 #include "formats/config/daemon_options.h"
@@ -30,15 +31,8 @@ struct ViewOptions {
   double status_every_s = 60.0;  // a status line on stderr this often; 0: never
 };
 
-struct ViewArguments {
-  ViewOptions options;
-  bool help = false;
-  bool version = false;
-  std::string error;  // non-empty: a usage error (exit 2)
-};
-
-extern const char kViewHelp[];
-
-ViewArguments ParseViewArguments(int argc, const char* const* argv);
+// Reads atlas-view's command line into `options`. nullopt: serve; otherwise the exit status
+// (0 after --help or --version, 2 after a bad command line; printed as command_line.h says).
+std::optional<int> ParseViewCommandLine(int argc, char** argv, ViewOptions* options);
 
 }  // namespace atlas::view
