@@ -83,7 +83,8 @@ TEST_F(LcmSinkTest, ReferencePoseEqualsThePoseInTheReferenceFrame) {
   const atlas::reference_pose_t& r = received_.reference.back();
   ASSERT_GT(p.frame_id, 0);
   ASSERT_TRUE(r.placed);
-  const ProjectedFrame* f = DijkstraProjection(atlas.Graph(), 0).Find(p.frame_id);
+  const Projection projection = DijkstraProjection(atlas.Graph(), 0);
+  const ProjectedFrame* f = projection.Find(p.frame_id);
   ASSERT_NE(f, nullptr);
   EXPECT_EQ(r.hops, f->hops);
   EXPECT_GT(r.hops, 0);
