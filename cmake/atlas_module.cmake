@@ -38,6 +38,10 @@ function(atlas_module)
     if(ATLAS_TESTS_UNOPTIMISED)
       target_compile_options(${M_NAME}_test PRIVATE -O0)
     endif()
+    if(ATLAS_UNITY_TESTS)
+      set_target_properties(${M_NAME}_test PROPERTIES UNITY_BUILD ON
+                            UNITY_BUILD_BATCH_SIZE ${ATLAS_UNITY_TESTS_BATCH})
+    endif()
     gtest_discover_tests(${M_NAME}_test DISCOVERY_TIMEOUT 60
                          PROPERTIES LABELS unit ENVIRONMENT "LCM_DEFAULT_URL=memq://")
   endif()

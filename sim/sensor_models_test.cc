@@ -3,14 +3,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/testing/degrees.h"
 #include "sim/fast_noise.h"
 #include "sim/laser_model.h"
 #include "sim/sonar_model.h"
 
 namespace atlas::sim {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(FastNoise, QuantileAndMoments) {
   FastNoise n(1);

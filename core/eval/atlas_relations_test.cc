@@ -7,7 +7,7 @@
 namespace atlas::eval {
 namespace {
 
-Time At(double s) { return FromSeconds(s); }
+Time AtSeconds(double s) { return FromSeconds(s); }
 
 UncertainPose Edge(const Pose2& mean, double sigma) {
   UncertainPose p;
@@ -36,7 +36,7 @@ struct Fig2 {
   // The true robot pose `world` written in frame f's coordinates.
   FramePose In(FrameId f, double stamp, const Pose2& world) const {
     const Pose2 frames[] = {world_a, world_b, world_c, world_d, world_e};
-    return FramePose{At(stamp), f, Between(frames[f], world)};
+    return FramePose{AtSeconds(stamp), f, Between(frames[f], world)};
   }
 };
 
@@ -49,24 +49,24 @@ TEST(AtlasRelationsTest, ComposesAlongTheMinimumRhoPath) {
                                  fig.In(4, 4.0, r4)};
   DijkstraComposedPoses lookup(rows, graph);
   // Cross-frame A -> D: via B, exact.
-  const std::optional<Pose2> d12 = lookup(At(1.0), At(2.0));
+  const std::optional<Pose2> d12 = lookup(AtSeconds(1.0), AtSeconds(2.0));
   ASSERT_TRUE(d12.has_value());
   const Pose2 truth12 = Between(r1, r2);
   EXPECT_NEAR(d12->x, truth12.x, 1e-9);
   EXPECT_NEAR(d12->y, truth12.y, 1e-9);
   EXPECT_NEAR(WrapAngle(d12->theta - truth12.theta), 0.0, 1e-9);
   // The reverse direction, D -> A, takes the same path.
-  const std::optional<Pose2> d21 = lookup(At(2.0), At(1.0));
+  const std::optional<Pose2> d21 = lookup(AtSeconds(2.0), AtSeconds(1.0));
   ASSERT_TRUE(d21.has_value());
   EXPECT_NEAR(Between(r2, r1).x, d21->x, 1e-9);
   EXPECT_NEAR(Between(r2, r1).y, d21->y, 1e-9);
   // Same frame.
-  const std::optional<Pose2> d13 = lookup(At(1.0), At(3.0));
+  const std::optional<Pose2> d13 = lookup(AtSeconds(1.0), AtSeconds(3.0));
   ASSERT_TRUE(d13.has_value());
   EXPECT_NEAR(d13->x, Between(r1, r3).x, 1e-9);
   // Unconnected frame E, unmatched stamp.
-  EXPECT_FALSE(lookup(At(1.0), At(4.0)).has_value());
-  EXPECT_FALSE(lookup(At(1.0), At(9.0)).has_value());
+  EXPECT_FALSE(lookup(AtSeconds(1.0), AtSeconds(4.0)).has_value());
+  EXPECT_FALSE(lookup(AtSeconds(1.0), AtSeconds(9.0)).has_value());
   EXPECT_EQ(lookup.Counts().cross_frame, 2);
   EXPECT_EQ(lookup.Counts().same_frame, 1);
   EXPECT_EQ(lookup.Counts().unconnected, 1);
@@ -82,8 +82,10 @@ TEST(AtlasRelationsTest, SaysHowEachRelationsFramesAreJoined) {
   AtlasGraph graph;
   ASSERT_EQ(BuildGraphFromEdges(7, fig.edges, &graph), "");
   const Pose2 p{1, 1, 0.2};
-  std::vector<FramePose> rows = {{At(1.0), 0, p}, {At(2.0), 0, p}, {At(3.0), 1, p}, {At(4.0), 3, p},
-                                 {At(5.0), 4, p}, {At(6.0), 6, p}, {At(7.0), 5, p}};
+  std::vector<FramePose> rows = {{AtSeconds(1.0), 0, p}, {AtSeconds(2.0), 0, p},
+                                 {AtSeconds(3.0), 1, p}, {AtSeconds(4.0), 3, p},
+                                 {AtSeconds(5.0), 4, p}, {AtSeconds(6.0), 6, p},
+                                 {AtSeconds(7.0), 5, p}};
   DijkstraComposedPoses lookup(rows, graph);
   const struct {
     double t1, t2;
@@ -95,7 +97,7 @@ TEST(AtlasRelationsTest, SaysHowEachRelationsFramesAreJoined) {
   for (const auto& c : cases) {
     FrameJoin join = FrameJoin::kSameFrame;
     if (c.join == FrameJoin::kSameFrame) join = FrameJoin::kChain;  // must be overwritten
-    ASSERT_TRUE(lookup(At(c.t1), At(c.t2), &join).has_value()) << c.t1 << " " << c.t2;
+    ASSERT_TRUE(lookup(AtSeconds(c.t1), AtSeconds(c.t2), &join).has_value()) << c.t1 << " " << c.t2;
     EXPECT_EQ(FrameJoinName(join), std::string(FrameJoinName(c.join))) << c.t1 << " " << c.t2;
   }
   EXPECT_EQ(lookup.Counts().same_frame, 1);
@@ -105,7 +107,7 @@ TEST(AtlasRelationsTest, SaysHowEachRelationsFramesAreJoined) {
   EXPECT_EQ(lookup.Counts().chain, 2);
   // Unconnected frames (A and E) have no join.
   FrameJoin untouched = FrameJoin::kChain;
-  EXPECT_FALSE(lookup(At(1.0), At(5.0), &untouched).has_value());
+  EXPECT_FALSE(lookup(AtSeconds(1.0), AtSeconds(5.0), &untouched).has_value());
   EXPECT_EQ(untouched, FrameJoin::kChain);
 }
 
@@ -116,9 +118,10 @@ TEST(AtlasRelationsTest, TheWrongPathIsTakenWhenItIsTheCertainOne) {
   ASSERT_EQ(BuildGraphFromEdges(5, fig.edges, &graph), "");
   const Pose2 r1{1, 1, 0.2}, r2{6, 4, 1.0};
   DijkstraComposedPoses lookup({fig.In(0, 1.0, r1), fig.In(3, 2.0, r2)}, graph);
-  const std::optional<Pose2> d = lookup(At(1.0), At(2.0));
+  const std::optional<Pose2> d = lookup(AtSeconds(1.0), AtSeconds(2.0));
   ASSERT_TRUE(d.has_value());
-  const RelationError e = RelationErrorOf(Relation{At(1.0), At(2.0), Between(r1, r2)}, *d);
+  const RelationError e =
+      RelationErrorOf(Relation{AtSeconds(1.0), AtSeconds(2.0), Between(r1, r2)}, *d);
   EXPECT_NEAR(e.translation_m, 1.0, 1e-9);
   EXPECT_NEAR(e.rotation_deg, 0.0, 1e-9);
 }

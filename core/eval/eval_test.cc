@@ -13,7 +13,7 @@ namespace atlas::eval {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
+constexpr double kDegPerRad = 180.0 / kPi;
 
 Time At(double s) { return FromSeconds(s); }
 
@@ -95,7 +95,7 @@ TEST(RelationsMetricTest, HandComputedError) {
   const RelationsScore s = ScoreRelations(rel, BetweenPosesOf(estimate));
   ASSERT_EQ(s.matched, 1);
   EXPECT_NEAR(s.translation_m.mean, 0.5, 1e-9);
-  EXPECT_NEAR(s.rotation_deg.mean, 0.1 * kDeg, 1e-9);
+  EXPECT_NEAR(s.rotation_deg.mean, 0.1 * kDegPerRad, 1e-9);
   EXPECT_NEAR(s.translation_m.mean_squared, 0.25, 1e-9);
 }
 
@@ -110,7 +110,7 @@ TEST(RelationsMetricTest, ErrorIsExpressedInTheRelationsEndFrame) {
 TEST(RelationsMetricTest, RotationalErrorIsWrapped) {
   const Relation rel{At(0), At(1), Pose2{0, 0, 3.1}};
   const RelationError e = RelationErrorOf(rel, Pose2{0, 0, -3.1});
-  EXPECT_NEAR(e.rotation_deg, (2 * kPi - 6.2) * kDeg, 1e-9);  // 4.8 deg, not 355
+  EXPECT_NEAR(e.rotation_deg, (2 * kPi - 6.2) * kDegPerRad, 1e-9);  // 4.8 deg, not 355
 }
 
 TEST(RelationsMetricTest, UnmatchedStampsAreCountedNotScored) {

@@ -7,13 +7,12 @@
 #include <limits>
 #include <random>
 
+#include "core/testing/degrees.h"
 #include "core/testing/fake_wall_scanner.h"
 #include "sim/corridor.h"
 
 namespace atlas {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 FakeLaserOptions Laser() {
   FakeLaserOptions o;

@@ -9,12 +9,11 @@
 #include <random>
 
 #include "core/sonar/sonar_local_map.h"
+#include "core/testing/degrees.h"
 #include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Eigen::MatrixXd RandomCovariance(int n, std::mt19937_64& rng) {
   std::normal_distribution<double> n01;

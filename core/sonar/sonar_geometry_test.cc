@@ -6,11 +6,10 @@
 #include <numbers>
 
 #include "core/localmap/line_model.h"
+#include "core/testing/degrees.h"
 
 namespace atlas {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // d range / d(robot, line) of PredictSonarRange against central differences.
 void ExpectJacobiansMatchNumerical(const Pose2& robot, const SonarTransducer& t, const Vec2& line,

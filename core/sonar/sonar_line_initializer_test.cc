@@ -8,12 +8,11 @@
 #include <random>
 
 #include "core/sonar/sonar_geometry.h"
+#include "core/testing/degrees.h"
 #include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The range a transducer at `s` (map frame) reports to the wall line (rho, alpha), if the wall's
 // normal lies in its cone; else no return.

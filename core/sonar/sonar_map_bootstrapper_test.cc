@@ -8,14 +8,13 @@
 #include <random>
 
 #include "core/sonar/sonar_local_map.h"
+#include "core/testing/degrees.h"
 #include "core/testing/fake_sonar_ring.h"
 
 namespace atlas {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
-SonarLocalMapOptions Options() {
+SonarLocalMapOptions RingOptions() {
   SonarLocalMapOptions o;
   o.sensors = RangeSensors::kSonar;
   o.ring = FakeSonarRing24();
@@ -27,7 +26,7 @@ SonarLocalMapOptions Options() {
 // Genesis) with exact odometry, then the readings of a juvenile driving on from there.
 struct Frame {
   std::vector<sim::Wall> walls;
-  SonarLocalMap map{Options()};
+  SonarLocalMap map{RingOptions()};
   std::mt19937_64 rng{5};
   Pose2 truth{};
   Pose2 juvenile_start;  // truth when the juvenile is seeded

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   atlas::cli::CommandLine command_line("atlas-check-config", {"atlas-check-config [--] FILE..."},
                                        kDescription, kFooter);
-  command_line.app().add_option("FILE", files, "configuration files")->type_name("");
+  atlas::cli::AddPositional(command_line.app(), "FILE", &files, "configuration files");
   if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
   if (files.empty()) return command_line.Usage("no configuration FILE given");
   int status = 0;

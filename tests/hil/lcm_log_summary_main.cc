@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
       "atlas-lcm-log-summary", {"atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE]"},
       kDescription, kFooter);
   CLI::App& app = command_line.app();
-  app.add_option("LOGFILE", log_path, "an lcm-logger file")->type_name("");
+  atlas::cli::AddPositional(app, "LOGFILE", &log_path, "an lcm-logger file");
   atlas::cli::AddText(app, "--poses", "FILE", &poses_path,
                       "write the poses received: \"t x y theta frame q\" (t: utime in seconds)");
   atlas::cli::AddText(app, "--trajectory", "FILE", &trajectory_path,

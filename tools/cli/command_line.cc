@@ -1,5 +1,6 @@
 #include "tools/cli/command_line.h"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -65,23 +66,27 @@ std::string HelpNumber(double value) {
 
 CommandLine::CommandLine(std::string tool, std::vector<std::string> usage, std::string description,
                          std::string footer)
-    : tool_(std::move(tool)), app_(std::move(description), tool_) {
+    : tool_(std::move(tool)), app_(std::make_unique<CLI::App>(std::move(description), tool_)) {
   std::string lines;
   for (size_t i = 0; i < usage.size(); ++i)
     lines += (i == 0 ? "Usage: " : "       ") + usage[i] + "\n";
   auto formatter = std::make_shared<Formatter>(lines);
   formatter->column_width(27);
   formatter->label("Positionals", "Arguments");
-  app_.formatter(formatter);
-  app_.footer(std::move(footer));
-  app_.set_help_flag("-h,--help", "this text");
+  app_->formatter(formatter);
+  app_->footer(std::move(footer));
+  app_->set_help_flag("-h,--help", "this text");
   // Listed for the help; Parse answers it before CLI11 reads the line.
-  app_.add_flag_callback(
+  app_->add_flag_callback(
       "--version", [] {}, "the version");
-  app_.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app_->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   // Unknown options are left over and named by Parse, one message for every tool.
-  app_.allow_extras();
+  app_->allow_extras();
 }
+
+CommandLine::~CommandLine() = default;
+
+std::string CommandLine::Help() const { return app_->help(); }
 
 std::optional<int> CommandLine::Parse(int argc, char** argv) {
   // --version before anything else, as --help: a tool's version is printed whatever else the
@@ -94,12 +99,12 @@ std::optional<int> CommandLine::Parse(int argc, char** argv) {
     if (std::string(argv[i]) == "--") break;
   }
   try {
-    app_.parse(argc, argv);
+    app_->parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
-    std::fputs(app_.help().c_str(), stdout);
+    std::fputs(app_->help().c_str(), stdout);
     return 0;
   } catch (const CLI::CallForAllHelp&) {
-    std::fputs(app_.help("", CLI::AppFormatMode::All).c_str(), stdout);
+    std::fputs(app_->help("", CLI::AppFormatMode::All).c_str(), stdout);
     return 0;
   } catch (const CLI::ArgumentMismatch& e) {
     const std::string option = OptionOf(e.what());
@@ -107,7 +112,7 @@ std::optional<int> CommandLine::Parse(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return Usage(e.what());
   }
-  for (const std::string& extra : app_.remaining(true)) {
+  for (const std::string& extra : app_->remaining(true)) {
     if (extra == "--") continue;  // the end of the options, kept by allow_extras
     if (extra.size() > 1 && extra[0] == '-') {
       return Usage("unknown option '" + extra.substr(0, extra.find('=')) + "'");
@@ -122,9 +127,8 @@ int CommandLine::Usage(const std::string& what) const {
   return kExitUsage;
 }
 
-CLI::Option* AddValue(CLI::App& app, const std::string& names, const std::string& value_name,
-                      std::function<std::string(const std::string&)> take,
-                      const std::string& help) {
+Option AddValue(CLI::App& app, const std::string& names, const std::string& value_name,
+                std::function<std::string(const std::string&)> take, const std::string& help) {
   CLI::Option* option = app.add_option_function<std::string>(
       names,
       [take = std::move(take)](const std::string& value) {
@@ -133,12 +137,11 @@ CLI::Option* AddValue(CLI::App& app, const std::string& names, const std::string
       },
       help);
   option->type_name(value_name);
-  return option;
+  return Option(option);
 }
 
-CLI::Option* AddNumber(CLI::App& app, const std::string& names, const std::string& value_name,
-                       double lo, double hi, std::function<void(double)> set,
-                       const std::string& help) {
+Option AddNumber(CLI::App& app, const std::string& names, const std::string& value_name, double lo,
+                 double hi, std::function<void(double)> set, const std::string& help) {
   return AddValue(
       app, names, value_name,
       [option = LongName(names), lo, hi, set = std::move(set)](const std::string& v) {
@@ -150,14 +153,13 @@ CLI::Option* AddNumber(CLI::App& app, const std::string& names, const std::strin
       help);
 }
 
-CLI::Option* AddNumber(CLI::App& app, const std::string& names, const std::string& value_name,
-                       double lo, double hi, double* out, const std::string& help) {
+Option AddNumber(CLI::App& app, const std::string& names, const std::string& value_name, double lo,
+                 double hi, double* out, const std::string& help) {
   return AddNumber(
       app, names, value_name, lo, hi, [out](double x) { *out = x; }, help);
 }
 
-CLI::Option* AddSeed(CLI::App& app, const std::string& names, uint64_t* out,
-                     const std::string& help) {
+Option AddSeed(CLI::App& app, const std::string& names, uint64_t* out, const std::string& help) {
   return AddValue(
       app, names, "N",
       [option = LongName(names), out](const std::string& v) {
@@ -168,8 +170,8 @@ CLI::Option* AddSeed(CLI::App& app, const std::string& names, uint64_t* out,
       help);
 }
 
-CLI::Option* AddText(CLI::App& app, const std::string& names, const std::string& value_name,
-                     std::string* out, const std::string& help) {
+Option AddText(CLI::App& app, const std::string& names, const std::string& value_name,
+               std::string* out, const std::string& help) {
   return AddValue(
       app, names, value_name,
       [option = LongName(names), value_name, out](const std::string& v) {
@@ -180,9 +182,8 @@ CLI::Option* AddText(CLI::App& app, const std::string& names, const std::string&
       help);
 }
 
-CLI::Option* AddChoice(CLI::App& app, const std::string& names, const std::string& value_name,
-                       std::vector<std::string> choices, std::string* out,
-                       const std::string& help) {
+Option AddChoice(CLI::App& app, const std::string& names, const std::string& value_name,
+                 std::vector<std::string> choices, std::string* out, const std::string& help) {
   return AddValue(
       app, names, value_name,
       [option = LongName(names), choices = std::move(choices), out](const std::string& v) {
@@ -199,9 +200,36 @@ CLI::Option* AddChoice(CLI::App& app, const std::string& names, const std::strin
       help);
 }
 
-CLI::Option* AddFlag(CLI::App& app, const std::string& names, bool* out, const std::string& help) {
-  return app.add_flag_callback(
-      names, [out] { *out = true; }, help);
+Option AddFlag(CLI::App& app, const std::string& names, bool* out, const std::string& help) {
+  return Option(app.add_flag_callback(
+      names, [out] { *out = true; }, help));
 }
+
+Option AddPositional(CLI::App& app, const std::string& name, std::string* out,
+                     const std::string& help) {
+  return Option(app.add_option(name, *out, help)->type_name(""));
+}
+
+Option AddPositional(CLI::App& app, const std::string& name, std::vector<std::string>* out,
+                     const std::string& help) {
+  return Option(app.add_option(name, *out, help)->type_name(""));
+}
+
+Option& Option::Group(const std::string& group) {
+  option_->group(group);
+  return *this;
+}
+
+Option& Option::Each(std::function<void(const std::string&)> given) {
+  option_->each(std::move(given));
+  return *this;
+}
+
+Option& Option::Repeatable() {
+  option_->trigger_on_parse();
+  return *this;
+}
+
+bool Given(const CLI::App& app, const std::string& name) { return app.count(name) > 0; }
 
 }  // namespace atlas::cli

@@ -21,7 +21,7 @@ struct Tool {
   explicit Tool(std::vector<std::string> args) {
     CommandLine cl("tool", {"tool [options] FILE"}, "Does things.", "Exit status: 0.\n");
     CLI::App& app = cl.app();
-    app.add_option("FILE", file, "the file");
+    AddPositional(app, "FILE", &file, "the file");
     AddNumber(app, "--range", "M", 0.5, 80, &range, "range (default 8)");
     AddInteger(app, "-n,--count", "N", 1, 10, &count, "how many");
     AddSeed(app, "--seed", &seed, "random seed");

@@ -8,7 +8,7 @@ void AddOdometryNoiseOptions(CLI::App& app, const std::string& group,
   auto dflt = [](double v) { return " (default " + HelpNumber(v) + ")"; };
   AddNumber(app, "--track-width", "M", 0.05, 10, &noise->track_width_m,
             "nominal track width, metres" + dflt(d.track_width_m))
-      ->group(group);
+      .Group(group);
   AddValue(
       app, "--odometry-noise", "LEVEL",
       [noise](const std::string& v) -> std::string {
@@ -16,19 +16,19 @@ void AddOdometryNoiseOptions(CLI::App& app, const std::string& group,
         return "--odometry-noise must be one of default or realistic, got '" + v + "'";
       },
       "default | realistic (below)")
-      ->group(group);
+      .Group(group);
   AddNumber(app, "--wheel-noise", "V", 0, 1, &noise->wheel_noise_per_m,
             "wheel distance variance per metre rolled, m^2/m" + dflt(d.wheel_noise_per_m))
-      ->group(group);
+      .Group(group);
   AddNumber(app, "--left-scale-error", "E", -0.5, 0.5, &noise->left_scale_error,
             "left wheel radius error, relative" + dflt(d.left_scale_error))
-      ->group(group);
+      .Group(group);
   AddNumber(app, "--right-scale-error", "E", -0.5, 0.5, &noise->right_scale_error,
             "right wheel radius error, relative" + dflt(d.right_scale_error))
-      ->group(group);
+      .Group(group);
   AddNumber(app, "--track-width-error", "E", -0.5, 0.5, &noise->track_width_error,
             "track width error, relative" + dflt(d.track_width_error))
-      ->group(group);
+      .Group(group);
 }
 
 }  // namespace atlas::cli

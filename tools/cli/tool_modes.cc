@@ -1,5 +1,7 @@
 #include "tools/cli/tool_modes.h"
 
+#include <CLI/CLI.hpp>
+
 #include "tools/cli/command_line.h"
 
 namespace atlas::cli {

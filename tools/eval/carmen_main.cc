@@ -93,23 +93,23 @@ int Main(int argc, char** argv) {
   cli::CommandLine command_line("atlas-carmen", {"atlas-carmen [options] LOG..."}, kDescription,
                                 std::string(kFooter) + kOdometryNoiseHelp);
   CLI::App& app = command_line.app();
-  app.add_option("LOG", logs, "CARMEN logs")->type_name("");
+  cli::AddPositional(app, "LOG", &logs, "CARMEN logs");
   const std::string modes = "Modes";
   bool count = false, dump_odometry = false, dump_reference = false;
   cli::AddFlag(app, "--count", &count,
                "print the lines per message type and the events per type of each LOG")
-      ->group(modes);
+      .Group(modes);
   cli::AddFlag(app, "--dump-odometry", &dump_odometry,
                "write the dead-reckoned trajectory (odometry pose at each scan) of one\n"
                "LOG as a trajectory file (docs/formats.md) to stdout, or to --out FILE")
-      ->group(modes);
+      .Group(modes);
   cli::AddFlag(app, "--dump-reference", &dump_reference,
                "write the reference trajectory (pose at each scan) of one corrected LOG")
-      ->group(modes);
+      .Group(modes);
   const std::string reading = "Reading the log";
   cli::AddCarmenLogOptions(app, reading, &options, &corrected);
   const std::string synthesis = "Synthesised odometry (with --corrected and --dump-odometry)";
-  cli::AddSeed(app, "--seed", &seed, "random seed (default 1)")->group(synthesis);
+  cli::AddSeed(app, "--seed", &seed, "random seed (default 1)").Group(synthesis);
   cli::AddOdometryNoiseOptions(app, synthesis, &noise);
   cli::AddText(app, "-o,--out", "FILE", &output, "output file for the dump modes (default stdout)");
   cli::AddFlag(app, "--json", &json, "--count as JSON lines, one object per LOG");

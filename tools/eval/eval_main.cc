@@ -179,7 +179,7 @@ int Main(int argc, char** argv) {
        "atlas-eval --relations RELATIONS --atlas DIR        score atlas-replay output, per frame"},
       kDescription, kFooter);
   CLI::App& app = command_line.app();
-  app.add_option("TRAJECTORY", trajectory_path, "the trajectory file to score")->type_name("");
+  cli::AddPositional(app, "TRAJECTORY", &trajectory_path, "the trajectory file to score");
   cli::AddText(app, "--relations", "FILE", &relations_path, "relations file to score against");
   cli::AddText(app, "--reference", "FILE", &reference_path,
                "reference trajectory file to score against");
@@ -200,7 +200,7 @@ int Main(int argc, char** argv) {
   cli::AddInteger(app, "--step", "N", 1, 1000000000, &ref_options.step_count,
                   "reference scoring: RPE pairs N poses apart (instead of --segment;\n"
                   "give one of the two)")
-      ->each([&](const std::string&) { step_given = true; });
+      .Each([&](const std::string&) { step_given = true; });
   cli::AddFlag(app, "--json", &json, "print a JSON object instead of text");
   cli::AddText(app, "--errors", "FILE", &errors_path,
                "relations scoring: write each matched relation's error to FILE, one\n"

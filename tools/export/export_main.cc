@@ -41,7 +41,7 @@ int Main(int argc, char** argv) {
   cli::CommandLine command_line("atlas-export", {"atlas-export [options] DIR"}, kDescription,
                                 kFooter);
   CLI::App& app = command_line.app();
-  app.add_option("DIR", dir, "an atlas-replay output directory")->type_name("");
+  cli::AddPositional(app, "DIR", &dir, "an atlas-replay output directory");
   cli::AddText(app, "--out", "OUT", &out, "output directory (default DIR/export; made if missing)");
   cli::AddInteger(app, "--reference", "F", 0, 100000000, &options.reference,
                   "the frame the others are placed in (default " +

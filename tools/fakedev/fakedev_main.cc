@@ -97,40 +97,40 @@ int main(int argc, char** argv) {
   cli::AddChoice(app, "--fault-device", "D", {"laser", "odometry", "sonar", "all"}, &fault_device,
                  "laser, odometry, sonar or all: where the faults below go (default all);\n"
                  "the *-every counts are integers 0..2147483647, 0 = never")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddInteger(app, "--garbage-every", "N", 0, kIntMax, &faults.garbage_every,
                   "garbage bytes before every Nth message")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddInteger(app, "--garbage-bytes", "N", 1, 4096, &faults.garbage_bytes,
                   "how many, 1..4096 (default 40)")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddInteger(app, "--corrupt-every", "N", 0, kIntMax, &faults.corrupt_crc_every,
                   "corrupt the CRC / checksum of every Nth message")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddInteger(app, "--truncate-every", "N", 0, kIntMax, &faults.truncate_every,
                   "send only half of every Nth message")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddInteger(app, "--jump-every", "N", 0, kIntMax, &faults.jump_every,
                   "odometry counters jump every Nth 0x311 ...")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddInteger(app, "--jump-mm", "N", std::numeric_limits<int32_t>::min(),
                   std::numeric_limits<int32_t>::max(), &faults.jump_mm,
                   "... by N mm, a 32-bit integer (default 500000)")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddNumber(app, "--drop-after", "S", 0, kLongest, &faults.drop_after_s,
                  "close the device after S s ...")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddNumber(app, "--drop-for", "T", 1e-3, kLongest, &faults.drop_for_s,
                  "... for T s, then recreate it (the two go together)")
-      ->group(faults_group)
-      ->each([&](const std::string&) { drop_for_given = true; });
+      .Group(faults_group)
+      .Each([&](const std::string&) { drop_for_given = true; });
   cli::AddNumber(app, "--stall-after", "S", 0, kLongest, &faults.stall_after_s,
                  "send nothing from S s ...")
-      ->group(faults_group);
+      .Group(faults_group);
   cli::AddNumber(app, "--stall-for", "T", 1e-3, kLongest, &faults.stall_for_s,
                  "... for T s (the two go together)")
-      ->group(faults_group)
-      ->each([&](const std::string&) { stall_for_given = true; });
+      .Group(faults_group)
+      .Each([&](const std::string&) { stall_for_given = true; });
   if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
   if (no_laser) laser = false;
   if (no_odometry) odometry = false;

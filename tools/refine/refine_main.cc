@@ -39,7 +39,7 @@ int Main(int argc, char** argv) {
   cli::CommandLine command_line("atlas-refine", {"atlas-refine [options] DIR"}, kDescription,
                                 kFooter);
   CLI::App& app = command_line.app();
-  app.add_option("DIR", dir, "an atlas-replay output directory")->type_name("");
+  cli::AddPositional(app, "DIR", &dir, "an atlas-replay output directory");
   cli::AddText(app, "-o,--out", "FILE", &out,
                "output trajectory file (default DIR/global_refined.tsv)");
   cli::AddInteger(

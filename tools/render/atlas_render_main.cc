@@ -172,39 +172,39 @@ int main(int argc, char** argv) {
   namespace cli = atlas::cli;
   const std::string atlas_group = "An atlas (--atlas DIR)";
   cli::AddText(app, "--atlas", "DIR", &atlas_req.dir, "the atlas-replay output directory to draw")
-      ->group(atlas_group);
+      .Group(atlas_group);
   cli::AddInteger(app, "--projection", "F", 0, std::numeric_limits<atlas::FrameId>::max(),
                   &atlas_req.draw.source,
                   "the Dijkstra projection from frame F (default 0): every reached frame's\n"
                   "lines (and laser points, if points.tsv is there) at its projected\n"
                   "pose, its origin and 3-sigma position ellipse, the projection tree\n"
                   "(paper, Fig. 2 and 10). Default file DIR/projection-F.png")
-      ->group(atlas_group);
+      .Group(atlas_group);
   bool whole = false, timeline = false, timeline_frames = false;
   cli::AddFlag(app, "--whole", &whole,
                "the whole run: every frame from frame 0 and the robot's global trajectory\n"
                "(Fig. 8). Default file DIR/whole.png")
-      ->group(atlas_group);
+      .Group(atlas_group);
   cli::AddFlag(app, "--refined", &atlas_req.draw.refined,
                "with --whole or --projection: frames placed by global least squares\n"
                "(the same refinement as atlas-replay --refine) instead of the projection")
-      ->group(atlas_group);
+      .Group(atlas_group);
   cli::AddFlag(app, "--timeline", &timeline,
                "step time and the dominant frame id over time (Fig. 7); DIR/timeline.png")
-      ->group(atlas_group);
+      .Group(atlas_group);
   cli::AddFlag(app, "--timeline-frames", &timeline_frames,
                "step time against the number of frames; DIR/timeline-frames.png")
-      ->group(atlas_group);
+      .Group(atlas_group);
   cli::AddNumber(app, "--budget", "MS", 0, 1e9, &atlas_req.budget_ms,
                  "step budget drawn on the timelines (default 10)")
-      ->group(atlas_group);
+      .Group(atlas_group);
   cli::AddFlag(app, "--cpu", &atlas_req.cpu,
                "timelines: plot each step's CPU time (step_cpu.tsv) instead of its wall\n"
                "time (on a shared machine wall time includes other processes' turns)")
-      ->group(atlas_group);
+      .Group(atlas_group);
   bool no_ellipses = false, no_labels = false;
-  cli::AddFlag(app, "--no-ellipses", &no_ellipses, "no uncertainty ellipses")->group(atlas_group);
-  cli::AddFlag(app, "--no-labels", &no_labels, "no frame ids")->group(atlas_group);
+  cli::AddFlag(app, "--no-ellipses", &no_ellipses, "no uncertainty ellipses").Group(atlas_group);
+  cli::AddFlag(app, "--no-labels", &no_labels, "no frame ids").Group(atlas_group);
   cli::AddText(app, "--run", "DIR", &dir, "the atlas-sim output directory to draw");
   cli::AddText(app, "--png", "FILE", &png, "write a PNG picture");
   cli::AddText(app, "--svg", "FILE", &svg, "write an SVG picture");
@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
   if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
   auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
   if (whole + timeline + timeline_frames > 1 ||
-      ((whole || timeline || timeline_frames) && app.count("--projection") > 0))
+      ((whole || timeline || timeline_frames) && cli::Given(app, "--projection")))
     return Usage(
         "--projection, --whole, --timeline and --timeline-frames are different pictures: "
         "give one");

@@ -102,7 +102,7 @@ int Main(int argc, char** argv) {
        "atlas-replay --sweep-laser-time-offset FROM:TO:STEP [options] LOG|SIMDIR"},
       kDescription, std::string(kFooter) + kOdometryNoiseHelp);
   CLI::App& app = command_line.app();
-  app.add_option("LOG", log_path, "the log (or SIMDIR) to replay")->type_name("");
+  cli::AddPositional(app, "LOG", &log_path, "the log (or SIMDIR) to replay");
   cli::AddText(app, "-o,--out", "DIR", &out_dir,
                "output directory, created if missing (default: replay-out)");
   cli::AddFlag(app, "--refine", &refine,
@@ -159,7 +159,7 @@ int Main(int argc, char** argv) {
   const std::string log_group = "Reading the log";
   cli::AddCarmenLogOptions(app, log_group, &log_options, &corrected);
   const std::string noise_group = "Synthesised odometry (with --corrected)";
-  cli::AddSeed(app, "--seed", &seed, "random seed (default 1)")->group(noise_group);
+  cli::AddSeed(app, "--seed", &seed, "random seed (default 1)").Group(noise_group);
   cli::AddOdometryNoiseOptions(app, noise_group, &noise);
   if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
   LcmChannels channels;  // of an lcm-logger file: the configuration's raw channels

@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
       "the laser's range defaults to the kind's (campus 80 m)");
   cli::AddInteger(app, "--rooms", "N", 1, 100000, &building.min_rooms,
                   "generate an office with at least N rooms (default 24)")
-      ->each([&](const std::string&) { rooms_given = true; });
+      .Each([&](const std::string&) { rooms_given = true; });
   cli::AddText(app, "--world", "FILE", &world_file,
                "drive through this world file instead of generating one (not with\n"
                "--rooms or --kind)");
@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
                  "laser scan rate (default 10)");
   cli::AddNumber(app, "--laser-max-range", "M", 0.5, 1000, &sim.laser_options.max_range,
                  "laser maximum range (default 30; the campus 80)")
-      ->each([&](const std::string&) { range_given = true; });
+      .Each([&](const std::string&) { range_given = true; });
   cli::AddNumber(app, "--laser-noise", "M", 0, 1, &sim.laser_options.range_sigma,
                  "laser range noise sigma (default 0.01)");
   cli::AddFlag(app, "--no-laser", &no_laser, "no laser");

@@ -11,7 +11,7 @@ namespace atlas::view {
 namespace {
 
 template <typename Message>
-void Feed(ViewState& s, const std::string& channel, const Message& m, Time at) {
+void FeedStored(ViewState& s, const std::string& channel, const Message& m, Time at) {
   std::vector<uint8_t> b(static_cast<size_t>(m.getEncodedSize()));
   m.encode(b.data(), 0, static_cast<int>(b.size()));
   ASSERT_EQ(s.Ingest(channel, b.data(), b.size(), at), IngestResult::kStored) << channel;
@@ -46,7 +46,7 @@ void FeedGraph(ViewState& s, Time at) {
   g.edges.push_back(EdgeOf(0, 1, 1, 0, std::numbers::pi / 2, atlas::atlas_edge_t::KIND_GENESIS));
   g.edges.push_back(EdgeOf(1, 2, 1, 0, 0, atlas::atlas_edge_t::KIND_MAP_MATCH));
   g.num_edges = 2;
-  Feed(s, "ATLAS_GRAPH", g, at);
+  FeedStored(s, "ATLAS_GRAPH", g, at);
   atlas::local_map_t m{};
   m.frame_id = 1;
   m.capacity = 30;
@@ -54,7 +54,7 @@ void FeedGraph(ViewState& s, Time at) {
   l.x1 = 2;
   m.lines.push_back(l);
   m.num_lines = 1;
-  Feed(s, "ATLAS_LOCAL_MAP", m, at);
+  FeedStored(s, "ATLAS_LOCAL_MAP", m, at);
 }
 
 atlas::pose_t PoseIn(int32_t frame, double x, double y, double theta) {
@@ -108,7 +108,7 @@ TEST(BuildViewJson, NothingReceivedYet) {
 TEST(BuildViewJson, PlacesFramesLinesPoseAndHypothesesByTheProjection) {
   ViewState s(ViewChannels{}, 10);
   FeedGraph(s, FromSeconds(10));
-  Feed(s, "ATLAS_POSE", PoseIn(0, 0.5, 0, 0), FromSeconds(10.5));
+  FeedStored(s, "ATLAS_POSE", PoseIn(0, 0.5, 0, 0), FromSeconds(10.5));
   atlas::hypotheses_t hs{};
   atlas::hypothesis_t h{};
   h.id = 42;
@@ -120,7 +120,7 @@ TEST(BuildViewJson, PlacesFramesLinesPoseAndHypothesesByTheProjection) {
   h.covariance[4] = 1;
   hs.hypotheses.push_back(h);
   hs.num_hypotheses = 1;
-  Feed(s, "ATLAS_HYPOTHESES", hs, FromSeconds(10));
+  FeedStored(s, "ATLAS_HYPOTHESES", hs, FromSeconds(10));
 
   const std::string j = BuildViewJson(s, FromSeconds(11), 100);
   EXPECT_TRUE(Has(j, "\"source\":0,")) << j;
@@ -148,7 +148,7 @@ TEST(BuildViewJson, PlacesFramesLinesPoseAndHypothesesByTheProjection) {
 TEST(BuildViewJson, ProjectsFromThePosesFrame) {
   ViewState s(ViewChannels{}, 10);
   FeedGraph(s, FromSeconds(10));
-  Feed(s, "ATLAS_POSE", PoseIn(1, 0, 0, 0), FromSeconds(10));
+  FeedStored(s, "ATLAS_POSE", PoseIn(1, 0, 0, 0), FromSeconds(10));
   const std::string j = BuildViewJson(s, FromSeconds(11), 100);
   EXPECT_TRUE(Has(j, "\"source\":1,")) << j;
   // Frame 0 seen from frame 1: the inverse of (1, 0, 90 deg).
@@ -159,7 +159,7 @@ TEST(BuildViewJson, ProjectsFromThePosesFrame) {
 TEST(BuildViewJson, DrawsAtMostMaxFramesAndOnlyTheirEdges) {
   ViewState s(ViewChannels{}, 10);
   FeedGraph(s, FromSeconds(10));
-  Feed(s, "ATLAS_POSE", PoseIn(2, 0, 0, 0), FromSeconds(10));
+  FeedStored(s, "ATLAS_POSE", PoseIn(2, 0, 0, 0), FromSeconds(10));
   const std::string j = BuildViewJson(s, FromSeconds(11), 2);
   EXPECT_TRUE(Has(j, "\"frames_total\":3,\"frames_drawn\":2")) << j;
   EXPECT_FALSE(Has(j, "{\"id\":0,")) << j;
@@ -169,7 +169,7 @@ TEST(BuildViewJson, DrawsAtMostMaxFramesAndOnlyTheirEdges) {
 TEST(BuildViewJson, APoseInAFrameTheGraphDoesNotHaveYetIsNotPlaced) {
   ViewState s(ViewChannels{}, 10);
   FeedGraph(s, FromSeconds(10));
-  Feed(s, "ATLAS_POSE", PoseIn(3, 0, 0, 0), FromSeconds(10));
+  FeedStored(s, "ATLAS_POSE", PoseIn(3, 0, 0, 0), FromSeconds(10));
   const std::string j = BuildViewJson(s, FromSeconds(11), 100);
   EXPECT_TRUE(Has(j, "\"source\":0,")) << j;  // the graph's dominant frame
   EXPECT_TRUE(Has(j, "\"pose\":{\"frame\":3,\"q\":0.9,\"placed\":false,\"age_s\":1}")) << j;
@@ -182,7 +182,7 @@ TEST(BuildViewJson, AGraphThatIsNotOneIsNamedAndNotDrawn) {
   g.frames.resize(2);
   g.edges.push_back(EdgeOf(0, 5, 1, 0, 0, atlas::atlas_edge_t::KIND_GENESIS));
   g.num_edges = 1;
-  Feed(s, "ATLAS_GRAPH", g, FromSeconds(1));
+  FeedStored(s, "ATLAS_GRAPH", g, FromSeconds(1));
   const std::string j = BuildViewJson(s, FromSeconds(1), 100);
   EXPECT_TRUE(Has(j, "\"graph_error\":\"edge 1 (0 -> 5) names a frame that does not exist\"")) << j;
   EXPECT_TRUE(Has(j, "\"frames\":[]")) << j;
@@ -204,7 +204,7 @@ TEST(BuildViewJson, HealthPanelWithEachDriversStateAndLastError) {
   odometry.message_rate_hz = 50;
   h.drivers = {laser, odometry};
   h.num_drivers = 2;
-  Feed(s, "ATLAS_HEALTH", h, FromSeconds(1));
+  FeedStored(s, "ATLAS_HEALTH", h, FromSeconds(1));
   const std::string j = BuildViewJson(s, FromSeconds(3), 100);
   EXPECT_TRUE(Has(j, "\"status\":\"mapping: 3 frames\",\"version\":\"0.1.0\"")) << j;
   EXPECT_TRUE(Has(j, "{\"name\":\"laser\",\"device\":\"/dev/sick\",\"state\":\"reconnecting\","))
@@ -220,7 +220,7 @@ TEST(BuildViewJson, HealthPanelWithEachDriversStateAndLastError) {
 TEST(BuildViewJson, NumbersThatAreNotFiniteAreNull) {
   ViewState s(ViewChannels{}, 10);
   FeedGraph(s, FromSeconds(1));
-  Feed(s, "ATLAS_POSE", PoseIn(0, NAN, INFINITY, 0), FromSeconds(1));
+  FeedStored(s, "ATLAS_POSE", PoseIn(0, NAN, INFINITY, 0), FromSeconds(1));
   const std::string j = BuildViewJson(s, FromSeconds(1), 100);
   EXPECT_TRUE(Has(j, "\"x\":null,\"y\":null,")) << j;
   EXPECT_FALSE(Has(j, "nan")) << j;

@@ -89,7 +89,7 @@ std::optional<int> ParseViewCommandLine(int argc, char** argv, ViewOptions* opti
       [&o](const std::string& v) { return SetChannel(v, o.channels); },
       "a channel name other than atlasd's default; ROLE is pose, local_map,\ngraph, hypotheses "
       "or health (as in atlasd's [lcm.channels]); repeatable")
-      ->trigger_on_parse();  // every --channel given, not only the last
+      .Repeatable();  // every --channel given, not only the last
   cli::AddNumber(app, "--rate", "HZ", 0.1, 10, &o.rate_hz,
                  "the most page updates per second, 0.1 to 10 (default " +
                      cli::HelpNumber(defaults.rate_hz) + ")");
