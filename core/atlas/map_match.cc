@@ -88,6 +88,8 @@ const char* MapMatchReasonName(MapMatchReason r) {
       return "work-bound";
     case MapMatchReason::kSinglePair:
       return "single-pair";
+    case MapMatchReason::kFreeSpace:
+      return "free-space";
   }
   return "unknown";
 }

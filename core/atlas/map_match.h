@@ -103,8 +103,9 @@ enum class MapMatchReason {
   kRivalTransform,    // ambiguous: a distinct transform is (nearly) as well supported
   kWorkBound,         // rejected: the search (or a self-match) was cut short by max_line_checks
   kSinglePair,        // ambiguous: one matched pair alone fixes a direction of t
+  kFreeSpace,         // rejected: at t, one frame's walls stand in the other's observed free space
 };
-inline constexpr int kMapMatchReasonCount = 9;
+inline constexpr int kMapMatchReasonCount = 10;
 const char* MapMatchResultName(MapMatchResult r);
 const char* MapMatchReasonName(MapMatchReason r);
 

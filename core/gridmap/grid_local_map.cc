@@ -38,6 +38,8 @@ std::string GridLocalMapOptions::Validate() const {
   if (std::string e = grid.Validate(); !e.empty()) return e;
   if (std::string e = bootstrap.Validate(); !e.empty()) return "bootstrap: " + e;
   if (std::string e = match.Validate(); !e.empty()) return "match: " + e;
+  if (!(max_free_space_conflict >= 0.0 && max_free_space_conflict <= 1.0))
+    return "max_free_space_conflict: must be in [0, 1]";
   if (std::string e = odometry.Validate(); !e.empty()) return "odometry: " + e;
   if (max_scans < 1) return "max_scans: must be at least 1";
   if (!(max_extent > 0.0)) return "max_extent: must be positive";

@@ -95,6 +95,10 @@ struct GridLocalMapOptions {
     m.min_sigma_theta = 0.03;
     return m;
   }();
+  // Map-matching's free-space test (grid_map_matcher.h, Condition 2): the largest fraction of
+  // either frame's occupied cells near the robot that may fall in the other frame's observed
+  // free space at the placement found; 1 never refuses.
+  double max_free_space_conflict = 0.05;
   OdometryNoiseOptions odometry;
   int max_scans = 40;                // scans a frame's grid holds (its capacity)
   double max_extent = 6.0;           // metres from the frame's origin where scans are inserted

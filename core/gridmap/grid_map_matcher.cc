@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 
 #include "core/gridmap/dense_search.h"
 
@@ -10,7 +11,43 @@ namespace {
 
 constexpr double kPriorGateChi2 = 16.27;  // 3 dof, 99.9 %
 
+// Whether the cell of `p` (a's frame) and its 8 neighbours are known and free in `a`.
+bool FreeBlock(const ProbabilityGrid& a, uint16_t free_below, const Vec2& p) {
+  const CellIndex c = a.limits().CellOf(p);
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const uint16_t v = a.Value(CellIndex{c.x + dx, c.y + dy});
+      if (v == ProbabilityGrid::kUnknown || v >= free_below) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
+
+FreeSpaceConflict FreeSpaceConflictOf(const ProbabilityGrid& a, const ProbabilityGrid& b,
+                                      const Pose2& b_in_a, const Vec2& centre_b, double radius) {
+  FreeSpaceConflict out;
+  const GridLimits& lb = b.limits();
+  if (lb.width == 0 || lb.height == 0 || a.known_cells() == 0) return out;
+  const uint16_t occupied_from = b.ValueOfProbability(kFreeSpaceOccupied);
+  const uint16_t free_below = a.ValueOfProbability(0.5);
+  const CellIndex lo = lb.CellOf(centre_b - Vec2(radius, radius));
+  const CellIndex hi = lb.CellOf(centre_b + Vec2(radius, radius));
+  const RigidTransform to_a(b_in_a);
+  const double r2 = radius * radius;
+  for (int y = std::max(lo.y, 0); y <= std::min(hi.y, lb.height - 1); ++y) {
+    for (int x = std::max(lo.x, 0); x <= std::min(hi.x, lb.width - 1); ++x) {
+      const uint16_t v = b.values()[lb.IndexOf(CellIndex{x, y})];
+      if (v == ProbabilityGrid::kUnknown || v < occupied_from) continue;
+      const Vec2 p = lb.CenterOf(CellIndex{x, y});
+      if ((p - centre_b).squaredNorm() > r2) continue;
+      ++out.occupied;
+      if (FreeBlock(a, free_below, to_a.Apply(p))) ++out.in_free;
+    }
+  }
+  return out;
+}
 
 MapMatch GridMapMatcher::Match(const LocalMap& a_map, const LocalMap& b_map,
                                const UncertainPose* prior) const {
@@ -50,6 +87,15 @@ MapMatch GridMapMatcher::Match(const LocalMap& a_map, const LocalMap& b_map,
   const Mat3 gate = (t.cov + prior->cov).inverse();
   if (!gate.allFinite() || v.dot(gate * v) > kPriorGateChi2) {
     m.reason = MapMatchReason::kOutsidePrior;
+    return m;
+  }
+  const Vec2 at_a(robot_a.mean.x, robot_a.mean.y), at_b(robot_b.mean.x, robot_b.mean.y);
+  const double b_in_a =
+      FreeSpaceConflictOf(a->Grid(), b->Grid(), t.mean, at_b, kFreeSpaceRadius).Fraction();
+  const double a_in_b =
+      FreeSpaceConflictOf(b->Grid(), a->Grid(), Inverse(t.mean), at_a, kFreeSpaceRadius).Fraction();
+  if (std::max(b_in_a, a_in_b) > options_.max_free_space_conflict) {
+    m.reason = MapMatchReason::kFreeSpace;
     return m;
   }
   m.result = MapMatchResult::kAccepted;

@@ -7,15 +7,23 @@
 // refined by least squares. t = robot in A (-) robot in B, with both covariances: the robot's
 // in A (relative to A's grid plus that grid's own error near it) and the match's in B plus
 // B's grid's own error there (Condition 1).
-// Condition 2: the best placement must lead the runner-up outside its peak by min_margin
-// (kAmbiguous, kRepetitive otherwise), and t must lie inside the prior's gate (chi-square 3
-// dof 99.9 % with both covariances; kOutsidePrior otherwise).
+// Condition 2 (paper, II-A; docs/design.md, "Dense frames"), checked in this order:
+//  - the best placement must lead the runner-up outside its peak by min_margin (kAmbiguous,
+//    kRepetitive otherwise);
+//  - t must lie inside the prior's gate (chi-square 3 dof 99.9 % with both covariances;
+//    kOutsidePrior otherwise);
+//  - free space: at t, neither frame's walls may stand where the other frame has seen through.
+//    Of each frame's occupied cells within kFreeSpaceRadius of the robot, the fraction that
+//    falls, moved into the other frame by t, where the other's grid is free must be at most
+//    max_free_space_conflict (both ways; kRejected, kFreeSpace otherwise). The scan searched
+//    for is placed on B's walls by construction; the rest of the two frames is what tells a
+//    place from another that looks the same from where the robot stands.
 // The placement found gets at least match.min_sigma_* (the frames' grids are less consistent
 // than GridCovarianceNear says: measured in docs/journal/dense-frames.md).
 //
 // Not done yet (docs/journal/dense-frames.md): frames without a prior (after a restart) are
-// not matched (kTooFewLines), B's correlation with itself is not looked at, nor is either
-// frame's free space. The precomputed grids of the last few frames searched in are kept.
+// not matched (kTooFewLines), B's correlation with itself is not looked at. The precomputed
+// grids of the last few frames searched in are kept.
 
 #include <memory>
 #include <utility>
@@ -26,6 +34,23 @@
 #include "core/gridmap/grid_local_map.h"
 
 namespace atlas {
+
+// Occupied: probability >= kFreeSpaceOccupied. Free: the cell and its 8 neighbours known, each
+// below 0.5 (a wall one cell off its place is not in free space). Cells farther than
+// kFreeSpaceRadius from the robot are not counted.
+inline constexpr double kFreeSpaceOccupied = 0.6;
+inline constexpr double kFreeSpaceRadius = 8.0;  // metres
+
+struct FreeSpaceConflict {
+  int occupied = 0;  // b's occupied cells counted
+  int in_free = 0;   // of those, the ones in a's free space
+  double Fraction() const { return occupied > 0 ? static_cast<double>(in_free) / occupied : 0.0; }
+};
+
+// b's occupied cells within `radius` of `centre_b` (b's frame), moved into a's frame by
+// `b_in_a`, against a's free space (as above).
+FreeSpaceConflict FreeSpaceConflictOf(const ProbabilityGrid& a, const ProbabilityGrid& b,
+                                      const Pose2& b_in_a, const Vec2& centre_b, double radius);
 
 class GridMapMatcher : public MapMatcher {
  public:

@@ -1,0 +1,136 @@
+#include "core/gridmap/grid_map_matcher.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/testing/fake_wall_scanner.h"
+#include "core/testing/grid_scenes.h"
+
+namespace atlas {
+namespace {
+
+// A room (x in [-6, 0], y in [-4, 4], a pillar) opening at x = 0 into a dead end 2 m wide and
+// 6 m deep along +x. A scan from inside the dead end looking along it sees only the dead end.
+std::vector<sim::Wall> RoomAndDeadEnd() {
+  return {
+      {Vec2(0, -4), Vec2(0, -1)},         {Vec2(0, 1), Vec2(0, 4)},
+      {Vec2(-6, -4), Vec2(-6, 4)},        {Vec2(-6, 4), Vec2(0, 4)},
+      {Vec2(-6, -4), Vec2(0, -4)},        {Vec2(0, 1), Vec2(6, 1)},
+      {Vec2(0, -1), Vec2(6, -1)},         {Vec2(6, -1), Vec2(6, 1)},
+      {Vec2(-4, -2), Vec2(-3.6, -2)},     {Vec2(-3.6, -2), Vec2(-3.6, -1.6)},
+      {Vec2(-3.6, -1.6), Vec2(-4, -1.6)}, {Vec2(-4, -1.6), Vec2(-4, -2)},
+  };
+}
+
+// The same dead end, but a wall crosses the room at x = -2 where RoomAndDeadEnd is open.
+std::vector<sim::Wall> RoomWithCrossWall() {
+  std::vector<sim::Wall> w = RoomAndDeadEnd();
+  w.push_back({Vec2(-2, -3), Vec2(-2, 3)});
+  return w;
+}
+
+GridLocalMapOptions LongFrames() {
+  GridLocalMapOptions o;
+  o.max_extent = 100.0;
+  return o;
+}
+
+// A frame made by driving along y = `y` from x0 to x1 (heading +x, world = frame) with a
+// full-circle laser, the last scan (the one map-matching searches for) from a 180-degree laser
+// looking along the drive.
+GridLocalMap FrameAlong(const std::vector<sim::Wall>& walls, double x0, double x1, double y,
+                        uint64_t seed, const GridLocalMapOptions& o = LongFrames()) {
+  GridLocalMap map(o);
+  FakeWallScanner around(walls, FullCircleLaser(), seed);
+  FakeWallScanner ahead(walls, FrontLaser(), seed + 1);
+  const double step = 0.2;
+  const int steps = static_cast<int>(std::lround((x1 - x0) / step));
+  Pose2 truth{x0, y, 0.0};
+  map.ResetRobotPose(UncertainPose{truth, Mat3::Zero()});
+  map.Update(around.Scan(truth), true);
+  for (int k = 1; k <= steps; ++k) {
+    truth = Compose(truth, Pose2{step, 0.0, 0.0});
+    map.Predict(Pose2{step, 0.0, 0.0});
+    map.Update(k == steps ? ahead.Scan(truth) : around.Scan(truth), true);
+  }
+  return map;
+}
+
+// The projected pose of B's frame in A's: 0.2 m and 0.03 rad off the truth (identity), 0.3 m
+// and 0.05 rad sigma.
+UncertainPose PriorNearIdentity() {
+  UncertainPose p{Pose2{0.2, -0.1, 0.03}, Mat3::Zero()};
+  p.cov.diagonal() = Vec3(0.09, 0.09, 0.0025);
+  return p;
+}
+
+TEST(GridMapMatcher, AcceptsTheTruePlacementOfARevisit) {
+  const GridLocalMap a = FrameAlong(RoomAndDeadEnd(), -5.0, 3.0, 0.0, 1);
+  const GridLocalMap b = FrameAlong(RoomAndDeadEnd(), -4.0, 4.0, 0.3, 11);
+  const UncertainPose prior = PriorNearIdentity();
+  const MapMatch m = GridMapMatcher(a.Options()).Match(a, b, &prior);
+  ASSERT_EQ(m.result, MapMatchResult::kAccepted) << MapMatchReasonName(m.reason);
+  EXPECT_EQ(m.reason, MapMatchReason::kMatched);
+  // Within the 0.1 m and 0.03 rad that a match edge's covariance is given at least.
+  EXPECT_NEAR(m.b_in_a.mean.x, 0.0, 0.1);
+  EXPECT_NEAR(m.b_in_a.mean.y, 0.0, 0.1);
+  EXPECT_NEAR(WrapAngle(m.b_in_a.mean.theta), 0.0, 0.03);
+  // Each frame's walls lie where the other saw walls or nothing: no conflict either way.
+  const FreeSpaceConflict ba =
+      FreeSpaceConflictOf(a.Grid(), b.Grid(), m.b_in_a.mean, Vec2(3.0, 0.0), kFreeSpaceRadius);
+  EXPECT_GT(ba.occupied, 200);
+  EXPECT_LT(ba.Fraction(), 0.01);
+}
+
+// B's frame is another place whose dead end looks the same, but B holds a wall across space A
+// has seen through. A's last scan (of the dead end) fits B as well as it fits the true place,
+// so only the free space tells them apart.
+TEST(GridMapMatcher, RefusesBsWallsInAsObservedFreeSpace) {
+  const GridLocalMap a = FrameAlong(RoomAndDeadEnd(), -5.0, 3.0, 0.0, 1);
+  const GridLocalMap b = FrameAlong(RoomWithCrossWall(), -1.4, 4.0, 0.3, 11);
+  const UncertainPose prior = PriorNearIdentity();
+  const MapMatch m = GridMapMatcher(a.Options()).Match(a, b, &prior);
+  EXPECT_EQ(m.result, MapMatchResult::kRejected);
+  EXPECT_EQ(m.reason, MapMatchReason::kFreeSpace) << MapMatchReasonName(m.reason);
+  // The cross wall, 5 m behind the robot, is in A's free space; A's walls are not in B's.
+  const FreeSpaceConflict ba =
+      FreeSpaceConflictOf(a.Grid(), b.Grid(), Pose2{}, Vec2(3.0, 0.0), kFreeSpaceRadius);
+  EXPECT_GT(ba.Fraction(), 0.1);
+  const FreeSpaceConflict ab =
+      FreeSpaceConflictOf(b.Grid(), a.Grid(), Pose2{}, Vec2(3.0, 0.0), kFreeSpaceRadius);
+  EXPECT_LT(ab.Fraction(), 0.02);
+  // Without the test the same search accepts the placement: the scan alone cannot tell.
+  GridLocalMapOptions off = a.Options();
+  off.max_free_space_conflict = 1.0;
+  const MapMatch blind = GridMapMatcher(off).Match(a, b, &prior);
+  ASSERT_EQ(blind.result, MapMatchResult::kAccepted) << MapMatchReasonName(blind.reason);
+  EXPECT_NEAR(blind.b_in_a.mean.x, 0.0, 0.1);
+}
+
+// The other way round: A's own walls stand where B has seen through.
+TEST(GridMapMatcher, RefusesAsWallsInBsObservedFreeSpace) {
+  const GridLocalMap a = FrameAlong(RoomWithCrossWall(), -1.4, 3.0, 0.0, 1);
+  const GridLocalMap b = FrameAlong(RoomAndDeadEnd(), -5.0, 4.0, 0.3, 11);
+  const UncertainPose prior = PriorNearIdentity();
+  const MapMatch m = GridMapMatcher(a.Options()).Match(a, b, &prior);
+  EXPECT_EQ(m.result, MapMatchResult::kRejected);
+  EXPECT_EQ(m.reason, MapMatchReason::kFreeSpace) << MapMatchReasonName(m.reason);
+  const FreeSpaceConflict ab =
+      FreeSpaceConflictOf(b.Grid(), a.Grid(), Pose2{}, Vec2(3.0, 0.0), kFreeSpaceRadius);
+  EXPECT_GT(ab.Fraction(), 0.1);
+}
+
+TEST(GridMapMatcher, FreeSpaceConflictOptionIsValidated) {
+  GridLocalMapOptions o;
+  EXPECT_EQ(o.Validate(), "");
+  o.max_free_space_conflict = -0.1;
+  EXPECT_NE(o.Validate(), "");
+  o.max_free_space_conflict = 1.5;
+  EXPECT_NE(o.Validate(), "");
+  o.max_free_space_conflict = 1.0;  // 1: the test never refuses
+  EXPECT_EQ(o.Validate(), "");
+}
+
+}  // namespace
+}  // namespace atlas
