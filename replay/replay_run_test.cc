@@ -6,7 +6,7 @@
 #include "formats/config/config_loader.h"
 #include "formats/config/mapper_config.h"
 
-namespace atlas {
+namespace atlas::replay {
 namespace {
 
 // atlas-replay without --config (and without options) maps as atlasd with config/atlasd.toml:
@@ -28,4 +28,4 @@ TEST(ReplayOptions, DefaultsAreTheShippedFile) {
 }
 
 }  // namespace
-}  // namespace atlas
+}  // namespace atlas::replay
