@@ -175,16 +175,11 @@ TEST_P(SweepFindsInjectedLatency, AtTheSmallestMeanHeadingCorrection) {
   range.step_s = 0.05;
   ASSERT_EQ(range.Validate(), "");
   int calls = 0;
-  // A loose odometry model, as the B21's in config/atlasd.toml ([noise.odometry]): the scans
-  // then correct the heading at every step, as on mit-csail. With core/localmap's tight
-  // defaults the filter trusts the odometry, barely corrects a transient heading error, and
-  // the time error shows as lost hypotheses (new frames) more than as corrections.
-  ReplayOptions ro;
-  ro.mapper.odometry.wheel_var_per_m = 0.01 * 0.01;
-  ro.mapper.odometry.xy_var_per_m = 0.0316 * 0.0316;
-  ro.mapper.odometry.xy_var_per_rad = 0.01 * 0.01;
-  ro.mapper.odometry.theta_var_per_m = 0.0707 * 0.0707;
-  ro.mapper.odometry.theta_var_per_rad = 0.173 * 0.173;
+  // The default odometry model is loose, the B21's (core/localmap, config/atlasd.toml): the
+  // scans then correct the heading at every step, as on mit-csail. With a tight model the
+  // filter trusts the odometry, barely corrects a transient heading error, and the time error
+  // shows as lost hypotheses (new frames) more than as corrections.
+  const ReplayOptions ro;
   const SweepResult r = SweepLaserTimeOffset(run.events, ro, range, dir,
                                              [&](const OffsetSweepRow&, int, int) { ++calls; });
   ASSERT_EQ(r.error, "");

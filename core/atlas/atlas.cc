@@ -45,6 +45,27 @@ std::string AtlasOptions::Validate() const {
   return "";
 }
 
+AtlasOptions SonarAtlasOptions(AtlasOptions o) {
+  o.match = SonarMapMatchOptions();
+  o.points.enabled = false;
+  o.genesis_cov_scale = 1.0;
+  o.return_q = 0.0;
+  o.return_far_radius = 0.0;
+  return o;
+}
+
+AtlasOptions BaselineAtlasOptions() {
+  AtlasOptions o = SonarAtlasOptions();
+  o.match = MapMatchOptions{};
+  o.max_hypotheses = 4;
+  o.lifecycle.probation_scans = 8;
+  o.quality.sigma_x = 0.5;
+  o.quality.sigma_y = 0.5;
+  o.quality.sigma_theta = 0.2;
+  o.match_candidates_per_step = 1;
+  return o;
+}
+
 Atlas::Atlas(const AtlasOptions& options, MapFactory factory,
              std::shared_ptr<const PoseBootstrapper> bootstrapper)
     : options_(options),

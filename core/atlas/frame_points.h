@@ -34,12 +34,13 @@
 namespace atlas {
 
 struct FramePointsOptions {
-  bool enabled = false;
+  bool enabled = true;
   double cell = 0.1;             // metres
   int capacity = 2048;           // cells per frame
   double max_range = 8.0;        // metres
   int max_scored = 512;          // cells of the other frame scored per placement
   std::string Validate() const;  // empty when valid
+  bool operator==(const FramePointsOptions&) const = default;
 };
 
 class FramePoints {

@@ -51,12 +51,13 @@ namespace atlas {
 
 struct HypothesisQualityOptions {
   double alpha = 0.5;
-  double sigma_x = 0.5;      // metres: maximum acceptable robot uncertainty, eq. 5
-  double sigma_y = 0.5;      // metres
-  double sigma_theta = 0.2;  // radians
-  int window = 5;            // scans in Z^k
+  double sigma_x = 1.0;       // metres: maximum acceptable robot uncertainty, eq. 5
+  double sigma_y = 1.0;       // metres
+  double sigma_theta = 0.35;  // radians
+  int window = 5;             // scans in Z^k
   double empty_explanation = 0.0;
   std::string Validate() const;  // empty when valid
+  bool operator==(const HypothesisQualityOptions&) const = default;
 };
 
 // eq. 5. `explanation` is eta_a / ||Z^k|| in [0, 1].
@@ -153,10 +154,12 @@ struct Hypothesis {
 
 struct LifecycleOptions {
   // Probation (III-E, left open by the paper): scans a juvenile processes before it is judged.
-  // Default 8 scans, at least bootstrap_scans + 3: w needs its scans, then q needs a few scans
-  // of the bootstrapped pose so that the window reflects w's solution, not the seed. At ~5
-  // scans/s this is under 2 s of travel (< 1 m), short against a frame's extent.
-  int probation_scans = 8;
+  // At least bootstrap_scans + 3: w needs its scans, then q needs a few scans of the
+  // bootstrapped pose so that the window reflects w's solution, not the seed. 20: fewer returns
+  // left open and fewer gross map-match edges on the corrected logs than 8 to 16, at the cost
+  // of 10-19 m of travel before a right juvenile matures where scans are 0.5-0.9 m apart
+  // (docs/design.md, "III-B. Hypotheses").
+  int probation_scans = 20;
   // Scans accumulated before w is solved (eq. 12).
   int bootstrap_scans = 4;
   double q_fail = 0.35;  // a mature hypothesis below this is failing
@@ -173,6 +176,7 @@ struct LifecycleOptions {
   // Hypotheses"); 0: the best q dominates at every step.
   double switch_margin = 0.0;
   std::string Validate() const;
+  bool operator==(const LifecycleOptions&) const = default;
 };
 
 enum class JuvenileVerdict { kContinue, kMature, kDelete };

@@ -76,6 +76,7 @@ struct MapMatchOptions {
   // most 2 x 100 placements of max_scored cells.
   double point_max_shift = 10.0;
   std::string Validate() const;
+  bool operator==(const MapMatchOptions&) const = default;
 };
 
 // The Condition 2 settings for maps of laser lines (atlasd with a laser, atlas-replay): `o`

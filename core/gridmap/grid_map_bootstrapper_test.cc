@@ -14,6 +14,7 @@ namespace {
 GridLocalMap FrameAlong(const std::vector<sim::Wall>& walls, const Pose2& start, double step,
                         int steps) {
   GridLocalMapOptions o;
+  o.odometry = FakeWallMapOptions().odometry;
   o.max_extent = 100.0;
   GridLocalMap map(o);
   FakeWallScanner scanner(walls, FrontLaser(), 11);

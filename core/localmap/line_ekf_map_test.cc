@@ -16,7 +16,7 @@ namespace atlas {
 namespace {
 
 LocalMapOptions SimOptions() {
-  LocalMapOptions o;
+  LocalMapOptions o = FakeWallMapOptions();
   o.capacity = 30;
   o.extraction.range_sigma = 0.01;
   return o;

@@ -34,7 +34,7 @@ TEST(LineExtractionTest, EstimatedCovarianceMatchesSampleCovariance) {
   FakeLaserOptions lo;
   lo.range_sigma = 0.02;
   FakeWallScanner scanner({wall}, lo, 7);
-  LineExtractionOptions eo;
+  LineExtractionOptions eo = FakeWallMapOptions().extraction;
   eo.range_sigma = 0.02;
   eo.split_distance = 0.2;
   const Vec2 truth = LineThroughPoints(wall.a, wall.b);
@@ -80,7 +80,7 @@ TEST(LineExtractionTest, UnbiasedAtGrazingIncidenceAndNextToCorners) {
   FakeLaserOptions lo;
   lo.range_sigma = 0.01;
   FakeWallScanner scanner(sim::CorridorWalls(20.0, 2.4), lo, 7);
-  LineExtractionOptions eo;
+  LineExtractionOptions eo = FakeWallMapOptions().extraction;
   eo.range_sigma = 0.01;
   constexpr int kFits = kSanitized ? 400 : 4000;
   const double max_bias = 0.04 * std::sqrt(4000.0 / kFits);
@@ -128,7 +128,7 @@ TEST(LineExtractionTest, BentSegmentFailsTheFitTestButStraightOnesPass) {
   FakeLaserOptions exact;
   exact.range_sigma = 0.0;
   FakeWallScanner scanner(bent, exact, 5);
-  LineExtractionOptions eo;
+  LineExtractionOptions eo = FakeWallMapOptions().extraction;
   eo.range_sigma = 0.001;
   eo.split_distance = 0.2;
   const LaserScan scan = scanner.Scan(Pose2{});
@@ -139,7 +139,7 @@ TEST(LineExtractionTest, BentSegmentFailsTheFitTestButStraightOnesPass) {
   FakeLaserOptions noisy;
   noisy.range_sigma = 0.001;
   FakeWallScanner straight({{Vec2(3.0, -2.0), Vec2(3.0, 2.0)}}, noisy, 6);
-  eo.fit_gate = LineExtractionOptions().fit_gate;
+  eo.fit_gate = FakeWallMapOptions().extraction.fit_gate;
   int found = 0;
   for (int r = 0; r < 200; ++r) {
     found += static_cast<int>(ExtractLines(straight.Scan(Pose2{}), eo).size());
@@ -154,7 +154,7 @@ TEST(LineExtractionTest, CornerGivesTwoLinesWithEndpoints) {
   lo.range_sigma = 0.005;
   FakeWallScanner scanner(walls, lo, 3);
   const std::vector<ObservedLine> lines =
-      ExtractLines(scanner.Scan(Pose2{}), LineExtractionOptions());
+      ExtractLines(scanner.Scan(Pose2{}), FakeWallMapOptions().extraction);
   ASSERT_EQ(lines.size(), 2u);
   for (int i = 0; i < 2; ++i) {
     const Vec2 truth = LineThroughPoints(walls[i].a, walls[i].b);
@@ -165,7 +165,7 @@ TEST(LineExtractionTest, CornerGivesTwoLinesWithEndpoints) {
   // y = 2 wall at that range, 0.04 m along the x = 4 wall.
   EXPECT_NEAR((lines[0].endpoint_b - Vec2(4.0, 2.0)).norm(), 0.0, 0.1);
   EXPECT_NEAR((lines[1].endpoint_a - Vec2(4.0, 2.0)).norm(), 0.0, 0.3);
-  LineExtractionOptions keep;
+  LineExtractionOptions keep = FakeWallMapOptions().extraction;
   keep.corner_points = 0;
   const std::vector<ObservedLine> kept = ExtractLines(scanner.Scan(Pose2{}), keep);
   ASSERT_EQ(kept.size(), 2u);
@@ -179,20 +179,20 @@ TEST(LineExtractionTest, NoReturnBeamsAreNeverPoints) {
   lo.range_sigma = 0.0;
   FakeWallScanner scanner({wall}, lo, 1);
   LaserScan scan = scanner.Scan(Pose2{});
-  const std::vector<ObservedLine> full = ExtractLines(scan, LineExtractionOptions());
+  const std::vector<ObservedLine> full = ExtractLines(scan, FakeWallMapOptions().extraction);
   ASSERT_EQ(full.size(), 1u);
   // Every third beam without return: still one line, fewer points, same geometry.
   for (size_t i = 0; i < scan.ranges.size(); i += 3) scan.ranges[i] = kNoReturn;
-  const std::vector<ObservedLine> sparse = ExtractLines(scan, LineExtractionOptions());
+  const std::vector<ObservedLine> sparse = ExtractLines(scan, FakeWallMapOptions().extraction);
   ASSERT_EQ(sparse.size(), 1u);
   EXPECT_LT(sparse[0].num_points, full[0].num_points);
   EXPECT_NEAR(sparse[0].rho, 2.0, 1e-6);
   // All beams without return: nothing, even though the ranges are +inf "beyond" the wall.
   for (float& r : scan.ranges) r = kNoReturn;
-  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).empty());
+  EXPECT_TRUE(ExtractLines(scan, FakeWallMapOptions().extraction).empty());
   // NaN ranges are treated the same way.
   for (float& r : scan.ranges) r = std::nanf("");
-  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).empty());
+  EXPECT_TRUE(ExtractLines(scan, FakeWallMapOptions().extraction).empty());
 }
 
 TEST(LineExtractionTest, GapAndLengthAndPointOptionsAreHonoured) {
@@ -203,14 +203,14 @@ TEST(LineExtractionTest, GapAndLengthAndPointOptionsAreHonoured) {
   lo.range_sigma = 0.0;
   FakeWallScanner scanner(walls, lo, 1);
   const LaserScan scan = scanner.Scan(Pose2{});
-  LineExtractionOptions eo;
+  LineExtractionOptions eo = FakeWallMapOptions().extraction;
   EXPECT_EQ(ExtractLines(scan, eo).size(), 2u);
   eo.max_gap = 2.0;  // the opening no longer separates them: one merged line
   EXPECT_EQ(ExtractLines(scan, eo).size(), 1u);
-  eo = LineExtractionOptions();
+  eo = FakeWallMapOptions().extraction;
   eo.min_length = 3.0;
   EXPECT_EQ(ExtractLines(scan, eo).size(), 0u);
-  eo = LineExtractionOptions();
+  eo = FakeWallMapOptions().extraction;
   eo.min_points = 1000;
   EXPECT_EQ(ExtractLines(scan, eo).size(), 0u);
 }
@@ -222,8 +222,8 @@ TEST(LineExtractionTest, RobotFrameUsesSensorMounting) {
   lo.sensor_pose = Pose2{0.5, 0.0, 0.0};
   FakeWallScanner scanner({wall}, lo, 1);
   const LaserScan scan = scanner.Scan(Pose2{});
-  const auto sensor = ExtractLines(scan, LineExtractionOptions());
-  const auto robot = ExtractRobotFrameLines(scan, LineExtractionOptions());
+  const auto sensor = ExtractLines(scan, FakeWallMapOptions().extraction);
+  const auto robot = ExtractRobotFrameLines(scan, FakeWallMapOptions().extraction);
   ASSERT_EQ(sensor.size(), 1u);
   ASSERT_EQ(robot.size(), 1u);
   EXPECT_NEAR(sensor[0].rho, 2.5, 1e-6);
@@ -232,9 +232,9 @@ TEST(LineExtractionTest, RobotFrameUsesSensorMounting) {
 
 TEST(LineExtractionTest, EmptyAndDegenerateScansDoNotCrash) {
   LaserScan scan;
-  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).empty());
+  EXPECT_TRUE(ExtractLines(scan, FakeWallMapOptions().extraction).empty());
   scan.ranges.assign(361, 1.0f);  // all points identical (zero increment)
-  EXPECT_TRUE(ExtractLines(scan, LineExtractionOptions()).size() <= 1u);
+  EXPECT_TRUE(ExtractLines(scan, FakeWallMapOptions().extraction).size() <= 1u);
 }
 
 }  // namespace

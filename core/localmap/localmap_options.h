@@ -1,8 +1,12 @@
 #pragma once
 // Options of the line-feature local map (module atlas_localmap): line extraction, odometry
 // noise, data association, the quality metric q (eq. 5) and the bootstrapping function w
-// (eq. 12). One struct with defaults, validated once by Validate().
+// (eq. 12). One struct with defaults, validated once by Validate(). The defaults are atlasd's
+// (config/atlasd.toml): the noise models are those of the B21 of the mit-csail log, a SICK
+// LMS-2xx and a base whose odometry turns a few degrees wrong in a second (docs/design.md,
+// "Laser line local map").
 
+#include <cmath>
 #include <string>
 
 namespace atlas {
@@ -13,11 +17,11 @@ struct LineExtractionOptions {
   double range_sigma = 0.01;
   double range_sigma_per_m = 0.0;
   // Extra noise normal to the line per point (walls that are not perfectly straight), metres.
-  double model_sigma = 0.0;
+  double model_sigma = 0.03;
   // Floors added to every fitted line's (rho, alpha) variances: model error that does not
   // average out over the points (walls that bend, furniture, calibration), metres and radians.
-  double min_rho_sigma = 0.0;
-  double min_alpha_sigma = 0.0;
+  double min_rho_sigma = 0.03;
+  double min_alpha_sigma = 1.15 * (M_PI / 180.0);
   // A point farther than this from the chord of its segment splits the segment (metres).
   double split_distance = 0.05;
   // Consecutive points farther apart than this never share a segment (metres).
@@ -36,18 +40,19 @@ struct LineExtractionOptions {
   double fit_gate = 0.99999;
 
   std::string Validate() const;
+  bool operator==(const LineExtractionOptions&) const = default;
 };
 
 // Wheel odometry noise for Predict(): a differential-drive model (the variance of each wheel's
 // distance grows linearly with the distance it rolled) plus isotropic floors growing with
 // distance and turn, for slip and everything the wheel model misses.
 struct OdometryNoiseOptions {
-  double track_width = 0.4;         // metres
-  double wheel_var_per_m = 5e-6;    // m^2 per metre rolled, per wheel
-  double xy_var_per_m = 1e-6;       // m^2 per metre travelled, each of x and y
-  double xy_var_per_rad = 1e-6;     // m^2 per radian turned
-  double theta_var_per_m = 1e-6;    // rad^2 per metre travelled
-  double theta_var_per_rad = 1e-5;  // rad^2 per radian turned
+  double track_width = 0.58;                 // metres
+  double wheel_var_per_m = 0.01 * 0.01;      // m^2 per metre rolled, per wheel
+  double xy_var_per_m = 0.0316 * 0.0316;     // m^2 per metre travelled, each of x and y
+  double xy_var_per_rad = 0.01 * 0.01;       // m^2 per radian turned
+  double theta_var_per_m = 0.0707 * 0.0707;  // rad^2 per metre travelled
+  double theta_var_per_rad = 0.173 * 0.173;  // rad^2 per radian turned
   // Calibration errors of the base (Borenstein's UMBmark): the relative error of each wheel's
   // distance and of the track width, standard deviations. Within one odometry step they act
   // as noise of variance (wheel_scale_sigma d_wheel)^2 per wheel and
@@ -57,6 +62,7 @@ struct OdometryNoiseOptions {
   double track_width_sigma = 0.0;
 
   std::string Validate() const;
+  bool operator==(const OdometryNoiseOptions&) const = default;
 };
 
 // Data association by Joint Compatibility Branch and Bound (jcbb.h).
@@ -100,17 +106,19 @@ struct AssociationOptions {
   double duplicate_alpha = 0.05;  // radians
 
   std::string Validate() const;
+  bool operator==(const AssociationOptions&) const = default;
 };
 
 // The quality metric q of eq. 5.
 struct QualityOptions {
   double alpha = 0.5;        // weight of the pose-uncertainty term
-  double max_sigma_x = 0.5;  // metres: det(Sigma_x*) = sx^2 sy^2 st^2
-  double max_sigma_y = 0.5;
-  double max_sigma_theta = 0.2;  // radians
-  int window = 5;                // scans that count as "recent" for eta_a / ||Z||
+  double max_sigma_x = 1.0;  // metres: det(Sigma_x*) = sx^2 sy^2 st^2
+  double max_sigma_y = 1.0;
+  double max_sigma_theta = 0.35;  // radians
+  int window = 5;                 // scans that count as "recent" for eta_a / ||Z||
 
   std::string Validate() const;
+  bool operator==(const QualityOptions&) const = default;
 };
 
 // The bootstrapping function w of eq. 12 (bootstrap.h).
@@ -122,6 +130,7 @@ struct BootstrapOptions {
   int iterations = 5;               // Gauss-Newton iterations
 
   std::string Validate() const;
+  bool operator==(const BootstrapOptions&) const = default;
 };
 
 struct LocalMapOptions {
@@ -134,6 +143,7 @@ struct LocalMapOptions {
 
   // Empty when every field is valid, else the first problem found (field: reason).
   std::string Validate() const;
+  bool operator==(const LocalMapOptions&) const = default;
 };
 
 }  // namespace atlas

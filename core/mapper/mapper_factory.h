@@ -6,16 +6,16 @@
 // the laser scans when there is a laser; for sonar alone the sonar w (SonarMapBootstrapper,
 // core/sonar/sonar_map_bootstrapper.h) unless MapperSettings::sonar_bootstrap is off (then
 // juveniles keep their seeded pose and are judged on q alone: docs/design.md, "III-E. Traversal").
-// With sonar alone, map-matching uses SonarMapMatchOptions, with laser lines LaserMapMatchOptions
-// (core/atlas/map_match.h says what each setting refused, and where it was measured).
+// With sonar alone the atlas is SonarAtlasOptions (core/atlas/atlas.h: SonarMapMatchOptions, no
+// points, no return band); with laser lines it is AtlasOptions' defaults (LaserMapMatchOptions;
+// core/atlas/map_match.h says what each setting refused, and where it was measured).
 //
-// MapperSettings is the mapper's part of atlasd's configuration, in the mapper's units (the
-// odometry noise as variances, angles in radians): the config (DaemonOptions) converts its keys
-// onto it, and the replay tools build the same mapper from it. Its defaults are the defaults of
-// config/atlasd.toml, so that every entry point maps alike without a configuration file (a test
-// compares them). Settings the file does not name keep the core modules' defaults.
+// MapperSettings is the mapper's part of atlasd's configuration: the core modules' options
+// (AtlasOptions, LocalMapOptions, ScanMatchOptions) with their defaults, and which sensors the
+// maps use. The config (DaemonOptions) converts its keys onto it, and the replay tools build the
+// same mapper from it. The core modules' defaults are those of config/atlasd.toml, so every
+// entry point maps alike without a configuration file (a test compares them).
 
-#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,32 +28,14 @@
 namespace atlas {
 
 struct MapperSettings {
-  // [atlas]: the Atlas framework's parameters (paper, Sections I-A and III).
-  int map_capacity = 10;
-  int max_hypotheses = 8;
-  int probation_steps = 20;
-  double switch_margin = 0.0;  // LifecycleOptions::switch_margin
-  double quality_alpha = 0.5;
-  double max_sigma_x = 1.0;
-  double max_sigma_y = 1.0;
-  double max_sigma_theta = 0.35;
-  int frames_examined_per_step = 24;
-  int match_candidates_per_step = 2;
-  // The local maps' noise models (core/localmap/localmap_options.h): wheel odometry
-  // ([noise.odometry], variances: the squares of the file's sigmas; the track width is
-  // odometry.track_width_m), and the laser's range noise and line-fit floors ([noise.laser]).
-  OdometryNoiseOptions odometry{.track_width = 0.58,
-                                .wheel_var_per_m = 0.01 * 0.01,
-                                .xy_var_per_m = 0.0316 * 0.0316,
-                                .xy_var_per_rad = 0.01 * 0.01,
-                                .theta_var_per_m = 0.0707 * 0.0707,
-                                .theta_var_per_rad = 0.173 * 0.173,
-                                .wheel_scale_sigma = 0.0,
-                                .track_width_sigma = 0.0};
-  double laser_range_sigma_m = 0.01;
-  double wall_sigma_m = 0.03;                               // ExtractionOptions::model_sigma
-  double line_rho_sigma_min_m = 0.03;                       // ExtractionOptions::min_rho_sigma
-  double line_alpha_sigma_min_rad = 1.15 * (M_PI / 180.0);  // ExtractionOptions::min_alpha_sigma
+  // The atlas (paper, Sections I-A and III), for maps of laser lines; with the sonar alone the
+  // factory makes it SonarAtlasOptions(atlas), and with grid frames it turns the points off.
+  // The juveniles' probation is at least lifecycle.bootstrap_scans + 1 scans, and with the
+  // sonar w at least kSonarBootstrapProbation (core/sonar/sonar_map_bootstrapper.h).
+  AtlasOptions atlas;
+  // The line local maps (core/localmap): map capacity, odometry and laser noise models. Their
+  // quality metric is the atlas's (atlas.quality: alpha and the sigmas of eq. 5).
+  LocalMapOptions local_map;
   // The range sensors the maps use, and the sonar ring's geometry (index = transducer) when
   // they use the sonar; the sonar model keeps core/sonar's defaults.
   RangeSensors sensors = RangeSensors::kLaser;
@@ -68,6 +50,11 @@ struct MapperSettings {
   // Scan-to-scan matching before each laser step (StepLoop; on by default).
   ScanMatchOptions scan_match;
 };
+
+// The options the factory gives the atlas and the line local maps (also inside the sonar and
+// grid maps): `s`'s, with what the sensors imply (see MapperSettings).
+AtlasOptions AtlasOptionsOf(const MapperSettings& s);
+LocalMapOptions LocalMapOptionsOf(const MapperSettings& s);
 
 // Empty when the settings give valid atlas and local-map options, else the first problem.
 std::string ValidateMapperSettings(const MapperSettings& s);

@@ -29,10 +29,12 @@ TEST(MapperFactory, LaserAtlasSeedsWhereTheRobotReturnsAndTheSonarAtlasDoesNot) 
     EXPECT_LT(o.return_far_radius, o.return_radius);
     EXPECT_TRUE(o.points.enabled);  // frames keep their scans' points (map_match.h, "Points")
   }
+  // The laser atlas is AtlasOptions' defaults: the factory fixes nothing of its own.
+  EXPECT_TRUE(MakeAtlas(MapperSettings{})->Options() == AtlasOptions{});
   s.sensors = RangeSensors::kSonar;
   s.sonar_ring = FakeSonarRing24();
   const AtlasOptions o = MakeAtlas(s)->Options();
-  EXPECT_EQ(o.genesis_cov_scale, AtlasOptions{}.genesis_cov_scale);
+  EXPECT_EQ(o.genesis_cov_scale, 1.0);
   EXPECT_LE(o.return_q, o.q_traverse);
   EXPECT_EQ(o.return_far_radius, 0.0);
   EXPECT_FALSE(o.points.enabled);

@@ -91,6 +91,7 @@ struct StepLoopOptions {
   // Stamps added are truncated to a multiple of this (contract above); 0 to 1 s, 0: kept.
   Duration stamp_resolution = Duration::zero();
   std::string Validate() const;
+  bool operator==(const StepLoopOptions&) const = default;
 };
 
 enum class PoseSource { kScan, kOdometryOnly };

@@ -301,8 +301,8 @@ TEST(StepLoopScanMatch, MatchedIncrementsReplaceAWrongOdometryHeading) {
     s.scan_match.enabled = enabled;
     // The heading part of the B21 profile (config/atlasd.toml): 1.5 degrees a step is within
     // its sigma, as the odometry's prior must allow for the matched increment to prevail.
-    s.odometry.theta_var_per_m = 0.005;
-    s.odometry.theta_var_per_rad = 0.03;
+    s.local_map.odometry.theta_var_per_m = 0.005;
+    s.local_map.odometry.theta_var_per_rad = 0.03;
     ASSERT_EQ(ValidateMapperSettings(s), "");
     StepLoop loop(StepLoopOptions{}, s, &atlas);
     FakeStepSink sink;

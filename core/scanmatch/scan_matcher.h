@@ -85,6 +85,7 @@ struct ScanMatchOptions {
   int min_pairs = 40;              // pairs needed at the solution
   double min_pair_fraction = 0.3;  // of the current scan's usable points
   std::string Validate() const;    // empty when valid
+  bool operator==(const ScanMatchOptions&) const = default;
 };
 
 enum class ScanMatchOutcome {

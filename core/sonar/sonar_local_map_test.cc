@@ -10,6 +10,7 @@
 
 #include "core/sonar/sonar_geometry.h"
 #include "core/testing/fake_sonar_ring.h"
+#include "core/testing/fake_wall_scanner.h"
 
 namespace atlas {
 namespace {
@@ -23,6 +24,7 @@ std::vector<sim::Wall> Corridor() {
 SonarLocalMapOptions Options() {
   SonarLocalMapOptions o;
   o.sensors = RangeSensors::kSonar;
+  o.line_map = FakeWallMapOptions();
   o.line_map.capacity = 10;
   return o;
 }

@@ -36,8 +36,10 @@ struct TestWorld {
       return std::make_unique<FakeLocalMap>(o, script_copy, (*tag)++);
     };
   }
+  // The scripted world's atlas: BaselineAtlasOptions (core/atlas/atlas.h), which the tests'
+  // scripts are written for.
   static AtlasOptions Options() {
-    AtlasOptions o;
+    AtlasOptions o = BaselineAtlasOptions();
     o.quality.alpha = 0.3;
     o.refine_interval_steps = 3;
     return o;

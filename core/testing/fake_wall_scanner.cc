@@ -4,6 +4,20 @@
 
 namespace atlas {
 
+LocalMapOptions FakeWallMapOptions() {
+  LocalMapOptions o;
+  o.extraction.model_sigma = 0.0;
+  o.extraction.min_rho_sigma = 0.0;
+  o.extraction.min_alpha_sigma = 0.0;
+  o.odometry.track_width = 0.4;
+  o.odometry.wheel_var_per_m = 5e-6;
+  o.odometry.xy_var_per_m = 1e-6;
+  o.odometry.xy_var_per_rad = 1e-6;
+  o.odometry.theta_var_per_m = 1e-6;
+  o.odometry.theta_var_per_rad = 1e-5;
+  return o;
+}
+
 FakeWallScanner::FakeWallScanner(const std::vector<sim::Wall>& walls,
                                  const FakeLaserOptions& options, uint64_t seed)
     : caster_(walls), options_(options), rng_(seed) {}

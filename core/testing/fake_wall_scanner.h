@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/common/sensor_types.h"
+#include "core/localmap/localmap_options.h"
 #include "sim/ray_caster.h"
 
 namespace atlas {
@@ -34,5 +35,12 @@ class FakeWallScanner {
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
 };
+
+// The line local map for the fake scanner: its walls are straight and its range noise is the
+// model's, so the line fits get no wall noise and no floors (core/localmap's defaults are a real
+// building's), and the odometry noise is a small, well calibrated base's (track 0.4 m; per metre
+// 5e-6 m^2 each wheel, 1e-6 m^2 in x and y, 1e-6 rad^2; per radian 1e-6 m^2, 1e-5 rad^2), which
+// the tests' scripts are written for.
+LocalMapOptions FakeWallMapOptions();
 
 }  // namespace atlas

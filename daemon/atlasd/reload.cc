@@ -76,7 +76,7 @@ AtlasRebuild RebuildAtlas(const Atlas& running, const DaemonOptions& options) {
   std::unique_ptr<Atlas> rebuilt = MakeAtlas(out.settings);
   if (!rebuilt->Deserialize(running.Serialize())) {
     out.refused = "the running atlas does not fit the new parameters (" +
-                  Misfit(running, *rebuilt, out.settings.map_capacity) + ")";
+                  Misfit(running, *rebuilt, out.settings.local_map.capacity) + ")";
     return out;
   }
   out.atlas = std::move(rebuilt);

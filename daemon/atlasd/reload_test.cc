@@ -102,7 +102,7 @@ TEST(Reload, RebuiltAtlasKeepsGraphMapsAndHypotheses) {
   const AtlasRebuild r = RebuildAtlas(*atlas, PlanReload(running, loaded).with_atlas);
   ASSERT_NE(r.atlas, nullptr) << r.refused;
   EXPECT_TRUE(r.refused.empty());
-  EXPECT_EQ(r.settings.map_capacity, loaded.atlas.map_capacity);
+  EXPECT_EQ(r.settings.local_map.capacity, loaded.atlas.map_capacity);
   EXPECT_EQ(r.atlas->StepCount(), atlas->StepCount());
   EXPECT_EQ(r.atlas->Hypotheses().size(), atlas->Hypotheses().size());
   EXPECT_TRUE(r.atlas->Serialize() == atlas->Serialize());

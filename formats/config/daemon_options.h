@@ -2,7 +2,9 @@
 // Every option of atlasd, as read from one TOML file (config/atlasd.toml documents each key).
 //
 // One plain struct per module, all gathered in DaemonOptions. Defaults here are the defaults of
-// the daemon: a key absent from the file keeps its default. Units are in the field names
+// the daemon: a key absent from the file keeps its default. The keys that configure the mapper
+// take their defaults from the core modules' options (MapperDefaults() below), converted to the
+// file's units, so that each setting has one default. Units are in the field names
 // (_m metres, _deg degrees, _s seconds, _ms milliseconds); angles without a unit suffix are
 // radians. The modules that consume these (drivers, atlas, local maps, the loop) copy the fields
 // they need into their own options structs.
@@ -10,14 +12,31 @@
 // The key of every field in the file is "<section>.<field>", e.g. laser.baud, laser.mount.x_m,
 // lcm.channels.pose; config_schema.h is the single list of keys, types and ranges.
 
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/mapper/mapper_factory.h"
+#include "core/mapper/step_loop.h"
 #include "core/sonar/sonar_options.h"
 #include "drivers/sick/lms_messages.h"
 
 namespace atlas {
+
+// The mapper's and the step loop's default options (core/mapper), which the mapper's keys
+// default to.
+inline const MapperSettings& MapperDefaults() {
+  static const MapperSettings s;
+  return s;
+}
+inline const StepLoopOptions& StepLoopDefaults() {
+  static const StepLoopOptions l;
+  return l;
+}
+// Radians of a default in the file's degrees (the config converts back with * M_PI / 180).
+inline double DegreesOf(double radians) { return radians / (M_PI / 180.0); }
 
 // A sensor's pose on the robot, in the robot (base) frame.
 struct MountPose {
@@ -34,20 +53,21 @@ struct LaserOptions {
   int angular_range_deg = 180;          // 180 or 100
   double angular_resolution_deg = 1.0;  // 1.0, 0.5 or 0.25 (0.25 only with 100 degrees)
   sick::Unit unit = sick::Unit::kMillimetre;
-  double max_range_m = 8.0;
+  double max_range_m = StepLoopDefaults().max_range_m;
   MountPose mount{0.1, 0.0, 0.0};
   int queue_capacity = 8;  // scans between the reader thread and the loop
   // A scan was taken at its arrival stamp + time_offset_s (negative: before it), seconds: the
   // loop looks the odometry up there (core/mapper/step_loop.h says why). 0 on our robot
   // until calibrated (docs/config.md, "Laser time offset"); mit-csail needs about -0.1.
-  double time_offset_s = 0.0;
+  double time_offset_s =
+      std::chrono::duration<double>(StepLoopDefaults().laser_time_offset).count();
 };
 
 // AgileX base odometry on CAN (docs/devices.md, section 2).
 struct OdometryOptions {
   // A SocketCAN interface name ("can0") or "unix:PATH" for the fake bus.
   std::string interface = "can0";
-  double track_width_m = 0.58;
+  double track_width_m = MapperDefaults().local_map.odometry.track_width;
   // A wheel-distance change faster than this is a counter discontinuity, not motion.
   double max_speed_mps = 3.0;
   // Allowance on top of max_speed_mps * dt, for stamp jitter and counter quantisation.
@@ -77,49 +97,59 @@ struct LocalMapConfig {
   // Which range sensors the local maps use: the laser alone (line EKF, core/localmap), the
   // sonar ring alone, or both in one EKF (core/sonar SonarLocalMap). "sonar" and "both" need
   // sonar.enabled, "both" also laser.enabled.
-  RangeSensors sensors = RangeSensors::kLaser;
+  RangeSensors sensors = MapperDefaults().sensors;
   // With the laser alone: "lines" or "grid".
-  LocalMapKind kind = LocalMapKind::kLines;
+  LocalMapKind kind = MapperDefaults().grid_frames ? LocalMapKind::kGrid : LocalMapKind::kLines;
   // With the sonar alone: the sonar w of eq. 12 (core/sonar/sonar_map_bootstrapper.h) solves
   // traversal juveniles' poses from their readings (the default); false: they keep their seeded
   // pose (docs/design.md, "Sonar local maps").
-  bool sonar_bootstrap = true;
+  bool sonar_bootstrap = MapperDefaults().sonar_bootstrap;
 };
 
 // Scan-to-scan matching of consecutive laser scans (core/scanmatch/scan_matcher.h): the wheel
 // odometry's increment is the prior; the matched increment and its covariance replace it in
 // the local maps' prediction. The remaining matcher options keep core/scanmatch's defaults.
 struct ScanMatchConfig {
-  bool enabled = true;
-  double max_range_m = 20.0;        // returns beyond are not matched
-  double point_sigma_m = 0.03;      // point-to-line residual noise
-  double information_scale = 0.3;   // the matcher's information is multiplied by this
-  double heading_search_deg = 0.0;  // search either side of the odometry's heading (0: none)
+  bool enabled = MapperDefaults().scan_match.enabled;
+  // returns beyond are not matched
+  double max_range_m = MapperDefaults().scan_match.max_range;
+  // point-to-line residual noise
+  double point_sigma_m = MapperDefaults().scan_match.point_sigma;
+  // the matcher's information is multiplied by this
+  double information_scale = MapperDefaults().scan_match.information_scale;
+  // search either side of the odometry's heading (0: none)
+  double heading_search_deg = DegreesOf(MapperDefaults().scan_match.heading_search);
 };
 
 // Odometry error model of the local maps (core/localmap OdometryNoiseOptions): each sigma is
 // the standard deviation after one unit of motion; variances grow linearly with the motion
 // (sigma with its square root). The calibration errors grow with the motion itself. Defaults:
-// the B21 of the mit-csail log (measured with atlas-replay; docs/design.md, "Laser line local
-// map"), a base whose odometry turns a few degrees wrong in a second: generous for a well
-// calibrated base.
+// core/localmap's (the B21 of the mit-csail log), the square roots of its variances.
 struct OdometryErrorConfig {
-  double wheel_sigma_per_m = 0.01;          // metres per metre rolled, each wheel
-  double translation_sigma_per_m = 0.0316;  // metres per metre driven, each of x and y
-  double translation_sigma_per_rad = 0.01;  // metres per radian turned
-  double rotation_sigma_per_m = 0.0707;     // radians of heading per metre driven
-  double rotation_sigma_per_rad = 0.173;    // radians of heading per radian turned
-  double wheel_scale_sigma = 0.0;           // relative wheel radius error
-  double track_width_sigma = 0.0;           // relative track width error
+  // metres per metre rolled, each wheel
+  double wheel_sigma_per_m = std::sqrt(MapperDefaults().local_map.odometry.wheel_var_per_m);
+  // metres per metre driven, each of x and y
+  double translation_sigma_per_m = std::sqrt(MapperDefaults().local_map.odometry.xy_var_per_m);
+  // metres per radian turned
+  double translation_sigma_per_rad = std::sqrt(MapperDefaults().local_map.odometry.xy_var_per_rad);
+  // radians of heading per metre driven
+  double rotation_sigma_per_m = std::sqrt(MapperDefaults().local_map.odometry.theta_var_per_m);
+  // radians of heading per radian turned
+  double rotation_sigma_per_rad = std::sqrt(MapperDefaults().local_map.odometry.theta_var_per_rad);
+  // relative wheel radius error
+  double wheel_scale_sigma = MapperDefaults().local_map.odometry.wheel_scale_sigma;
+  // relative track width error
+  double track_width_sigma = MapperDefaults().local_map.odometry.track_width_sigma;
 };
 
 struct LaserNoiseOptions {
-  double range_sigma_m = 0.01;
+  double range_sigma_m = MapperDefaults().local_map.extraction.range_sigma;
   // Walls are not straight to the centimetre: extra noise normal to a line per point, and
   // floors on a fitted line's (rho, alpha) standard deviations.
-  double wall_sigma_m = 0.03;
-  double line_rho_sigma_min_m = 0.03;
-  double line_alpha_sigma_min_deg = 1.15;
+  double wall_sigma_m = MapperDefaults().local_map.extraction.model_sigma;
+  double line_rho_sigma_min_m = MapperDefaults().local_map.extraction.min_rho_sigma;
+  double line_alpha_sigma_min_deg =
+      DegreesOf(MapperDefaults().local_map.extraction.min_alpha_sigma);
 };
 
 struct NoiseOptions {
@@ -127,22 +157,28 @@ struct NoiseOptions {
   LaserNoiseOptions laser;
 };
 
-// The Atlas framework's parameters (paper, Sections I-A and III). Generic on purpose: the atlas
-// and local-map modules fill their own options structs from these fields.
+// The Atlas framework's parameters (paper, Sections I-A and III): the fields of AtlasOptions
+// (core/atlas/atlas.h) and LocalMapOptions::capacity that the file sets.
 struct AtlasParameters {
-  int map_capacity = 10;          // features a local map may hold (map capacity, Section I-A)
-  int max_hypotheses = 8;         // juvenile + mature hypotheses alive at once
-  int probation_steps = 20;       // steps a juvenile hypothesis has to mature (Section III-E)
-  double switch_margin = 0.0;     // hysteresis of the dominant hypothesis's q (Section III-B)
-  double quality_alpha = 0.5;     // alpha of the quality metric q, eq. 5
-  double max_sigma_x = 1.0;       // sigma_x of eq. 5, metres
-  double max_sigma_y = 1.0;       // sigma_y of eq. 5, metres
-  double max_sigma_theta = 0.35;  // sigma_theta of eq. 5, radians
+  // features a local map may hold (map capacity, Section I-A)
+  int map_capacity = MapperDefaults().local_map.capacity;
+  // juvenile + mature hypotheses alive at once
+  int max_hypotheses = MapperDefaults().atlas.max_hypotheses;
+  // steps a juvenile hypothesis has to mature (Section III-E)
+  int probation_steps = MapperDefaults().atlas.lifecycle.probation_scans;
+  // hysteresis of the dominant hypothesis's q (Section III-B)
+  double switch_margin = MapperDefaults().atlas.lifecycle.switch_margin;
+  // alpha and the sigmas (metres, metres, radians) of the quality metric q, eq. 5
+  double quality_alpha = MapperDefaults().atlas.quality.alpha;
+  double max_sigma_x = MapperDefaults().atlas.quality.sigma_x;
+  double max_sigma_y = MapperDefaults().atlas.quality.sigma_y;
+  double max_sigma_theta = MapperDefaults().atlas.quality.sigma_theta;
   // Work budget: frames the bounded Dijkstra projection settles per step, nearest first; the
   // candidates for traversal and map-matching come from them (4 left loops of more than 3
   // frames unclosed).
-  int frames_examined_per_step = 24;
-  int match_candidates_per_step = 2;  // work budget: map-matching candidates per step
+  int frames_examined_per_step = MapperDefaults().atlas.projection_max_frames;
+  // work budget: map-matching candidates per step
+  int match_candidates_per_step = MapperDefaults().atlas.match_candidates_per_step;
 };
 
 // LCM channel names (at most 63 characters, no whitespace, all different).
@@ -171,8 +207,11 @@ struct LcmOptions {
 };
 
 struct LoopOptions {
-  double step_budget_ms = 10.0;  // fixed work budget of one atlas step
-  int max_pending_scans = 2;     // older scans are dropped (and counted) beyond this
+  // fixed work budget of one atlas step
+  double step_budget_ms =
+      std::chrono::duration<double, std::milli>(StepLoopDefaults().step_budget).count();
+  // older scans are dropped (and counted) beyond this
+  int max_pending_scans = StepLoopDefaults().max_pending_scans;
 };
 
 struct StateOptions {

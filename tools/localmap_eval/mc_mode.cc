@@ -71,7 +71,7 @@ LocalMapOptions SimFilterOptions(int capacity, const WheelOdometryNoiseOptions& 
                                  const sim::LaserOptions& laser) {
   LocalMapOptions o;
   o.capacity = capacity;
-  o.extraction.range_sigma = laser.range_sigma * kRangeSigmaMargin;
+  mc::UseSimulatedWalls(laser.range_sigma * kRangeSigmaMargin, &o.extraction);
   o.odometry = mc::SimulatedBaseOdometry(wheel);
   return o;
 }

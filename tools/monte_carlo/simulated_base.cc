@@ -19,4 +19,11 @@ OdometryNoiseOptions SimulatedBaseOdometry(const WheelOdometryNoiseOptions& whee
   return o;
 }
 
+void UseSimulatedWalls(double range_sigma, LineExtractionOptions* o) {
+  o->range_sigma = range_sigma;
+  o->model_sigma = 0.0;
+  o->min_rho_sigma = 0.0;
+  o->min_alpha_sigma = 0.0;
+}
+
 }  // namespace atlas::mc

@@ -11,4 +11,9 @@ namespace atlas::mc {
 
 OdometryNoiseOptions SimulatedBaseOdometry(const WheelOdometryNoiseOptions& wheel);
 
+// The line extraction for the simulator's laser (range sigma `range_sigma`, metres): its walls
+// are straight and its noise is the model's, so no wall noise and no floors on the fitted
+// lines (core/localmap's defaults are those of a real building's walls).
+void UseSimulatedWalls(double range_sigma, LineExtractionOptions* o);
+
 }  // namespace atlas::mc

@@ -149,12 +149,12 @@ int Main(int argc, char** argv) {
       "atlas's heading change minus the odometry's, odometry at stamp + offset);\n"
       "the smallest mean is the best offset (also OUT/sweep.tsv). Needs a run\n"
       "with turns. Example: --sweep-laser-time-offset -0.2:0:0.02");
-  cli::AddInteger(
-      app, "--map-capacity", "N", 1, 10000, &map_capacity,
-      "features per map-frame (default " + std::to_string(MapperSettings{}.map_capacity) + ")");
+  cli::AddInteger(app, "--map-capacity", "N", 1, 10000, &map_capacity,
+                  "features per map-frame (default " +
+                      std::to_string(MapperSettings{}.local_map.capacity) + ")");
   cli::AddInteger(
       app, "--max-hypotheses", "N", 1, 1000, &max_hypotheses,
-      "live hypotheses (default " + std::to_string(MapperSettings{}.max_hypotheses) + ")");
+      "live hypotheses (default " + std::to_string(MapperSettings{}.atlas.max_hypotheses) + ")");
   cli::AddFlag(app, "--quiet", &quiet, "no progress on stderr");
   const std::string log_group = "Reading the log";
   cli::AddCarmenLogOptions(app, log_group, &log_options, &corrected);
@@ -178,8 +178,8 @@ int Main(int argc, char** argv) {
   if (max_range_m) options.loop.max_range_m = *max_range_m;
   if (laser_time_offset_s)
     options.loop.laser_time_offset = FromSeconds(*laser_time_offset_s).time_since_epoch();
-  if (map_capacity > 0) options.mapper.map_capacity = map_capacity;
-  if (max_hypotheses > 0) options.mapper.max_hypotheses = max_hypotheses;
+  if (map_capacity > 0) options.mapper.local_map.capacity = map_capacity;
+  if (max_hypotheses > 0) options.mapper.atlas.max_hypotheses = max_hypotheses;
   if (refine) options.refine = MakeRefiner(refine::RefineOptions{});
   auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
   if (log_path.empty()) return Usage("no LOG given");

@@ -174,7 +174,7 @@ struct TraceWriter {
 }  // namespace
 
 int RunAtlasMode(const cli::ToolOptions& args) {
-  const AtlasOptions sonar_defaults = SonarAtlasOptions();
+  const AtlasOptions sonar_defaults = SonarEvalAtlasOptions();
   int ring = 24, seed = 1, rooms = 6, capacity = 10, runs = 1, laser = 1, sonar_w = 1,
       probation = -1;
   double km = 0.4;
@@ -247,7 +247,7 @@ int RunAtlasMode(const cli::ToolOptions& args) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
       return 2;
     }
-    AtlasOptions ao = SonarAtlasOptions();
+    AtlasOptions ao = SonarEvalAtlasOptions();
     ao.lifecycle.probation_scans =
         probation > 0 ? static_cast<int>(probation)
         : sonar_w != 0
@@ -257,7 +257,7 @@ int RunAtlasMode(const cli::ToolOptions& args) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar atlas options: %s\n", e.c_str());
       return 2;
     }
-    const AtlasOptions laser_ao{};
+    const AtlasOptions laser_ao = BaselineAtlasOptions();
     std::shared_ptr<const PoseBootstrapper> sonar_bootstrapper;
     if (sonar_w != 0) sonar_bootstrapper = std::make_shared<SonarMapBootstrapper>();
     Atlas sonar_atlas(

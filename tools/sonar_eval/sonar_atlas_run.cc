@@ -21,7 +21,7 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
   o.sensors = sensors;
   o.ring = sonar.ring;
   o.line_map.capacity = capacity;
-  o.line_map.extraction.range_sigma = 0.01;
+  mc::UseSimulatedWalls(0.01, &o.line_map.extraction);
   o.line_map.odometry = mc::SimulatedBaseOdometry(wheel);
   o.model.range_sigma = sonar.range_sigma;
   o.model.range_sigma_per_m = sonar.range_sigma_per_m;
@@ -36,9 +36,9 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
   return o;
 }
 
-AtlasOptions SonarAtlasOptions() {
-  AtlasOptions o;
-  o.match = SonarMapMatchOptions(o.match);
+AtlasOptions SonarEvalAtlasOptions() {
+  AtlasOptions o = BaselineAtlasOptions();
+  o.match = SonarMapMatchOptions();
   return o;
 }
 

@@ -117,7 +117,7 @@ TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
   const SonarLocalMapOptions mo =
       SimulatedMapOptions(RangeSensors::kSonar, 10, so.odometry_options, so.sonar_options);
   ASSERT_EQ(mo.Validate(), "");
-  AtlasOptions ao = SonarAtlasOptions();
+  AtlasOptions ao = SonarEvalAtlasOptions();
   ao.lifecycle.probation_scans = std::max(ao.lifecycle.probation_scans, kSonarBootstrapProbation);
   Atlas atlas(
       ao, [mo]() { return std::make_unique<SonarLocalMap>(mo); },

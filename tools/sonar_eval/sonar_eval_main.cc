@@ -46,7 +46,7 @@ constexpr char kUsage[] =
     "      --sonar-w 1 (default, as atlasd's localmap.sonar_bootstrap): the sonar atlas with w\n"
     "      (eq. 12; SonarMapBootstrapper); 0: its juveniles keep their seeded pose and trial map.\n"
     "      --probation N: the sonar atlas's lifecycle.probation_scans (default: "
-    "SonarAtlasOptions',\n"
+    "SonarEvalAtlasOptions',\n"
     "      with w at least kSonarBootstrapProbation, as atlasd).\n"
     "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
     "      to a feature is checked against the wall the simulator echoed it from (in-cone and\n"
