@@ -30,9 +30,12 @@ std::vector<sim::Wall> RoomWithCrossWall() {
   return w;
 }
 
+// Frames longer than the default extent, with the fake scanner's odometry noise (its walls are
+// straight, its base small and well calibrated).
 GridLocalMapOptions LongFrames() {
   GridLocalMapOptions o;
   o.max_extent = 100.0;
+  o.odometry = FakeWallMapOptions().odometry;
   return o;
 }
 
