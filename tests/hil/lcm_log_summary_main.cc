@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "atlas/health_t.hpp"
+#include "atlas/laser_scan_t.hpp"
 #include "atlas/pose_t.hpp"
 #include "formats/text_rows.h"
 #include "formats/trajectory_tsv.h"
@@ -26,8 +27,10 @@ constexpr const char* kDescription =
   health.count, health.laser_fault_seen (a status with LASER FAULT), health.last_steps,
   health.max_overruns, health.dropped_scans, health.version (atlasd's, in the last message),
   health.<driver>.<counter> (last value: bad_crc garbage_bytes truncated discontinuities
-                             disconnects reconnects), health.<driver>.states (states seen, in order)
-  undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH events that did not decode (left out)
+                             disconnects reconnects messages bad_messages queue_drops),
+  health.<driver>.states (states seen, in order)
+  undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH (and --scans' channel) events that did not
+                            decode (left out)
   log                       complete, truncated or corrupt)";
 
 constexpr const char* kFooter =
@@ -39,14 +42,21 @@ says what is wrong and where), or FILE cannot be written; 2 on a usage error.
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string log_path, poses_path, trajectory_path;
+  std::string log_path, poses_path, trajectory_path, scans_path, scan_channel = "ATLAS_RAW_LASER";
   atlas::cli::CommandLine command_line(
-      "atlas-lcm-log-summary", {"atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE]"},
+      "atlas-lcm-log-summary",
+      {"atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE] [--scans FILE]"},
       kDescription, kFooter);
   CLI::App& app = command_line.app();
   atlas::cli::AddPositional(app, "LOGFILE", &log_path, "an lcm-logger file");
   atlas::cli::AddText(app, "--poses", "FILE", &poses_path,
-                      "write the poses received: \"t x y theta frame q\" (t: utime in seconds)");
+                      "write the poses received: \"t x y theta frame q r\" (t: utime in seconds,\n"
+                      "r: the logger's receive time in seconds)");
+  atlas::cli::AddText(app, "--scans", "FILE", &scans_path,
+                      "write the laser scans (atlas.laser_scan_t) received on --scan-channel:\n"
+                      "\"r t\" (r: the logger's receive time, t: utime, in seconds)");
+  atlas::cli::AddText(app, "--scan-channel", "NAME", &scan_channel,
+                      "the channel of --scans (default ATLAS_RAW_LASER)");
   atlas::cli::AddText(app, "--trajectory", "FILE", &trajectory_path,
                       "write the poses received with a frame as a replay's trajectory.tsv\n"
                       "(docs/formats.md): \"timestamp frame x y theta\"");
@@ -62,6 +72,12 @@ int main(int argc, char** argv) {
   if (!poses_path.empty() && (poses = std::fopen(poses_path.c_str(), "w")) == nullptr) {
     std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the poses file %s (%s)\n",
                  poses_path.c_str(), std::strerror(errno));
+    return 1;
+  }
+  FILE* scans = nullptr;
+  if (!scans_path.empty() && (scans = std::fopen(scans_path.c_str(), "w")) == nullptr) {
+    std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the scans file %s (%s)\n",
+                 scans_path.c_str(), std::strerror(errno));
     return 1;
   }
   std::map<std::string, int64_t> events;
@@ -82,8 +98,8 @@ int main(int argc, char** argv) {
       if (last_pose_ts >= 0) max_gap = std::max(max_gap, (e.timestamp - last_pose_ts) * 1e-6);
       last_pose_ts = e.timestamp;
       if (poses)
-        std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f\n", p.utime * 1e-6, p.x, p.y, p.theta,
-                     p.frame_id, p.q);
+        std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f %.6f\n", p.utime * 1e-6, p.x, p.y, p.theta,
+                     p.frame_id, p.q, e.timestamp * 1e-6);
       if (!trajectory_path.empty() && p.frame_id >= 0) {
         // Two scans read in one burst carry the burst's arrival stamp; trajectory.tsv holds one
         // pose per stamp (docs/formats.md): the later estimate stands.
@@ -94,6 +110,10 @@ int main(int argc, char** argv) {
         else
           trajectory.push_back(row);
       }
+    } else if (scans != nullptr && e.channel == scan_channel) {
+      atlas::laser_scan_t m{};
+      if (!log.Decode(e, &m)) continue;
+      std::fprintf(scans, "%.6f %.6f\n", e.timestamp * 1e-6, m.utime * 1e-6);
     } else if (e.channel == "ATLAS_HEALTH") {
       atlas::health_t h{};
       if (!log.Decode(e, &h)) continue;
@@ -120,6 +140,14 @@ int main(int argc, char** argv) {
       rc = 1;
     }
   }
+  if (scans != nullptr) {
+    const bool ok = !std::ferror(scans);
+    if (std::fclose(scans) != 0 || !ok) {
+      std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the scans file %s (%s)\n",
+                   scans_path.c_str(), std::strerror(errno));
+      rc = 1;
+    }
+  }
   if (!trajectory_path.empty()) {
     const std::string e = atlas::formats::WriteTextFile(
         trajectory_path,
@@ -143,9 +171,10 @@ int main(int argc, char** argv) {
     std::printf("health.%s.bad_crc=%" PRId64 "\nhealth.%s.garbage_bytes=%" PRId64
                 "\nhealth.%s.truncated=%" PRId64 "\nhealth.%s.discontinuities=%" PRId64
                 "\nhealth.%s.disconnects=%" PRId64 "\nhealth.%s.reconnects=%" PRId64
-                "\nhealth.%s.messages=%" PRId64 "\n",
+                "\nhealth.%s.messages=%" PRId64 "\nhealth.%s.bad_messages=%" PRId64
+                "\nhealth.%s.queue_drops=%" PRId64 "\n",
                 n, d.bad_crc, n, d.garbage_bytes, n, d.truncated, n, d.discontinuities, n,
-                d.disconnects, n, d.reconnects, n, d.messages);
+                d.disconnects, n, d.reconnects, n, d.messages, n, d.bad_messages, n, d.queue_drops);
   }
   for (const auto& [n, s] : states) std::printf("health.%s.states=%s\n", n.c_str(), s.c_str());
   for (const auto& [c, n] : log.undecodable())
