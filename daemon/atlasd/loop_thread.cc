@@ -68,7 +68,13 @@ bool LoopThread::Start(Time start) {
                                        "\" (is there a multicast route? see docs/atlasd.md)");
     return false;
   }
-  publisher_ = std::make_unique<AtlasPublisher>(lcm_.get(), options_.lcm.channels);
+  // The messages' utime is microseconds since the epoch; said once, so that a stamp of atlasd's
+  // monotonic clock (logs, the store) can be lined up with them.
+  const EpochClock epoch = EpochClock::Capture();
+  std::fprintf(stderr,
+               "atlasd: LCM utime = CLOCK_MONOTONIC + %lld us (microseconds since the epoch)\n",
+               static_cast<long long>(epoch.offset_us()));
+  publisher_ = std::make_unique<AtlasPublisher>(lcm_.get(), options_.lcm.channels, epoch);
   sink_ = std::make_unique<LcmSink>(publisher_.get(), options_.lcm);
   republish_raw_ = options_.lcm.republish_raw;
   atlas_ = MakeAtlas(ToMapperSettings(options_));

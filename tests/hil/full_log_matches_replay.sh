@@ -11,9 +11,10 @@
 # width stays atlasd's default 0.58 m, the fake base's: the CAN wheel counters must be decoded
 # with the width they were encoded with.
 #
-# Live stamps are this machine's monotonic arrival times. atlas-fakedev prints its clock
-# mapping ("playing: log_start L monotonic_start M speed S"): a live stamp t is log time
-# L + (t - M) * S, plus the delivery delay (the fake's and the driver's scheduling, times S:
+# Live stamps are this machine's monotonic arrival times, published as microseconds since the
+# epoch: atlasd prints the offset ("LCM utime = CLOCK_MONOTONIC + O us"), and a pose's utime u is
+# the monotonic stamp t = u - O. atlas-fakedev prints its clock mapping ("playing: log_start L
+# monotonic_start M speed S"): a live stamp t is log time L + (t - M) * S, plus the delivery delay (the fake's and the driver's scheduling, times S:
 # usually well under 1 ms of log time, tens of ms on a loaded machine). Each live pose is given
 # the stamp of the next log scan in order that was sent before it arrived (5 ms of clock
 # slack); if that one is more than 250 ms of log time old, scans were lost, and the last scan
@@ -74,13 +75,15 @@ stop_logger
 read -r L M S < <(sed -nE 's/^playing: log_start ([0-9.e+-]+) monotonic_start ([0-9.e+-]+) speed ([0-9.e+-]+)$/\1 \2 \3/p' \
   "$WORK/fakedev.out")
 [ -n "${S:-}" ] || fail "atlas-fakedev printed no clock mapping"
+O=$(sed -nE 's/^atlasd: LCM utime = CLOCK_MONOTONIC \+ (-?[0-9]+) us.*/\1/p' "$WORK/atlasd.err")
+[ -n "$O" ] || fail "atlasd printed no epoch offset"
 # live poses "t x y theta frame q" -> trajectory.tsv "stamp frame x y theta" on the scan stamps
 # of the replay's timing.tsv ("step timestamp ...").
-awk -v L="$L" -v M="$M" -v S="$S" -v out="$WORK/live/trajectory.tsv" -v stats="$WORK/mapping.txt" '
+awk -v L="$L" -v M="$M" -v S="$S" -v O="$O" -v out="$WORK/live/trajectory.tsv" -v stats="$WORK/mapping.txt" '
   BEGIN { last = -1 }
   NR == FNR { if ($1 !~ /^#/) stamp[n++] = $2; next }
   $1 !~ /^#/ {
-    t = L + ($1 - M) * S + 0.005
+    t = L + ($1 - O * 1e-6 - M) * S + 0.005
     while (j < n && stamp[j] <= t) j++
     k = last + 1  # the next scan, if it was sent before this pose arrived
     if (k >= j || t - stamp[k] > 0.25) k = j - 1  # else the last one sent (scans lost)

@@ -39,6 +39,16 @@ events that do not decode (the lines above are then printed for the events read,
 says what is wrong and where), or FILE cannot be written; 2 on a usage error.
 )";
 
+// Microseconds as seconds with six decimals, exactly (a utime since the epoch has 16 digits,
+// at the limit of a double's).
+std::string Seconds(int64_t us) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%s%lld.%06lld", us < 0 ? "-" : "",
+                static_cast<long long>((us < 0 ? -us : us) / 1000000),
+                static_cast<long long>((us < 0 ? -us : us) % 1000000));
+  return b;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -98,8 +108,8 @@ int main(int argc, char** argv) {
       if (last_pose_ts >= 0) max_gap = std::max(max_gap, (e.timestamp - last_pose_ts) * 1e-6);
       last_pose_ts = e.timestamp;
       if (poses)
-        std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f %.6f\n", p.utime * 1e-6, p.x, p.y, p.theta,
-                     p.frame_id, p.q, e.timestamp * 1e-6);
+        std::fprintf(poses, "%s %.6f %.6f %.6f %d %.4f %s\n", Seconds(p.utime).c_str(), p.x, p.y,
+                     p.theta, p.frame_id, p.q, Seconds(e.timestamp).c_str());
       if (!trajectory_path.empty() && p.frame_id >= 0) {
         // Two scans read in one burst carry the burst's arrival stamp; trajectory.tsv holds one
         // pose per stamp (docs/formats.md): the later estimate stands.
@@ -113,7 +123,7 @@ int main(int argc, char** argv) {
     } else if (scans != nullptr && e.channel == scan_channel) {
       atlas::laser_scan_t m{};
       if (!log.Decode(e, &m)) continue;
-      std::fprintf(scans, "%.6f %.6f\n", e.timestamp * 1e-6, m.utime * 1e-6);
+      std::fprintf(scans, "%s %s\n", Seconds(e.timestamp).c_str(), Seconds(m.utime).c_str());
     } else if (e.channel == "ATLAS_HEALTH") {
       atlas::health_t h{};
       if (!log.Decode(e, &h)) continue;
