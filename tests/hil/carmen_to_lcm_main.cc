@@ -2,6 +2,7 @@
 // hardware-in-loop test of the LCM input (tests/hil/lcm_input_matches_replay.sh). See --help.
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 #include <limits>
@@ -9,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "bot_core/planar_lidar_t.hpp"
+#include "bot_core/pose_t.hpp"
 #include "daemon/lcm_out/lcm_convert.h"
 #include "drivers/fake/playback.h"
 #include "tools/cli/command_line.h"
@@ -17,10 +20,11 @@ namespace {
 
 constexpr const char* kDescription =
     R"(Writes the scans of a CARMEN log as atlas.laser_scan_t and its odometry as atlas.odometry_t
-into an lcm-logger file, each event at its log time (utime and event timestamp: the log's stamp
-in microseconds), for lcm-logplayer. The odometry is the log's, linearly interpolated at
---odometry-rate-hz, as a base reports it (the fake AgileX base of atlas-fakedev sends 50 Hz), or
-the log's own samples with 0.)";
+(--types atlas), or as libbot's bot_core.planar_lidar_t and bot_core.pose_t (--types bot_core:
+the scanner's mount is then not in the messages), into an lcm-logger file, each event at its log
+time (utime and event timestamp: the log's stamp in microseconds), for lcm-logplayer. The
+odometry is the log's, linearly interpolated at --odometry-rate-hz, as a base reports it (the
+fake AgileX base of atlas-fakedev sends 50 Hz), or the log's own samples with 0.)";
 
 constexpr const char* kFooter =
     R"(Prints "scans=N odometry=M first_s=T0 last_s=T1" on stdout. Exit 0; 1 when the log cannot be
@@ -40,10 +44,31 @@ Event Encode(atlas::Time stamp, const std::string& channel, const M& m) {
   return e;
 }
 
+bot_core::planar_lidar_t ToPlanarLidar(const atlas::LaserScan& s) {
+  bot_core::planar_lidar_t m{};
+  m.utime = atlas::ToUtime(s.stamp);
+  m.nranges = static_cast<int32_t>(s.ranges.size());
+  m.ranges = s.ranges;
+  m.nintensities = 0;
+  m.rad0 = s.angle_min;
+  m.radstep = s.angle_increment;
+  return m;
+}
+
+bot_core::pose_t ToBotPose(atlas::Time t, const atlas::Pose2& p) {
+  bot_core::pose_t m{};
+  m.utime = atlas::ToUtime(t);
+  m.pos[0] = p.x;
+  m.pos[1] = p.y;
+  m.orientation[0] = std::cos(p.theta / 2);
+  m.orientation[3] = std::sin(p.theta / 2);
+  return m;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string log_path, out_path, laser_channel = "ATLAS_RAW_LASER",
+  std::string log_path, out_path, types = "atlas", laser_channel = "ATLAS_RAW_LASER",
                                   odometry_channel = "ATLAS_RAW_ODOMETRY";
   int64_t max_scans = 0;
   double odometry_rate_hz = 50.0;
@@ -57,6 +82,8 @@ int main(int argc, char** argv) {
                          &max_scans, "only the first N scans (default 0: all)");
   atlas::cli::AddNumber(app, "--odometry-rate-hz", "HZ", 0, 1000, &odometry_rate_hz,
                         "odometry samples per second of log time, 0: the log's own (default 50)");
+  atlas::cli::AddChoice(app, "--types", "TYPES", {"atlas", "bot_core"}, &types,
+                        "the message types: atlas or bot_core (default atlas)");
   atlas::cli::AddText(app, "--laser-channel", "NAME", &laser_channel,
                       "channel of the scans (default ATLAS_RAW_LASER)");
   atlas::cli::AddText(app, "--odometry-channel", "NAME", &odometry_channel,
@@ -72,14 +99,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::vector<Event> events;
-  for (const atlas::LaserScan& s : rec.scans)
-    events.push_back(Encode(s.stamp, laser_channel, atlas::ToLaserMessage(s)));
+  const bool bot_core = types == "bot_core";
+  for (const atlas::LaserScan& s : rec.scans) {
+    events.push_back(bot_core ? Encode(s.stamp, laser_channel, ToPlanarLidar(s))
+                              : Encode(s.stamp, laser_channel, atlas::ToLaserMessage(s)));
+  }
   size_t odometry = 0;
   const auto add_odometry = [&](atlas::Time t, const atlas::Pose2& pose) {
     atlas::OdometrySample o;
     o.stamp = t;
     o.pose = pose;
-    events.push_back(Encode(t, odometry_channel, atlas::ToOdometryMessage(o)));
+    events.push_back(bot_core ? Encode(t, odometry_channel, ToBotPose(t, pose))
+                              : Encode(t, odometry_channel, atlas::ToOdometryMessage(o)));
     ++odometry;
   };
   if (odometry_rate_hz > 0) {

@@ -13,6 +13,7 @@
 #include "atlas/health_t.hpp"
 #include "atlas/laser_scan_t.hpp"
 #include "atlas/pose_t.hpp"
+#include "bot_core/planar_lidar_t.hpp"
 #include "formats/text_rows.h"
 #include "formats/trajectory_tsv.h"
 #include "logs/lcm/lcm_log_reader.h"
@@ -63,7 +64,8 @@ int main(int argc, char** argv) {
                       "write the poses received: \"t x y theta frame q r\" (t: utime in seconds,\n"
                       "r: the logger's receive time in seconds)");
   atlas::cli::AddText(app, "--scans", "FILE", &scans_path,
-                      "write the laser scans (atlas.laser_scan_t) received on --scan-channel:\n"
+                      "write the laser scans (atlas.laser_scan_t or bot_core.planar_lidar_t)\n"
+                      "received on --scan-channel:\n"
                       "\"r t\" (r: the logger's receive time, t: utime, in seconds)");
   atlas::cli::AddText(app, "--scan-channel", "NAME", &scan_channel,
                       "the channel of --scans (default ATLAS_RAW_LASER)");
@@ -121,9 +123,19 @@ int main(int argc, char** argv) {
           trajectory.push_back(row);
       }
     } else if (scans != nullptr && e.channel == scan_channel) {
+      // atlas.laser_scan_t, else bot_core.planar_lidar_t (counted when neither).
       atlas::laser_scan_t m{};
-      if (!log.Decode(e, &m)) continue;
-      std::fprintf(scans, "%s %s\n", Seconds(e.timestamp).c_str(), Seconds(m.utime).c_str());
+      bot_core::planar_lidar_t b{};
+      const int size = static_cast<int>(e.data.size());
+      int64_t utime = 0;
+      if (m.decode(e.data.data(), 0, size) >= 0) {
+        utime = m.utime;
+      } else if (log.Decode(e, &b)) {
+        utime = b.utime;
+      } else {
+        continue;
+      }
+      std::fprintf(scans, "%s %s\n", Seconds(e.timestamp).c_str(), Seconds(utime).c_str());
     } else if (e.channel == "ATLAS_HEALTH") {
       atlas::health_t h{};
       if (!log.Decode(e, &h)) continue;
