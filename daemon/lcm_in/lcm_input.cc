@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <span>
 
 namespace atlas {
@@ -82,8 +83,9 @@ void LcmInput::Input::CheckSilence(Time now) {
   Say(delivered_ ? log_.Stalled(why) : log_.Condition(LogPriority::kWarning, why));
 }
 
-void LcmInput::Input::Failed(const std::string& error) {
+void LcmInput::Input::Failed(const std::string& error, std::optional<DriverState> state) {
   health_.SetError(error);
+  if (state) health_.SetState(*state);
   Say(log_.Condition(LogPriority::kErr, error));
 }
 
@@ -127,7 +129,17 @@ bool LcmInput::Start(std::string* error) {
   lcm_->subscribe(options_.odometry_channel, &LcmInput::OnOdometry, this);
   odometry_.Subscribed(now);
   stop_.store(false, std::memory_order_release);
-  thread_ = std::thread([this] { Run(); });
+  thread_ = std::thread([this] {
+    // Nothing a message holds throws; what is left (out of memory) stops the input, said in
+    // its health, instead of terminating atlasd.
+    try {
+      Run();
+    } catch (const std::exception& e) {
+      const std::string why = std::string("the LCM input stopped: ") + e.what();
+      if (options_.laser_enabled) laser_.Failed(why, DriverState::kFailed);
+      odometry_.Failed(why, DriverState::kFailed);
+    }
+  });
   return true;
 }
 

@@ -9,12 +9,14 @@
 // kRunning; kStalled ("no message on CHANNEL for N s") after stall_timeout without a message,
 // kRunning again at the next one. A message that does not decode is counted (bad_messages),
 // its reason is last_error and is said once per change; it never stops the input. A failed
-// LCM handle is said and retried after a pause.
+// LCM handle is said and retried after a pause; an exception (out of memory) ends the thread
+// with both inputs kFailed.
 
 #include <atomic>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -77,7 +79,8 @@ class LcmInput {
     // A message came at `now`; `error` is empty when it decoded.
     void Received(Time now, size_t bytes, const std::string& error);
     void CheckSilence(Time now);
-    void Failed(const std::string& error);
+    // Said once per text; `state`, when given, becomes the input's state.
+    void Failed(const std::string& error, std::optional<DriverState> state = std::nullopt);
     void Stopped();
     DriverHealth Health(uint64_t drops) const;
 
