@@ -14,7 +14,8 @@ public class AtlasSpyDemoPublisher {
     LCM lcm = LCM.getSingleton();
     long start = System.nanoTime();
     for (int step = 0; (System.nanoTime() - start) / 1e9 < seconds; ++step) {
-      long utime = (System.nanoTime() - start) / 1000;
+      long uptime = (System.nanoTime() - start) / 1000;
+      long utime = System.currentTimeMillis() * 1000;  // microseconds since the epoch, as atlasd
       double t = step * 0.1;
 
       pose_t pose = new pose_t();
@@ -118,7 +119,7 @@ public class AtlasSpyDemoPublisher {
 
         health_t health = new health_t();
         health.utime = utime;
-        health.uptime_us = utime;
+        health.uptime_us = uptime;
         health.steps = step;
         health.period_steps = 10;
         health.step_time_min_us = 210;

@@ -12,6 +12,11 @@ int ReaderPriority(const DaemonOptions& o) {
   return o.scheduling.policy == SchedPolicy::kOther ? 0 : o.scheduling.priority;
 }
 
+// The scanner on the robot (laser.mount).
+Pose2 LaserMount(const DaemonOptions& o) {
+  return Pose2{o.laser.mount.x_m, o.laser.mount.y_m, o.laser.mount.theta_deg * kDegToRad};
+}
+
 }  // namespace
 
 LaserReaderOptions ToLaserReaderOptions(const DaemonOptions& o) {
@@ -21,7 +26,7 @@ LaserReaderOptions ToLaserReaderOptions(const DaemonOptions& o) {
   l.angle_deg = static_cast<uint16_t>(o.laser.angular_range_deg);
   l.resolution_centideg = static_cast<uint16_t>(std::lround(o.laser.angular_resolution_deg * 100));
   l.unit = o.laser.unit;
-  l.sensor_pose = Pose2{o.laser.mount.x_m, o.laser.mount.y_m, o.laser.mount.theta_deg * kDegToRad};
+  l.sensor_pose = LaserMount(o);
   l.queue_capacity = static_cast<size_t>(o.laser.queue_capacity);
   l.reconnect.realtime_priority = ReaderPriority(o);
   return l;
@@ -54,12 +59,32 @@ SonarReaderOptions ToSonarReaderOptions(const DaemonOptions& o) {
   return s;
 }
 
+LcmInputOptions ToLcmInputOptions(const DaemonOptions& o) {
+  LcmInputOptions i;
+  i.url = o.lcm.url;
+  i.laser_enabled = o.laser.enabled;
+  i.laser_type = o.input.laser_type;
+  i.odometry_type = o.input.odometry_type;
+  i.laser_channel = o.input.laser_channel;
+  i.odometry_channel = o.input.odometry_channel;
+  i.laser.sensor_pose = LaserMount(o);
+  i.laser.max_range = static_cast<float>(o.laser.max_range_m);
+  i.laser_queue_capacity = static_cast<size_t>(o.laser.queue_capacity);
+  i.odometry_queue_capacity = static_cast<size_t>(o.odometry.queue_capacity);
+  i.realtime_priority = ReaderPriority(o);
+  return i;
+}
+
 std::string ValidateDerivedOptions(const DaemonOptions& o) {
   std::string out;
   auto add = [&out](const char* what, const std::string& e) {
     if (!e.empty()) out += std::string(what) + ": " + e + "\n";
   };
   out += ValidateMapperOptions(o);
+  if (o.input.source == InputSource::kLcm) {
+    add("input", ToLcmInputOptions(o).Validate());
+    return out;
+  }
   if (o.laser.enabled) add("laser", ToLaserReaderOptions(o).Validate());
   add("odometry", ToOdometryReaderOptions(o).Validate());
   if (o.sonar.enabled) add("sonar", ToSonarReaderOptions(o).Validate());

@@ -23,14 +23,43 @@ TEST(DaemonSetup, DriverThreadsFollowTheLoopsRealTimePriority) {
   EXPECT_EQ(ToLaserReaderOptions(o).reconnect.realtime_priority, 0);
   EXPECT_EQ(ToOdometryReaderOptions(o).reconnect.realtime_priority, 0);
   EXPECT_EQ(ToSonarReaderOptions(o).reconnect.realtime_priority, 0);
+  EXPECT_EQ(ToLcmInputOptions(o).realtime_priority, 0);
   for (SchedPolicy policy : {SchedPolicy::kFifo, SchedPolicy::kRoundRobin}) {
     o.scheduling.policy = policy;
     o.scheduling.priority = 37;
     EXPECT_EQ(ToLaserReaderOptions(o).reconnect.realtime_priority, 37);
     EXPECT_EQ(ToOdometryReaderOptions(o).reconnect.realtime_priority, 37);
     EXPECT_EQ(ToSonarReaderOptions(o).reconnect.realtime_priority, 37);
+    EXPECT_EQ(ToLcmInputOptions(o).realtime_priority, 37);
   }
   EXPECT_EQ(ValidateDerivedOptions(o), "");
+}
+
+// input.source = "lcm": the subscriber gets lcm.url, the [input] keys and what the laser
+// messages of libbot do not carry (the mount, the maximum range), and no device is checked.
+TEST(DaemonSetup, LcmInputTakesTheInputKeysAndTheLasersMount) {
+  DaemonOptions o;
+  o.input.source = InputSource::kLcm;
+  o.input.laser_type = InputLaserType::kPlanarLidar;
+  o.input.odometry_channel = "POSE";
+  o.lcm.url = "udpm://239.255.76.67:7667?ttl=1";
+  o.laser.mount = MountPose{0.2, -0.1, 90.0};
+  o.laser.max_range_m = 30.0;
+  o.laser.queue_capacity = 5;
+  o.odometry.queue_capacity = 7;
+  const LcmInputOptions i = ToLcmInputOptions(o);
+  EXPECT_EQ(i.url, o.lcm.url);
+  EXPECT_EQ(i.laser_type, InputLaserType::kPlanarLidar);
+  EXPECT_EQ(i.laser_channel, "ATLAS_RAW_LASER");
+  EXPECT_EQ(i.odometry_channel, "POSE");
+  EXPECT_EQ(i.laser.sensor_pose.x, 0.2);
+  EXPECT_NEAR(i.laser.sensor_pose.theta, M_PI / 2, 1e-12);
+  EXPECT_EQ(i.laser.max_range, 30.0f);
+  EXPECT_EQ(i.laser_queue_capacity, 5u);
+  EXPECT_EQ(i.odometry_queue_capacity, 7u);
+  EXPECT_EQ(ValidateDerivedOptions(o), "");
+  o.laser.enabled = false;
+  EXPECT_FALSE(ToLcmInputOptions(o).laser_enabled);
 }
 
 // Every shipped configuration file passes the checks atlasd makes, the device readers' included.
@@ -104,10 +133,12 @@ class RangeEnd {
 
 // The configuration file's ranges (config_schema.h) lie within what the options derived from
 // them accept: a file that --check-config passes does not fail the atlas, local maps, step loop
-// or device readers at start-up. Each end of each range, alone, on a laser, a sonar and a
-// laser+sonar configuration (the sonar options are checked only with the sonar enabled).
+// or device readers at start-up. Each end of each range, alone, on a laser, a sonar, a
+// laser+sonar and an LCM input configuration (the sonar options are checked only with the sonar
+// enabled).
 TEST(DaemonSetup, EveryEndOfEveryConfigRangePassesTheDerivedOptions) {
-  std::vector<DaemonOptions> bases(3);
+  std::vector<DaemonOptions> bases(4);
+  bases[3].input.source = InputSource::kLcm;
   bases[1].sonar.enabled = true;
   bases[1].localmap.sensors = RangeSensors::kSonar;
   bases[2].sonar.enabled = true;
@@ -126,7 +157,7 @@ TEST(DaemonSetup, EveryEndOfEveryConfigRangePassesTheDerivedOptions) {
           << end.key << " = " << FlattenOptions(o).at(end.key) << " passes the schema";
     }
   }
-  EXPECT_GT(checked, 3 * 100);
+  EXPECT_GT(checked, 4 * 100);
   // What the audit found: the schema allowed 1 for both, the atlas needs 2.
   DaemonOptions o;
   o.atlas.max_hypotheses = 1;

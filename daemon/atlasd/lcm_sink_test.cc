@@ -48,7 +48,7 @@ class LcmSinkTest : public ::testing::Test {
 TEST_F(LcmSinkTest, ReferencePoseEqualsThePoseInTheReferenceFrame) {
   TestWorld w;
   Atlas atlas(TestWorld::Options(), w.Factory(), nullptr);
-  AtlasPublisher publisher(&lcm_, options_.channels);
+  AtlasPublisher publisher(&lcm_, options_.channels, EpochClock());
   options_.graph_period_s = 0;  // re-projected after every step: compared with a fresh projection
   LcmSink sink(&publisher, options_);  // reference_frame 0
   Step(&sink, &atlas, 1.0);            // the first step: no projection kept before its pose
@@ -104,7 +104,7 @@ TEST_F(LcmSinkTest, AnotherReferenceFrameAndOneTheAtlasDoesNotHave) {
   const DominantOutput d = atlas.Dominant();
   ASSERT_TRUE(d.valid);
   ASSERT_GT(d.frame, 0);
-  AtlasPublisher publisher(&lcm_, options_.channels);
+  AtlasPublisher publisher(&lcm_, options_.channels, EpochClock());
   LcmOptions anchored = options_;
   anchored.reference_frame = d.frame;
   LcmSink sink(&publisher, anchored);

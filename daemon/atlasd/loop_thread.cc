@@ -68,7 +68,13 @@ bool LoopThread::Start(Time start) {
                                        "\" (is there a multicast route? see docs/atlasd.md)");
     return false;
   }
-  publisher_ = std::make_unique<AtlasPublisher>(lcm_.get(), options_.lcm.channels);
+  // The messages' utime is microseconds since the epoch; said once, so that a stamp of atlasd's
+  // monotonic clock (logs, the store) can be lined up with them.
+  const EpochClock epoch = EpochClock::Capture();
+  std::fprintf(stderr,
+               "atlasd: LCM utime = CLOCK_MONOTONIC + %lld us (microseconds since the epoch)\n",
+               static_cast<long long>(epoch.offset_us()));
+  publisher_ = std::make_unique<AtlasPublisher>(lcm_.get(), options_.lcm.channels, epoch);
   sink_ = std::make_unique<LcmSink>(publisher_.get(), options_.lcm);
   republish_raw_ = options_.lcm.republish_raw;
   atlas_ = MakeAtlas(ToMapperSettings(options_));
@@ -82,6 +88,7 @@ bool LoopThread::Start(Time start) {
 
   // Each driver's state changes, once each, with their reason (DriverLog).
   const DriverLogSink log = [](const DriverLogLine& l) { LogToStderr(l.priority, l.text); };
+  if (options_.input.source == InputSource::kLcm) return StartLcmInput(log);
   OdometryReaderOptions oo = ToOdometryReaderOptions(options_);
   oo.reconnect.log = log;
   odometry_ = std::make_unique<OdometryReader>(oo);
@@ -107,8 +114,35 @@ bool LoopThread::Start(Time start) {
   return true;
 }
 
+// input.source = "lcm": the LCM input in place of the device readers.
+bool LoopThread::StartLcmInput(const DriverLogSink& log) {
+  LcmInputOptions io = ToLcmInputOptions(options_);
+  io.on_scan = [this] { shared_->SignalRange(); };
+  io.log = log;
+  lcm_input_ = std::make_unique<LcmInput>(io);
+  std::string error;
+  if (!lcm_input_->Start(&error)) {
+    LogToStderr(LogPriority::kErr, error + " (is there a multicast route? see docs/atlasd.md)");
+    return false;
+  }
+  drain_ =
+      std::make_unique<InputDrain>(&lcm_input_->odometry_queue(), nullptr,
+                                   options_.laser.enabled ? &lcm_input_->laser_queue() : nullptr);
+  return true;
+}
+
 std::vector<DriverEntry> LoopThread::Drivers() const {
   std::vector<DriverEntry> d;
+  if (lcm_input_) {
+    const auto entry = [](const char* name, const DriverHealth& h, const auto& queue) {
+      return DriverEntry{name, h, static_cast<int>(queue.SizeApprox()),
+                         static_cast<int>(queue.capacity())};
+    };
+    if (options_.laser.enabled)
+      d.push_back(entry("laser", lcm_input_->LaserHealth(), lcm_input_->laser_queue()));
+    d.push_back(entry("odometry", lcm_input_->OdometryHealth(), lcm_input_->odometry_queue()));
+    return d;
+  }
   if (laser_)
     d.push_back({"laser", laser_->Health(), static_cast<int>(laser_->queue().SizeApprox()),
                  static_cast<int>(laser_->queue().capacity())});
@@ -270,6 +304,7 @@ void LoopThread::RunSteps() {
 }
 
 void LoopThread::Finish() {
+  if (lcm_input_) lcm_input_->Stop();
   if (laser_) laser_->Stop();
   if (odometry_) odometry_->Stop();
   if (sonar_) sonar_->Stop();

@@ -28,6 +28,7 @@
 #include "daemon/atlasd/input_drain.h"
 #include "daemon/atlasd/lcm_sink.h"
 #include "daemon/atlasd/live_daemon.h"
+#include "daemon/lcm_in/lcm_input.h"
 #include "daemon/lcm_out/atlas_publisher.h"
 #include "daemon/store/atlas_store_writer.h"
 #include "drivers/device/laser_reader.h"
@@ -69,7 +70,8 @@ class LoopThread final : private DrainTarget {
   LoopThread(const DaemonOptions& options, const LiveFlags& flags, LoopShared* shared);
 
   // On the main thread, before Run(): opens LCM, makes the atlas and resumes it from the store,
-  // and starts the device readers. False when LCM cannot be opened (said on stderr).
+  // and starts the device readers, or with input.source = "lcm" the LCM input (no device is
+  // opened). False when LCM cannot be opened (said on stderr).
   bool Start(Time start);
   // The thread's body: the steps until shared->stop, then the last checkpoint. An exception
   // (out of memory) ends it without a checkpoint and sets shared->loop_failed.
@@ -78,10 +80,11 @@ class LoopThread final : private DrainTarget {
   // queued), and prints what was saved and stepped.
   void Finish();
 
-  // The enabled devices' health and queues; from any thread.
+  // The enabled devices' (or LCM inputs') health and queues; from any thread.
   std::vector<DriverEntry> Drivers() const;
 
  private:
+  bool StartLcmInput(const DriverLogSink& log);
   void RunSteps();
   void PublishHealth(Time now);
   void ApplyReload(const DaemonOptions& loaded);
@@ -102,6 +105,7 @@ class LoopThread final : private DrainTarget {
   std::unique_ptr<LaserReader> laser_;
   std::unique_ptr<OdometryReader> odometry_;
   std::unique_ptr<SonarReader> sonar_;
+  std::unique_ptr<LcmInput> lcm_input_;  // input.source = "lcm", instead of the readers
   std::unique_ptr<InputDrain> drain_;
   AtlasStore store_;
   std::unique_ptr<AtlasStoreWriter> writer_;  // null when the store could not be opened

@@ -116,13 +116,14 @@ class LiveDrainTarget final : public DrainTarget {
 // steps on (or, at random, takes the next arrivals first, as a loaded loop does). One scan in
 // five reaches its queue 20 ms after its arrival stamp (a reader preempted before its push), so
 // that a newer reading may be drained, and stepped or still pending, before it.
-LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t seed) {
+LiveRun RunLive(const DaemonOptions& o, const std::string& log_path, uint64_t seed,
+                const EpochClock& epoch) {
   LiveRun run;
   lcm::LCM lcm("memq://");
   EXPECT_TRUE(lcm.good());
   LogRecorder logger(&lcm, log_path);
   EXPECT_TRUE(logger.good());
-  AtlasPublisher publisher(&lcm, o.lcm.channels);
+  AtlasPublisher publisher(&lcm, o.lcm.channels, epoch);
   const MapperSettings settings = ToMapperSettings(o);
   std::unique_ptr<Atlas> atlas = MakeAtlas(settings);
   StepLoop loop(ToStepLoopOptions(o), settings, atlas.get());
@@ -229,7 +230,9 @@ TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
   ASSERT_FALSE(dir.empty()) << std::strerror(errno);
   const DaemonOptions o = SonarSessionOptions(GetParam());
   ASSERT_EQ(ValidateDerivedOptions(o), "");
-  const LiveRun live = RunLive(o, dir + "/session.lcm", 7);
+  // The raw channels carry microseconds since the epoch; the replay steps on them.
+  const EpochClock epoch = EpochClock::Capture();
+  const LiveRun live = RunLive(o, dir + "/session.lcm", 7, epoch);
   const bool both = GetParam() == RangeSensors::kBoth;
   ASSERT_EQ(static_cast<int>(live.rows.size()), live.readings + (both ? live.scans : 0));
   // Live steps in the order added: stamp order, except for the late scans.
@@ -250,12 +253,14 @@ TEST_P(ReplayOfRawSonar, ReproducesTheLiveSteps) {
   for (size_t i = 0; i < live.rows.size(); ++i) {
     const Row& l = live.rows[i];
     SCOPED_TRACE("step " + std::to_string(i));
-    ASSERT_NEAR(replay.timing[i].stamp_s, ToSeconds(l.stamp), 1e-6);
+    // Replayed stamps are the recording's: the live stamps on the epoch clock.
+    const auto live_utime = [&](Time t) { return static_cast<double>(epoch.Utime(t)); };
+    ASSERT_NEAR(replay.timing[i].stamp_s * 1e6, live_utime(l.stamp), 1.0);
     ASSERT_EQ(replay.timing[i].dominant, l.pose.valid ? l.pose.frame : kNoFrame);
     if (!l.pose.valid) continue;
     ASSERT_LT(row, replay.trajectory.size());
     const formats::FramePoseRow& r = replay.trajectory[row++];
-    ASSERT_NEAR(ToSeconds(r.stamp), ToSeconds(l.stamp), 1e-6);
+    ASSERT_NEAR(ToSeconds(r.stamp) * 1e6, live_utime(l.stamp), 1.0);
     ASSERT_EQ(r.frame, l.pose.frame);
     ASSERT_NEAR(r.pose.x, l.pose.pose.mean.x, 1e-6);
     ASSERT_NEAR(r.pose.y, l.pose.pose.mean.y, 1e-6);
@@ -276,7 +281,8 @@ TEST(Replay, SaysWhereABadLogEnds) {
   const std::string dir = MakeTempDir();
   ASSERT_FALSE(dir.empty()) << std::strerror(errno);
   const DaemonOptions o = SonarSessionOptions(RangeSensors::kSonar);
-  const LiveRun live = RunLive(o, dir + "/session.lcm", 7);
+  const EpochClock epoch(0);  // utime on the monotonic clock: the stamps compared as they are
+  const LiveRun live = RunLive(o, dir + "/session.lcm", 7, epoch);
   const std::string bytes = FileText(dir + "/session.lcm");
   const size_t cut = bytes.size() - 5;
   std::ofstream(dir + "/cut.lcm", std::ios::binary) << bytes.substr(0, cut);

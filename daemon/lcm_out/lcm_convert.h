@@ -4,8 +4,10 @@
 // the replay path (daemon/atlasd) turns logged raw messages back into sensor structs with the
 // inverse functions, so that live and replay feed the loop the same data.
 //
-// Times are atlas::Time (monotonic, ns) in, microseconds (utime) out; the raw conversions
-// round-trip exactly at microsecond resolution.
+// Times are atlas::Time (monotonic, ns) in, microseconds (utime) out, on the same clock; the
+// raw conversions round-trip exactly at microsecond resolution. AtlasPublisher makes the utime
+// of what it sends microseconds since the epoch (epoch_clock.h); the From* functions read a
+// recording's utime as its stamp (a replay runs on the recording's clock).
 
 #include <cstdint>
 #include <string>

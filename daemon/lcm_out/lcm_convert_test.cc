@@ -114,12 +114,13 @@ TEST(LcmConvertTest, GraphHypothesesAndPoseDescribeTheAtlas) {
   EXPECT_EQ(m.num_lines, static_cast<int>(m.lines.size()));
 }
 
-TEST(LcmConvertTest, PublisherSendsOnTheConfiguredChannelsOverMemq) {
+TEST(LcmConvertTest, PublisherSendsOnTheConfiguredChannelsWithEpochUtimeOverMemq) {
   lcm::LCM lcm("memq://");
   ASSERT_TRUE(lcm.good());
   LcmChannels channels;
   channels.pose = "TEST_POSE";
-  AtlasPublisher publisher(&lcm, channels);
+  const EpochClock epoch(1796166934000000);
+  AtlasPublisher publisher(&lcm, channels, epoch);
   struct Handler {
     int count = 0;
     atlas::pose_t last{};
@@ -138,7 +139,9 @@ TEST(LcmConvertTest, PublisherSendsOnTheConfiguredChannelsOverMemq) {
   ASSERT_EQ(lcm.handleTimeout(1000), 1);
   EXPECT_EQ(handler.count, 1);
   EXPECT_EQ(handler.last.frame_id, 3);
-  EXPECT_EQ(handler.last.utime, 1500000);
+  // Microseconds since the epoch, and back to the stamp.
+  EXPECT_EQ(handler.last.utime, 1796166934000000 + 1500000);
+  EXPECT_EQ(epoch.Stamp(handler.last.utime), FromSeconds(1.5));
   EXPECT_DOUBLE_EQ(handler.last.q, 0.75);
   EXPECT_EQ(publisher.failures(), 0u);
 }

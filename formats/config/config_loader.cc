@@ -555,6 +555,59 @@ std::string CheckAbsolutePath(const std::string& s) {
   return !s.empty() && s[0] == '/' ? "" : "must be an absolute path, got \"" + s + "\"";
 }
 
+namespace {
+
+// input.source = "lcm": no device is opened; atlasd must not read what it publishes itself.
+template <typename Read>
+void CheckLcmInput(const DaemonOptions& o, const Read& read,
+                   const std::function<void(const std::string&, const std::string&)>& report) {
+  if (!read({"input.source"}) || o.input.source != InputSource::kLcm) return;
+  if (read({"sonar.enabled"}) && o.sonar.enabled) {
+    report("sonar.enabled",
+           "input.source \"lcm\" reads no sonar (laser and odometry only): set sonar.enabled = "
+           "false, or input.source = \"devices\"");
+  }
+  if (read({"input.laser_channel", "input.odometry_channel"}) &&
+      o.input.laser_channel == o.input.odometry_channel) {
+    report("input.odometry_channel", "is the same channel as input.laser_channel");
+  }
+  const LcmChannels& c = o.lcm.channels;
+  const std::pair<const char*, const std::string*> published[] = {
+      {"pose", &c.pose},
+      {"reference_pose", &c.reference_pose},
+      {"local_map", &c.local_map},
+      {"graph", &c.graph},
+      {"hypotheses", &c.hypotheses},
+      {"health", &c.health},
+      {"raw_odometry", &c.raw_odometry},
+      {"raw_laser", &c.raw_laser},
+      {"raw_sonar", &c.raw_sonar}};
+  const std::pair<const char*, const std::string*> inputs[] = {
+      {"input.laser_channel", &o.input.laser_channel},
+      {"input.odometry_channel", &o.input.odometry_channel}};
+  for (const auto& [key, name] : inputs) {
+    for (const auto& [out, channel] : published) {
+      const bool raw = std::string(out).rfind("raw_", 0) == 0;
+      const std::string out_key = std::string("lcm.channels.") + out;
+      if (!read({key, out_key}) || *name != *channel) continue;
+      if (!raw) {
+        report(key, std::string("is ") + out_key +
+                        ", which atlasd publishes on: it would read its own messages; choose "
+                        "another channel");
+      } else if (read({"lcm.republish_raw"}) && o.lcm.republish_raw) {
+        // Named at republish_raw, which the file sets (it is off by default).
+        report("lcm.republish_raw", std::string("republishes what atlasd reads on ") + out_key +
+                                        " (\"" + *channel + "\"), which is " + key +
+                                        ": atlasd would read its own messages; set it to false "
+                                        "or choose another " +
+                                        key);
+      }
+    }
+  }
+}
+
+}  // namespace
+
 void CrossCheck(const DaemonOptions& o,
                 const std::function<void(const std::string&, const std::string&)>& report,
                 const std::function<bool(const std::string&)>& usable) {
@@ -622,6 +675,7 @@ void CrossCheck(const DaemonOptions& o,
       }
     }
   }
+  CheckLcmInput(o, read, report);
 }
 
 }  // namespace config

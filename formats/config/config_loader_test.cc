@@ -185,6 +185,65 @@ TEST(ConfigLoader, CrossFieldRulesNameKeyAndLine) {
                  "lcm.channels.raw_laser", 2, "same channel as lcm.channels.pose");
 }
 
+// [input]: devices or LCM, the message types and channels.
+TEST(ConfigLoader, InputChoosesDevicesOrLcmWithItsTypesAndChannels) {
+  const ConfigResult r = LoadConfigString(
+      "[input]\nsource = \"lcm\"\nlaser_type = \"bot_core.planar_lidar_t\"\n"
+      "odometry_type = \"bot_core.pose_t\"\nlaser_channel = \"SCAN\"\n"
+      "odometry_channel = \"POSE\"\n",
+      "test.toml");
+  ASSERT_TRUE(r.ok()) << r.errors[0].ToString();
+  EXPECT_EQ(r.options.input.source, InputSource::kLcm);
+  EXPECT_EQ(r.options.input.laser_type, InputLaserType::kPlanarLidar);
+  EXPECT_EQ(r.options.input.odometry_type, InputOdometryType::kBotPose);
+  EXPECT_EQ(r.options.input.laser_channel, "SCAN");
+  EXPECT_EQ(r.options.input.odometry_channel, "POSE");
+  EXPECT_EQ(DaemonOptions{}.input.laser_channel, DaemonOptions{}.lcm.channels.raw_laser);
+  EXPECT_EQ(DaemonOptions{}.input.odometry_channel, DaemonOptions{}.lcm.channels.raw_odometry);
+}
+
+TEST(ConfigLoader, BadInputKeysNameTheKeyAndLine) {
+  ExpectOneError(
+      LoadConfigString("[input]\nsource = \"lcm\"\nlaser_type = \"planar_lidar_t\"\n", "test.toml"),
+      "input.laser_type", 3, "\"laser_scan_t\", \"bot_core.planar_lidar_t\"");
+  ExpectOneError(LoadConfigString("[input]\nsource = \"ros\"\n", "test.toml"), "input.source", 2,
+                 "\"devices\", \"lcm\"");
+  ExpectOneError(LoadConfigString("[input]\nodometry_typ = \"odometry_t\"\n", "test.toml"),
+                 "input.odometry_typ", 2, "unknown key");
+  ExpectOneError(LoadConfigString("[input]\nlaser_channel = 3\n", "test.toml"),
+                 "input.laser_channel", 2, "expected a string");
+  ExpectOneError(LoadConfigString("[input]\nlaser_channel = \"A B\"\n", "test.toml"),
+                 "input.laser_channel", 2, "without spaces");
+}
+
+TEST(ConfigLoader, LcmInputRulesNameTheKeyToChange) {
+  ExpectOneError(
+      LoadConfigString("[input]\nsource = \"lcm\"\n[sonar]\nenabled = true\n", "test.toml"),
+      "sonar.enabled", 4, "reads no sonar");
+  ExpectOneError(
+      LoadConfigString("[input]\nsource = \"lcm\"\nodometry_channel = \"ATLAS_RAW_LASER\"\n",
+                       "test.toml"),
+      "input.odometry_channel", 3, "same channel as input.laser_channel");
+  // Its own output fed back in.
+  const ConfigResult raw =
+      LoadConfigString("[input]\nsource = \"lcm\"\n[lcm]\nrepublish_raw = true\n", "test.toml");
+  ASSERT_EQ(raw.errors.size(), 2u);
+  for (const ConfigError& e : raw.errors) {
+    EXPECT_EQ(e.key, "lcm.republish_raw");
+    EXPECT_EQ(e.line, 4);
+  }
+  EXPECT_THAT(raw.errors[0].message, HasSubstr("lcm.channels.raw_laser"));
+  EXPECT_THAT(raw.errors[0].message, HasSubstr("which is input.laser_channel"));
+  EXPECT_THAT(raw.errors[1].message, HasSubstr("which is input.odometry_channel"));
+  ExpectOneError(
+      LoadConfigString("[input]\nsource = \"lcm\"\nlaser_channel = \"ATLAS_POSE\"\n", "test.toml"),
+      "input.laser_channel", 3, "lcm.channels.pose, which atlasd publishes on");
+  // With the devices, the [input] channels are not read.
+  EXPECT_TRUE(LoadConfigString("[input]\nlaser_channel = \"ATLAS_POSE\"\n[sonar]\nenabled = true\n",
+                               "test.toml")
+                  .ok());
+}
+
 // localmap.sensors: the local maps run on the laser, the sonar or both.
 TEST(ConfigLoader, RangeSensorsChoosesLaserSonarOrBoth) {
   const ConfigResult sonar =

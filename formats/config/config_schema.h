@@ -29,6 +29,15 @@ using StringCheck = std::string (*)(const std::string&);
 template <typename E, size_t N>
 using EnumNames = std::array<std::pair<const char*, E>, N>;
 
+inline constexpr EnumNames<InputSource, 2> kInputSourceNames{
+    {{"devices", InputSource::kDevices}, {"lcm", InputSource::kLcm}}};
+inline constexpr EnumNames<InputLaserType, 2> kInputLaserTypeNames{
+    {{"laser_scan_t", InputLaserType::kLaserScan},
+     {"bot_core.planar_lidar_t", InputLaserType::kPlanarLidar}}};
+inline constexpr EnumNames<InputOdometryType, 2> kInputOdometryTypeNames{
+    {{"odometry_t", InputOdometryType::kOdometry},
+     {"bot_core.pose_t", InputOdometryType::kBotPose}}};
+
 inline constexpr EnumNames<sick::Unit, 2> kLaserUnitNames{
     {{"cm", sick::Unit::kCentimetre}, {"mm", sick::Unit::kMillimetre}}};
 inline constexpr EnumNames<SonarRing, 2> kSonarRingNames{
@@ -62,6 +71,14 @@ void VisitMount(V& v, MountPose& m) {
 // need at least 2. daemon/atlasd/daemon_setup_test.cc checks both ends of every range.
 template <typename V>
 void VisitOptions(V& v, DaemonOptions& o) {
+  v.Section("input", [&] {
+    InputOptions& i = o.input;
+    v.Enum("source", i.source, kInputSourceNames);
+    v.Enum("laser_type", i.laser_type, kInputLaserTypeNames);
+    v.Enum("odometry_type", i.odometry_type, kInputOdometryTypeNames);
+    v.String("laser_channel", i.laser_channel, CheckChannelName);
+    v.String("odometry_channel", i.odometry_channel, CheckChannelName);
+  });
   v.Section("laser", [&] {
     LaserOptions& l = o.laser;
     v.Bool("enabled", l.enabled);

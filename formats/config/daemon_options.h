@@ -206,6 +206,23 @@ struct LcmOptions {
   LcmChannels channels;
 };
 
+// Where atlasd's laser scans and odometry come from (docs/lcm.md, "LCM input"): the devices of
+// [laser] and [odometry], or messages on LCM (lcm.url), stamped with their arrival time like a
+// device's data. Message types: atlasd's own (atlas.laser_scan_t, atlas.odometry_t, what
+// lcm.republish_raw publishes) or libbot's (bot_core.planar_lidar_t, bot_core.pose_t).
+enum class InputSource { kDevices, kLcm };
+enum class InputLaserType { kLaserScan, kPlanarLidar };
+enum class InputOdometryType { kOdometry, kBotPose };
+
+struct InputOptions {
+  InputSource source = InputSource::kDevices;
+  InputLaserType laser_type = InputLaserType::kLaserScan;
+  InputOdometryType odometry_type = InputOdometryType::kOdometry;
+  // Defaults: the raw channels atlasd republishes on (a recording of one atlasd feeds another).
+  std::string laser_channel = LcmChannels{}.raw_laser;
+  std::string odometry_channel = LcmChannels{}.raw_odometry;
+};
+
 struct LoopOptions {
   // fixed work budget of one atlas step
   double step_budget_ms =
@@ -232,6 +249,7 @@ struct SchedulingOptions {
 };
 
 struct DaemonOptions {
+  InputOptions input;
   LaserOptions laser;
   OdometryOptions odometry;
   SonarOptions sonar;

@@ -161,3 +161,40 @@ cpu_seconds() {
 summary_value() {  # summary_value FILE KEY
   grep -E "^$2=" "$1" | head -n 1 | cut -d= -f2
 }
+
+# compare_with_replay LABEL: the live run ($WORK/live, its trajectory.tsv on the log's scan
+# stamps, and $WORK/mapping.txt "kept=K far=F ..." from that mapping) against atlas-replay's
+# ($WORK/replay) on the benchmark's relations ($RELATIONS). Fails unless the live run has a pose
+# for at least 99 % of the scans replay stepped, at most 1 % of its poses were left out by the
+# mapping, the matched relation counts agree within 2 % and the mean translational / rotational
+# relation errors within 0.5 m / 3 deg; prints the line of both scores (LABEL names the live run).
+compare_with_replay() {
+  local label=$1 replay_steps kept far rt rr rm_ lt lr lm line
+  replay_steps=$(grep -vc '^#' "$WORK/replay/timing.tsv")
+  kept=$(sed -E 's/kept=([0-9]+).*/\1/' "$WORK/mapping.txt")
+  far=$(sed -E 's/.*far=([0-9]+).*/\1/' "$WORK/mapping.txt")
+  "$ATLAS_EVAL" --relations "$RELATIONS" --atlas "$WORK/replay" --json >"$WORK/score_replay.json" ||
+    fail "scoring replay failed"
+  "$ATLAS_EVAL" --relations "$RELATIONS" --atlas "$WORK/live" --json >"$WORK/score_live.json" ||
+    fail "scoring $label failed"
+  field() {  # field FILE KEY SUBKEY: a number from atlas-eval's JSON
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); v=d[sys.argv[2]]; print(v[sys.argv[3]] if len(sys.argv) > 3 else v)' "$@"
+  }
+  rt=$(field "$WORK/score_replay.json" translation_m mean)
+  rr=$(field "$WORK/score_replay.json" rotation_deg mean)
+  rm_=$(field "$WORK/score_replay.json" matched)
+  lt=$(field "$WORK/score_live.json" translation_m mean)
+  lr=$(field "$WORK/score_live.json" rotation_deg mean)
+  lm=$(field "$WORK/score_live.json" matched)
+  line="replay: $replay_steps steps, $rm_ relations, trans ${rt} m, rot ${rr} deg, $(field "$WORK/score_replay.json" frames) frames; $label: $kept poses on scan stamps ($far left out), $lm relations, trans ${lt} m, rot ${lr} deg, $(field "$WORK/score_live.json" frames) frames"
+  echo "$line"
+  awk -v k="$kept" -v n="$replay_steps" 'BEGIN { exit !(k >= 0.99 * n) }' ||
+    fail "$label stepped $kept of the $replay_steps scans replay stepped"
+  awk -v f="$far" -v k="$kept" 'BEGIN { exit !(f <= 0.01 * (k + f)) }' || fail "$far poses far from every scan"
+  awk -v a="$rm_" -v b="$lm" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 0.02 * a) }' ||
+    fail "matched relations differ: $line"
+  awk -v a="$rt" -v b="$lt" -v c="$rr" -v e="$lr" \
+    'BEGIN { d = a - b; if (d < 0) d = -d; g = c - e; if (g < 0) g = -g; exit !(d <= 0.5 && g <= 3.0) }' ||
+    fail "$label and replay scores differ: $line"
+  pass "$line"
+}

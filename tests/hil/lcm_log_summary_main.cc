@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "atlas/health_t.hpp"
+#include "atlas/laser_scan_t.hpp"
 #include "atlas/pose_t.hpp"
+#include "bot_core/planar_lidar_t.hpp"
 #include "formats/text_rows.h"
 #include "formats/trajectory_tsv.h"
 #include "logs/lcm/lcm_log_reader.h"
@@ -26,8 +28,10 @@ constexpr const char* kDescription =
   health.count, health.laser_fault_seen (a status with LASER FAULT), health.last_steps,
   health.max_overruns, health.dropped_scans, health.version (atlasd's, in the last message),
   health.<driver>.<counter> (last value: bad_crc garbage_bytes truncated discontinuities
-                             disconnects reconnects), health.<driver>.states (states seen, in order)
-  undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH events that did not decode (left out)
+                             disconnects reconnects messages bad_messages queue_drops),
+  health.<driver>.states (states seen, in order)
+  undecodable.CHANNEL        ATLAS_POSE / ATLAS_HEALTH (and --scans' channel) events that did not
+                            decode (left out)
   log                       complete, truncated or corrupt)";
 
 constexpr const char* kFooter =
@@ -36,17 +40,35 @@ events that do not decode (the lines above are then printed for the events read,
 says what is wrong and where), or FILE cannot be written; 2 on a usage error.
 )";
 
+// Microseconds as seconds with six decimals, exactly (a utime since the epoch has 16 digits,
+// at the limit of a double's).
+std::string Seconds(int64_t us) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%s%lld.%06lld", us < 0 ? "-" : "",
+                static_cast<long long>((us < 0 ? -us : us) / 1000000),
+                static_cast<long long>((us < 0 ? -us : us) % 1000000));
+  return b;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string log_path, poses_path, trajectory_path;
+  std::string log_path, poses_path, trajectory_path, scans_path, scan_channel = "ATLAS_RAW_LASER";
   atlas::cli::CommandLine command_line(
-      "atlas-lcm-log-summary", {"atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE]"},
+      "atlas-lcm-log-summary",
+      {"atlas-lcm-log-summary LOGFILE [--poses FILE] [--trajectory FILE] [--scans FILE]"},
       kDescription, kFooter);
   CLI::App& app = command_line.app();
   atlas::cli::AddPositional(app, "LOGFILE", &log_path, "an lcm-logger file");
   atlas::cli::AddText(app, "--poses", "FILE", &poses_path,
-                      "write the poses received: \"t x y theta frame q\" (t: utime in seconds)");
+                      "write the poses received: \"t x y theta frame q r\" (t: utime in seconds,\n"
+                      "r: the logger's receive time in seconds)");
+  atlas::cli::AddText(app, "--scans", "FILE", &scans_path,
+                      "write the laser scans (atlas.laser_scan_t or bot_core.planar_lidar_t)\n"
+                      "received on --scan-channel:\n"
+                      "\"r t\" (r: the logger's receive time, t: utime, in seconds)");
+  atlas::cli::AddText(app, "--scan-channel", "NAME", &scan_channel,
+                      "the channel of --scans (default ATLAS_RAW_LASER)");
   atlas::cli::AddText(app, "--trajectory", "FILE", &trajectory_path,
                       "write the poses received with a frame as a replay's trajectory.tsv\n"
                       "(docs/formats.md): \"timestamp frame x y theta\"");
@@ -62,6 +84,12 @@ int main(int argc, char** argv) {
   if (!poses_path.empty() && (poses = std::fopen(poses_path.c_str(), "w")) == nullptr) {
     std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the poses file %s (%s)\n",
                  poses_path.c_str(), std::strerror(errno));
+    return 1;
+  }
+  FILE* scans = nullptr;
+  if (!scans_path.empty() && (scans = std::fopen(scans_path.c_str(), "w")) == nullptr) {
+    std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the scans file %s (%s)\n",
+                 scans_path.c_str(), std::strerror(errno));
     return 1;
   }
   std::map<std::string, int64_t> events;
@@ -82,8 +110,8 @@ int main(int argc, char** argv) {
       if (last_pose_ts >= 0) max_gap = std::max(max_gap, (e.timestamp - last_pose_ts) * 1e-6);
       last_pose_ts = e.timestamp;
       if (poses)
-        std::fprintf(poses, "%.6f %.6f %.6f %.6f %d %.4f\n", p.utime * 1e-6, p.x, p.y, p.theta,
-                     p.frame_id, p.q);
+        std::fprintf(poses, "%s %.6f %.6f %.6f %d %.4f %s\n", Seconds(p.utime).c_str(), p.x, p.y,
+                     p.theta, p.frame_id, p.q, Seconds(e.timestamp).c_str());
       if (!trajectory_path.empty() && p.frame_id >= 0) {
         // Two scans read in one burst carry the burst's arrival stamp; trajectory.tsv holds one
         // pose per stamp (docs/formats.md): the later estimate stands.
@@ -94,6 +122,20 @@ int main(int argc, char** argv) {
         else
           trajectory.push_back(row);
       }
+    } else if (scans != nullptr && e.channel == scan_channel) {
+      // atlas.laser_scan_t, else bot_core.planar_lidar_t (counted when neither).
+      atlas::laser_scan_t m{};
+      bot_core::planar_lidar_t b{};
+      const int size = static_cast<int>(e.data.size());
+      int64_t utime = 0;
+      if (m.decode(e.data.data(), 0, size) >= 0) {
+        utime = m.utime;
+      } else if (log.Decode(e, &b)) {
+        utime = b.utime;
+      } else {
+        continue;
+      }
+      std::fprintf(scans, "%s %s\n", Seconds(e.timestamp).c_str(), Seconds(utime).c_str());
     } else if (e.channel == "ATLAS_HEALTH") {
       atlas::health_t h{};
       if (!log.Decode(e, &h)) continue;
@@ -120,6 +162,14 @@ int main(int argc, char** argv) {
       rc = 1;
     }
   }
+  if (scans != nullptr) {
+    const bool ok = !std::ferror(scans);
+    if (std::fclose(scans) != 0 || !ok) {
+      std::fprintf(stderr, "atlas-lcm-log-summary: cannot write the scans file %s (%s)\n",
+                   scans_path.c_str(), std::strerror(errno));
+      rc = 1;
+    }
+  }
   if (!trajectory_path.empty()) {
     const std::string e = atlas::formats::WriteTextFile(
         trajectory_path,
@@ -143,9 +193,10 @@ int main(int argc, char** argv) {
     std::printf("health.%s.bad_crc=%" PRId64 "\nhealth.%s.garbage_bytes=%" PRId64
                 "\nhealth.%s.truncated=%" PRId64 "\nhealth.%s.discontinuities=%" PRId64
                 "\nhealth.%s.disconnects=%" PRId64 "\nhealth.%s.reconnects=%" PRId64
-                "\nhealth.%s.messages=%" PRId64 "\n",
+                "\nhealth.%s.messages=%" PRId64 "\nhealth.%s.bad_messages=%" PRId64
+                "\nhealth.%s.queue_drops=%" PRId64 "\n",
                 n, d.bad_crc, n, d.garbage_bytes, n, d.truncated, n, d.discontinuities, n,
-                d.disconnects, n, d.reconnects, n, d.messages);
+                d.disconnects, n, d.reconnects, n, d.messages, n, d.bad_messages, n, d.queue_drops);
   }
   for (const auto& [n, s] : states) std::printf("health.%s.states=%s\n", n.c_str(), s.c_str());
   for (const auto& [c, n] : log.undecodable())

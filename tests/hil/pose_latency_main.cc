@@ -1,6 +1,7 @@
 // atlas-pose-latency: an LCM subscriber that measures, for every ATLAS_POSE it receives, the
-// time from the scan's arrival stamp (pose_t.utime: the laser driver's CLOCK_MONOTONIC time of
-// the read() that completed the telegram) to the message's arrival in this process (the same
+// time from the scan's arrival stamp (the laser driver's CLOCK_MONOTONIC time of the read() that
+// completed the telegram, published in pose_t.utime as microseconds since the epoch and turned
+// back with this process's EpochClock) to the message's arrival in this process (the monotonic
 // clock, read in the handler). See --help.
 #include <signal.h>
 
@@ -15,6 +16,7 @@
 
 #include "atlas/pose_t.hpp"
 #include "core/common/time.h"
+#include "daemon/lcm_out/epoch_clock.h"
 #include "tools/cli/command_line.h"
 
 namespace {
@@ -22,7 +24,8 @@ namespace {
 constexpr const char* kDescription =
     R"(Subscribes to ATLAS_POSE (LCM_DEFAULT_URL) for S seconds or until SIGINT/SIGTERM,
 and prints the latency of each pose: from the laser driver's arrival stamp of the scan
-(pose_t.utime, CLOCK_MONOTONIC) to the pose's receipt here (same clock), as
+(pose_t.utime, microseconds since the epoch, turned back into CLOCK_MONOTONIC with the offset
+between the clocks read at start) to the pose's receipt here (CLOCK_MONOTONIC), as
   poses=N median_us=.. p90_us=.. p99_us=.. max_us=..
 Dead-reckoning poses (published without a scan, utime = odometry time) are counted apart and
 left out. The first N poses are skipped (start-up). atlasd must run on this machine (one
@@ -37,6 +40,7 @@ volatile sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
 
 struct Collector {
+  atlas::EpochClock epoch = atlas::EpochClock::Capture();
   std::vector<double> latency_us;
   int64_t last_utime = -1;
   long skipped = 0, warmup = 20;
@@ -52,7 +56,7 @@ struct Collector {
       ++skipped;
       return;
     }
-    latency_us.push_back(static_cast<double>(now_us - p->utime));
+    latency_us.push_back(static_cast<double>(now_us - epoch.ToMonotonic(p->utime)));
   }
 };
 

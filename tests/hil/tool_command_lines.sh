@@ -76,6 +76,9 @@ check atlas-localmap-eval --runs 0 mc
 check atlas-lcm-log-summary --poses "$WORK/p"
 grep -q "^atlas-lcm-log-summary: no LOGFILE given" "$WORK/eq.err" || fail "$(cat "$WORK/eq.err")"
 check atlas-pose-latency --seconds 0
+check atlas-carmen-to-lcm --max-scans -1
+grep -q "^atlas-carmen-to-lcm: --max-scans must be an integer" "$WORK/eq.err" ||
+  fail "$(cat "$WORK/eq.err")"
 check atlas-export --resolution 0.5
 grep -q "^atlas-export: no DIR given" "$WORK/eq.err" || fail "$(cat "$WORK/eq.err")"
 check atlas-export --out x

@@ -17,7 +17,9 @@
 // Each iteration is one scan: the time is stamped just before the write() (so the figure
 // includes the write call: an upper bound on "from the last byte written"), and the iteration
 // sleeps until the next scan is due. The receipts (pose_t.utime = the reader's arrival stamp of
-// the scan, and the subscriber's CLOCK_MONOTONIC time in its handler) are matched to the writes
+// the scan, published as microseconds since the epoch and turned back into CLOCK_MONOTONIC with
+// an EpochClock read here; and the subscriber's CLOCK_MONOTONIC time in its handler) are matched
+// to the writes
 // afterwards: the pose of scan k has the largest k whose write began before its arrival stamp;
 // poses are in scan order, so when two poses give the same k (the reader was late and read two
 // telegrams at once) the earlier pose is the earlier scan. Counters: median, p90, p99 and max
@@ -69,6 +71,7 @@
 #include "atlas_paths.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
+#include "daemon/lcm_out/epoch_clock.h"
 #include "drivers/fake/fake_agilex_base.h"
 #include "drivers/fake/fake_lms.h"
 #include "drivers/fake/playback.h"
@@ -181,7 +184,7 @@ std::shared_ptr<const fake::Recording> SimulatedRun(double seconds, const Pose2&
 }
 
 struct Receipt {
-  int64_t utime = 0;  // pose_t.utime: the scan's arrival stamp
+  int64_t utime = 0;  // the scan's arrival stamp: pose_t.utime back on the monotonic clock
   Time received{};
 };
 
@@ -218,7 +221,7 @@ class PoseSubscriber {
     const Time now = Now();
     const size_t n = count_.load(std::memory_order_relaxed);
     if (n == receipts_.size()) return;
-    receipts_[n] = Receipt{p->utime, now};
+    receipts_[n] = Receipt{epoch_.ToMonotonic(p->utime), now};
     count_.store(n + 1, std::memory_order_release);
   }
   void OnHealth(const lcm::ReceiveBuffer*, const std::string&, const atlas::health_t* h) {
@@ -227,6 +230,7 @@ class PoseSubscriber {
   }
 
   lcm::LCM lcm_;
+  const EpochClock epoch_ = EpochClock::Capture();  // as the daemon's, read in this process
   std::vector<Receipt> receipts_;
   std::atomic<size_t> count_{0};
   std::mutex health_mutex_;

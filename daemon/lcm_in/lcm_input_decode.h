@@ -1,0 +1,71 @@
+#pragma once
+// LCM messages of the input mode (input.source = "lcm", docs/lcm.md "LCM input") -> the plain
+// structs the device drivers produce (core/common/sensor_types.h). Pure: bytes or a decoded
+// message in, a LaserScan or OdometrySample (or why not) out; the subscriber (lcm_input.h)
+// owns the LCM instance.
+//
+// - Every sample is stamped with `arrival` (the monotonic clock when the message came), never
+//   with its utime: the publisher's clock may be another host's or an epoch clock.
+// - atlas.laser_scan_t / atlas.odometry_t: as FromLaserMessage / FromOdometryMessage
+//   (daemon/lcm_out/lcm_convert.h), the mount and maximum range from the message; a negative
+//   range is no return.
+// - bot_core.planar_lidar_t: beam i at rad0 + i * radstep; the mount and maximum range are the
+//   configuration's (LaserSetup); a range not above 0, beyond the maximum, or not finite is no
+//   return (kNoReturn). Intensities are not used.
+// - bot_core.pose_t: x, y of pos; theta the yaw of the quaternion orientation (w, x, y, z),
+//   which need not be normalised. z, velocities and accelerations are not used.
+// A message that does not decode as the configured type (another type on the channel), or
+// holds what no scan or pose can (no beams, a zero or non-finite angle step, a zero quaternion,
+// non-finite numbers), gives an error in words and no sample: the daemon counts it and goes on.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "atlas/laser_scan_t.hpp"
+#include "atlas/odometry_t.hpp"
+#include "bot_core/planar_lidar_t.hpp"
+#include "bot_core/pose_t.hpp"
+#include "core/common/sensor_types.h"
+#include "formats/config/daemon_options.h"
+
+namespace atlas {
+
+// What a laser message does not say, for the types that do not carry it (planar_lidar_t).
+struct LaserSetup {
+  Pose2 sensor_pose;       // the scanner on the robot
+  float max_range = 8.0f;  // metres
+};
+
+// A sample, or the reason there is none.
+template <typename T>
+struct Decoded {
+  std::optional<T> sample;
+  std::string error;
+};
+
+// Beams accepted in one scan; more is not a planar scanner (and not a reasonable message).
+inline constexpr int32_t kMaxInputBeams = 100000;
+
+Decoded<LaserScan> FromAtlasLaserScan(const atlas::laser_scan_t& m, Time arrival);
+Decoded<LaserScan> FromPlanarLidar(const bot_core::planar_lidar_t& m, const LaserSetup& setup,
+                                   Time arrival);
+Decoded<OdometrySample> FromAtlasOdometry(const atlas::odometry_t& m, Time arrival);
+Decoded<OdometrySample> FromBotPose(const bot_core::pose_t& m, Time arrival);
+
+// Heading (rotation about z, counter-clockwise, radians in (-pi, pi]) of the quaternion
+// w + xi + yj + zk, normalised or not.
+double YawOfQuaternion(double w, double x, double y, double z);
+
+// The bytes of one LCM message (fingerprint first) as `type`.
+Decoded<LaserScan> DecodeLaserMessage(InputLaserType type, std::span<const uint8_t> bytes,
+                                      const LaserSetup& setup, Time arrival);
+Decoded<OdometrySample> DecodeOdometryMessage(InputOdometryType type,
+                                              std::span<const uint8_t> bytes, Time arrival);
+
+// The configuration's name of a type ("laser_scan_t", "bot_core.planar_lidar_t", ...).
+const char* InputTypeName(InputLaserType type);
+const char* InputTypeName(InputOdometryType type);
+
+}  // namespace atlas
