@@ -5,15 +5,15 @@
 #include <limits>
 #include <vector>
 
-#include "atlas/atlas_graph_t.hpp"
-#include "atlas/health_t.hpp"
-#include "atlas/hypotheses_t.hpp"
-#include "atlas/laser_scan_t.hpp"
-#include "atlas/local_map_t.hpp"
-#include "atlas/odometry_t.hpp"
-#include "atlas/pose_t.hpp"
-#include "atlas/reference_pose_t.hpp"
-#include "atlas/sonar_t.hpp"
+#include "atlasd/atlas_graph_t.hpp"
+#include "atlasd/health_t.hpp"
+#include "atlasd/hypotheses_t.hpp"
+#include "atlasd/laser_scan_t.hpp"
+#include "atlasd/local_map_t.hpp"
+#include "atlasd/odometry_t.hpp"
+#include "atlasd/pose_t.hpp"
+#include "atlasd/reference_pose_t.hpp"
+#include "atlasd/sonar_t.hpp"
 
 namespace {
 
@@ -27,7 +27,7 @@ T RoundTrip(const T& in) {
 }
 
 TEST(LcmTypes, LaserScanRoundTripKeepsNoReturn) {
-  atlas::laser_scan_t s;
+  atlasd::laser_scan_t s;
   s.utime = 123456789;
   s.angle_min = -1.5707963f;
   s.angle_increment = 0.0087266f;
@@ -45,7 +45,7 @@ TEST(LcmTypes, LaserScanRoundTripKeepsNoReturn) {
 }
 
 TEST(LcmTypes, PoseReferencePoseOdometrySonarRoundTrip) {
-  atlas::pose_t p{};
+  atlasd::pose_t p{};
   p.frame_id = 7;
   p.x = 1.5;
   p.covariance[4] = 0.25;
@@ -54,7 +54,7 @@ TEST(LcmTypes, PoseReferencePoseOdometrySonarRoundTrip) {
   EXPECT_EQ(po.frame_id, 7);
   EXPECT_DOUBLE_EQ(po.covariance[4], 0.25);
 
-  atlas::reference_pose_t r{};
+  atlasd::reference_pose_t r{};
   r.reference_frame_id = 0;
   r.placed = true;
   r.frame_id = 7;
@@ -68,11 +68,11 @@ TEST(LcmTypes, PoseReferencePoseOdometrySonarRoundTrip) {
   EXPECT_DOUBLE_EQ(ro.frame_covariance[8], 0.01);
   EXPECT_EQ(ro.hops, 4);
 
-  atlas::odometry_t o{};
+  atlasd::odometry_t o{};
   o.left_m = 12.345;
   EXPECT_DOUBLE_EQ(RoundTrip(o).left_m, 12.345);
 
-  atlas::sonar_t s{};
+  atlasd::sonar_t s{};
   s.num_returns = 2;
   s.transducer = {3, 15};
   s.range = {0.5f, 4.0f};
@@ -82,13 +82,13 @@ TEST(LcmTypes, PoseReferencePoseOdometrySonarRoundTrip) {
 }
 
 TEST(LcmTypes, LocalMapRoundTrip) {
-  atlas::local_map_t m{};
+  atlasd::local_map_t m{};
   m.utime = 99;
   m.frame_id = 3;
   m.capacity = 30;
   m.robot_theta = -0.5;
   for (int i = 0; i < 2; ++i) {
-    atlas::line_segment_t l{};
+    atlasd::line_segment_t l{};
     l.id = 10 + i;
     l.rho = 1.0 + i;
     l.alpha = -3.0 + i;
@@ -109,11 +109,11 @@ TEST(LcmTypes, LocalMapRoundTrip) {
 }
 
 TEST(LcmTypes, AtlasGraphRoundTrip) {
-  atlas::atlas_graph_t g{};
+  atlasd::atlas_graph_t g{};
   g.step = 1234;
   g.dominant_frame_id = 1;
   for (int i = 0; i < 3; ++i) {
-    atlas::atlas_frame_t f{};
+    atlasd::atlas_frame_t f{};
     f.id = i;
     f.num_features = 5 * i;
     f.projected = i != 2;
@@ -121,14 +121,14 @@ TEST(LcmTypes, AtlasGraphRoundTrip) {
     g.frames.push_back(f);
   }
   g.num_frames = 3;
-  atlas::atlas_edge_t e{};
+  atlasd::atlas_edge_t e{};
   e.frame_from = 0;
   e.frame_to = 1;
   e.x = 9.5;
   e.theta = 0.1;
   e.covariance[8] = 0.003;
-  e.kind = atlas::atlas_edge_t::KIND_REFINED;
-  e.origin = atlas::atlas_edge_t::KIND_MAP_MATCH;
+  e.kind = atlasd::atlas_edge_t::KIND_REFINED;
+  e.origin = atlasd::atlas_edge_t::KIND_MAP_MATCH;
   e.refinements = 4;
   g.edges.push_back(e);
   g.num_edges = 1;
@@ -148,12 +148,12 @@ TEST(LcmTypes, AtlasGraphRoundTrip) {
 }
 
 TEST(LcmTypes, HypothesesRoundTrip) {
-  atlas::hypotheses_t h{};
+  atlasd::hypotheses_t h{};
   h.dominant_id = 17;
-  const int8_t states[] = {atlas::hypothesis_t::STATE_JUVENILE, atlas::hypothesis_t::STATE_DOMINANT,
-                           atlas::hypothesis_t::STATE_RETIRED};
+  const int8_t states[] = {atlasd::hypothesis_t::STATE_JUVENILE, atlasd::hypothesis_t::STATE_DOMINANT,
+                           atlasd::hypothesis_t::STATE_RETIRED};
   for (int i = 0; i < 3; ++i) {
-    atlas::hypothesis_t x{};
+    atlasd::hypothesis_t x{};
     x.id = 16 + i;
     x.frame_id = i;
     x.state = states[i];
@@ -172,7 +172,7 @@ TEST(LcmTypes, HypothesesRoundTrip) {
 }
 
 TEST(LcmTypes, HealthRoundTrip) {
-  atlas::health_t h{};
+  atlasd::health_t h{};
   h.steps = 5000;
   h.period_steps = 75;
   h.step_time_median_us = 420.5f;
@@ -181,16 +181,16 @@ TEST(LcmTypes, HealthRoundTrip) {
   h.resident_memory_bytes = int64_t{3} << 30;
   h.status = "ok: 12 frames";
   h.version = "0.1.0 (git 990180e)";
-  atlas::driver_health_t laser{};
+  atlasd::driver_health_t laser{};
   laser.name = "laser";
   laser.device = "/dev/ttyUSB0";
-  laser.state = atlas::driver_health_t::STATE_RECONNECTING;
+  laser.state = atlasd::driver_health_t::STATE_RECONNECTING;
   laser.queue_depth = 3;
   laser.queue_capacity = 8;
   laser.queue_drops = 1;
   laser.bad_crc = 7;
   laser.last_error = "read: device went away";
-  atlas::driver_health_t odometry{};
+  atlasd::driver_health_t odometry{};
   odometry.name = "odometry";
   odometry.discontinuities = 1;
   h.drivers = {laser, odometry};
@@ -215,13 +215,13 @@ TEST(LcmTypes, PublishAndReceiveInProcess) {
   struct Handler {
     int got = 0;
     int frame = -1;
-    void On(const lcm::ReceiveBuffer*, const std::string&, const atlas::pose_t* m) {
+    void On(const lcm::ReceiveBuffer*, const std::string&, const atlasd::pose_t* m) {
       ++got;
       frame = m->frame_id;
     }
   } h;
   lcm.subscribe("ATLAS_POSE", &Handler::On, &h);
-  atlas::pose_t p{};
+  atlasd::pose_t p{};
   p.frame_id = 42;
   ASSERT_EQ(lcm.publish("ATLAS_POSE", &p), 0);
   ASSERT_GT(lcm.handleTimeout(1000), 0);

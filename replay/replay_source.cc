@@ -28,11 +28,11 @@ void ReadLcm(const std::string& path, const LcmRawChannels& ch,
   LcmLogEvent e;
   while (log.Next(&e)) {
     if (progress && log.events() % 4096 == 0) progress(log.bytes_read(), log.size());
-    if (atlas::odometry_t m; e.channel == ch.odometry && log.Decode(e, &m)) {
+    if (atlasd::odometry_t m; e.channel == ch.odometry && log.Decode(e, &m)) {
       out->events.push_back(FromOdometryMessage(m));
-    } else if (atlas::laser_scan_t m; e.channel == ch.laser && log.Decode(e, &m)) {
+    } else if (atlasd::laser_scan_t m; e.channel == ch.laser && log.Decode(e, &m)) {
       out->events.push_back(FromLaserMessage(m));
-    } else if (atlas::sonar_t m; e.channel == ch.sonar && log.Decode(e, &m)) {
+    } else if (atlasd::sonar_t m; e.channel == ch.sonar && log.Decode(e, &m)) {
       out->events.push_back(FromSonarMessage(m));
     }
   }

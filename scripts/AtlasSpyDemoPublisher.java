@@ -1,11 +1,11 @@
 // Publishes one plausible message of every atlasd type on atlasd's default channels, at 10 Hz,
 // for the given number of seconds (default 15). Used by scripts/atlas-spy-check to show that
 // atlas-spy decodes every channel. Run as a single-file program:
-//   java -cp /usr/share/java/lcm.jar:atlas_lcmtypes.jar AtlasSpyDemoPublisher.java [SECONDS]
+//   java -cp /usr/share/java/lcm.jar:atlasd-lcmtypes.jar AtlasSpyDemoPublisher.java [SECONDS]
 // It publishes on LCM_DEFAULT_URL: only ever run it inside a private network namespace or with
 // a memq:// URL, never onto a real network.
 
-import atlas.*;
+import atlasd.*;
 import lcm.lcm.LCM;
 
 public class AtlasSpyDemoPublisher {

@@ -18,8 +18,8 @@ int64_t ResidentMemoryBytes() {
   return n == 2 ? resident * static_cast<int64_t>(sysconf(_SC_PAGESIZE)) : 0;
 }
 
-atlas::health_t MakeHealthMessage(const HealthInputs& in) {
-  atlas::health_t h{};
+atlasd::health_t MakeHealthMessage(const HealthInputs& in) {
+  atlasd::health_t h{};
   const StepLoop& loop = *in.loop;
   const Atlas& atlas = loop.atlas();
   h.utime = ToUtime(in.now);

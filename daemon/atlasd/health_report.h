@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "atlas/health_t.hpp"
+#include "atlasd/health_t.hpp"
 #include "core/mapper/step_loop.h"
 #include "drivers/device/driver_health.h"
 
@@ -32,6 +32,6 @@ struct HealthInputs {
 // VmRSS from /proc/self/statm, bytes; 0 when unreadable.
 int64_t ResidentMemoryBytes();
 
-atlas::health_t MakeHealthMessage(const HealthInputs& in);
+atlasd::health_t MakeHealthMessage(const HealthInputs& in);
 
 }  // namespace atlas

@@ -47,7 +47,7 @@ TEST(HealthReport, CountsScanMatchesAndFallbacks) {
     in.now = FromSeconds(2.0);
     in.loop = &loop;
     in.step_budget_ms = 10.0;
-    const health_t h = MakeHealthMessage(in);
+    const atlasd::health_t h = MakeHealthMessage(in);
     EXPECT_EQ(h.steps, scans + 1);
     EXPECT_EQ(h.version, AtlasVersion());
     if (enabled) {
@@ -90,7 +90,7 @@ TEST(HealthReport, ThePoseIsThePublishedOneWhileTheLaserIsAway) {
   in.start = FromSeconds(0.0);
   in.now = FromSeconds(2.0);
   in.loop = &loop;
-  const health_t h = MakeHealthMessage(in);
+  const atlasd::health_t h = MakeHealthMessage(in);
   char want[128];
   std::snprintf(want, sizeof(want), " | pose f%d (%.2f, %.2f, %.2f) q %.2f |", published.frame,
                 published.pose.mean.x, published.pose.mean.y, published.pose.mean.theta,

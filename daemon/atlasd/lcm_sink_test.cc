@@ -12,13 +12,13 @@ namespace {
 
 // ATLAS_POSE and ATLAS_REFERENCE_POSE as the sink publishes them over memq://.
 struct Received {
-  std::vector<atlas::pose_t> poses;
-  std::vector<atlas::reference_pose_t> reference;
-  void OnPose(const lcm::ReceiveBuffer*, const std::string&, const atlas::pose_t* m) {
+  std::vector<atlasd::pose_t> poses;
+  std::vector<atlasd::reference_pose_t> reference;
+  void OnPose(const lcm::ReceiveBuffer*, const std::string&, const atlasd::pose_t* m) {
     poses.push_back(*m);
   }
   void OnReference(const lcm::ReceiveBuffer*, const std::string&,
-                   const atlas::reference_pose_t* m) {
+                   const atlasd::reference_pose_t* m) {
     reference.push_back(*m);
   }
 };
@@ -58,8 +58,8 @@ TEST_F(LcmSinkTest, ReferencePoseEqualsThePoseInTheReferenceFrame) {
   for (int i = 0; i < 40; ++i) {
     Step(&sink, &atlas, 2.0 + i);
     ASSERT_EQ(received_.poses.size(), received_.reference.size());
-    const atlas::pose_t& p = received_.poses.back();
-    const atlas::reference_pose_t& r = received_.reference.back();
+    const atlasd::pose_t& p = received_.poses.back();
+    const atlasd::reference_pose_t& r = received_.reference.back();
     EXPECT_EQ(r.utime, p.utime);
     EXPECT_EQ(r.frame_id, p.frame_id);
     EXPECT_EQ(r.reference_frame_id, 0);
@@ -79,8 +79,8 @@ TEST_F(LcmSinkTest, ReferencePoseEqualsThePoseInTheReferenceFrame) {
   }
   EXPECT_GT(in_frame_zero, 0);
   // The robot left frame 0: the last pose is carried along the projection's path.
-  const atlas::pose_t& p = received_.poses.back();
-  const atlas::reference_pose_t& r = received_.reference.back();
+  const atlasd::pose_t& p = received_.poses.back();
+  const atlasd::reference_pose_t& r = received_.reference.back();
   ASSERT_GT(p.frame_id, 0);
   ASSERT_TRUE(r.placed);
   const Projection projection = DijkstraProjection(atlas.Graph(), 0);
@@ -115,7 +115,7 @@ TEST_F(LcmSinkTest, AnotherReferenceFrameAndOneTheAtlasDoesNotHave) {
   }
   ASSERT_EQ(received_.reference.size(), 2u);
   EXPECT_FALSE(received_.reference[0].placed);
-  const atlas::reference_pose_t& r = received_.reference[1];
+  const atlasd::reference_pose_t& r = received_.reference[1];
   ASSERT_TRUE(r.placed);
   EXPECT_EQ(r.reference_frame_id, d.frame);
   EXPECT_EQ(r.x, received_.poses[1].x);

@@ -185,7 +185,7 @@ void LoopThread::PublishHealth(Time now) {
     in.store_dropped = static_cast<int64_t>(st.coalesced);
     in.store_errors = static_cast<int64_t>(st.errors);
   }
-  const atlas::health_t h = MakeHealthMessage(in);
+  const atlasd::health_t h = MakeHealthMessage(in);
   publisher_->Health(h);
   {
     std::lock_guard<std::mutex> lock(shared_->mutex);

@@ -66,7 +66,7 @@ double YawOfQuaternion(double w, double x, double y, double z) {
   return std::atan2(2.0 * (w * z + x * y), w * w + x * x - y * y - z * z);
 }
 
-Decoded<LaserScan> FromAtlasLaserScan(const atlas::laser_scan_t& m, Time arrival) {
+Decoded<LaserScan> FromAtlasLaserScan(const atlasd::laser_scan_t& m, Time arrival) {
   Decoded<LaserScan> d;
   d.error = CheckBeams(m.num_ranges, m.angle_min, m.angle_increment);
   if (d.error.empty() && (!Finite({m.sensor_x, m.sensor_y, m.sensor_theta}) ||
@@ -99,7 +99,7 @@ Decoded<LaserScan> FromPlanarLidar(const bot_core::planar_lidar_t& m, const Lase
   return d;
 }
 
-Decoded<OdometrySample> FromAtlasOdometry(const atlas::odometry_t& m, Time arrival) {
+Decoded<OdometrySample> FromAtlasOdometry(const atlasd::odometry_t& m, Time arrival) {
   Decoded<OdometrySample> d;
   if (!Finite({m.x, m.y, m.theta})) {
     d.error = "the pose is not finite";
@@ -139,9 +139,9 @@ Decoded<LaserScan> DecodeLaserMessage(InputLaserType type, std::span<const uint8
       return {std::nullopt, NotA("bot_core.planar_lidar_t", "laser_type")};
     return FromPlanarLidar(m, setup, arrival);
   }
-  atlas::laser_scan_t m;
+  atlasd::laser_scan_t m;
   if (!ArraysFit(bytes, 8 + 8 + 3 * 4, 1) || !DecodeBytes(bytes, &m))
-    return {std::nullopt, NotA("atlas.laser_scan_t", "laser_type")};
+    return {std::nullopt, NotA("atlasd.laser_scan_t", "laser_type")};
   return FromAtlasLaserScan(m, arrival);
 }
 
@@ -152,8 +152,8 @@ Decoded<OdometrySample> DecodeOdometryMessage(InputOdometryType type,
     if (!DecodeBytes(bytes, &m)) return {std::nullopt, NotA("bot_core.pose_t", "odometry_type")};
     return FromBotPose(m, arrival);
   }
-  atlas::odometry_t m;
-  if (!DecodeBytes(bytes, &m)) return {std::nullopt, NotA("atlas.odometry_t", "odometry_type")};
+  atlasd::odometry_t m;
+  if (!DecodeBytes(bytes, &m)) return {std::nullopt, NotA("atlasd.odometry_t", "odometry_type")};
   return FromAtlasOdometry(m, arrival);
 }
 

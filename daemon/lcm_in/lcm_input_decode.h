@@ -6,7 +6,7 @@
 //
 // - Every sample is stamped with `arrival` (the monotonic clock when the message came), never
 //   with its utime: the publisher's clock may be another host's or an epoch clock.
-// - atlas.laser_scan_t / atlas.odometry_t: as FromLaserMessage / FromOdometryMessage
+// - atlasd.laser_scan_t / atlasd.odometry_t: as FromLaserMessage / FromOdometryMessage
 //   (daemon/lcm_out/lcm_convert.h), the mount and maximum range from the message; a negative
 //   range is no return.
 // - bot_core.planar_lidar_t: beam i at rad0 + i * radstep; the mount and maximum range are the
@@ -23,8 +23,8 @@
 #include <span>
 #include <string>
 
-#include "atlas/laser_scan_t.hpp"
-#include "atlas/odometry_t.hpp"
+#include "atlasd/laser_scan_t.hpp"
+#include "atlasd/odometry_t.hpp"
 #include "bot_core/planar_lidar_t.hpp"
 #include "bot_core/pose_t.hpp"
 #include "core/common/sensor_types.h"
@@ -48,10 +48,10 @@ struct Decoded {
 // Beams accepted in one scan; more is not a planar scanner (and not a reasonable message).
 inline constexpr int32_t kMaxInputBeams = 100000;
 
-Decoded<LaserScan> FromAtlasLaserScan(const atlas::laser_scan_t& m, Time arrival);
+Decoded<LaserScan> FromAtlasLaserScan(const atlasd::laser_scan_t& m, Time arrival);
 Decoded<LaserScan> FromPlanarLidar(const bot_core::planar_lidar_t& m, const LaserSetup& setup,
                                    Time arrival);
-Decoded<OdometrySample> FromAtlasOdometry(const atlas::odometry_t& m, Time arrival);
+Decoded<OdometrySample> FromAtlasOdometry(const atlasd::odometry_t& m, Time arrival);
 Decoded<OdometrySample> FromBotPose(const bot_core::pose_t& m, Time arrival);
 
 // Heading (rotation about z, counter-clockwise, radians in (-pi, pi]) of the quaternion

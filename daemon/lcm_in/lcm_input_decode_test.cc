@@ -121,7 +121,7 @@ TEST(LcmInputDecodeTest, AnotherTypeOnTheChannelIsAnErrorNamingTheKey) {
   const Decoded<OdometrySample> o =
       DecodeOdometryMessage(InputOdometryType::kOdometry, pose, kArrival);
   EXPECT_FALSE(o.sample);
-  EXPECT_NE(o.error.find("not a atlas.odometry_t"), std::string::npos) << o.error;
+  EXPECT_NE(o.error.find("not a atlasd.odometry_t"), std::string::npos) << o.error;
   EXPECT_NE(o.error.find("input.odometry_type"), std::string::npos) << o.error;
   const auto lidar = Encoded(Lidar({1.0f}));
   const Decoded<LaserScan> l =
@@ -160,10 +160,10 @@ TEST(LcmInputDecodeTest, MessagesNoScanOrPoseCanHoldAreErrors) {
   EXPECT_NE(FromBotPose(no_rotation, kArrival).error, "");
   bot_core::pose_t inf = BotPose(INFINITY, 1, 0);
   EXPECT_NE(FromBotPose(inf, kArrival).error, "");
-  atlas::odometry_t odo{};
+  atlasd::odometry_t odo{};
   odo.theta = NAN;
   EXPECT_NE(FromAtlasOdometry(odo, kArrival).error, "");
-  atlas::laser_scan_t scan{};
+  atlasd::laser_scan_t scan{};
   scan.num_ranges = 1;
   scan.ranges = {1.0f};
   scan.angle_increment = 0.1f;

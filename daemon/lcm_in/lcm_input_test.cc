@@ -87,7 +87,7 @@ TEST_F(LcmInputTest, BadMessagesAreCountedWithTheirReasonAndTheInputGoesOn) {
   bus_->publish("ATLAS_RAW_ODOMETRY", &wrong);
   const uint8_t garbage[3] = {1, 2, 3};
   bus_->publish("ATLAS_RAW_ODOMETRY", garbage, sizeof garbage);
-  atlas::odometry_t right{};
+  atlasd::odometry_t right{};
   right.x = 1.0;
   bus_->publish("ATLAS_RAW_ODOMETRY", &right);
   OdometrySample s;
@@ -96,7 +96,7 @@ TEST_F(LcmInputTest, BadMessagesAreCountedWithTheirReasonAndTheInputGoesOn) {
   const DriverHealth h = input_->OdometryHealth();
   EXPECT_EQ(h.bad_messages, 2u);
   EXPECT_EQ(h.messages, 1u);
-  EXPECT_NE(h.last_error.find("not a atlas.odometry_t"), std::string::npos) << h.last_error;
+  EXPECT_NE(h.last_error.find("not a atlasd.odometry_t"), std::string::npos) << h.last_error;
   EXPECT_EQ(h.state, DriverState::kRunning);
 }
 
@@ -112,7 +112,7 @@ TEST_F(LcmInputTest, SilenceIsStaleWithAReasonUntilTheNextMessage) {
   EXPECT_EQ(h.stalls, 1u);
   EXPECT_NE(h.last_error.find("no message on ATLAS_RAW_ODOMETRY"), std::string::npos)
       << h.last_error;
-  atlas::odometry_t m{};
+  atlasd::odometry_t m{};
   bus_->publish("ATLAS_RAW_ODOMETRY", &m);
   ASSERT_TRUE(Eventually([&] { return input_->OdometryHealth().state == DriverState::kRunning; }));
   input_->Stop();
@@ -129,7 +129,7 @@ TEST_F(LcmInputTest, AFullQueueDropsTheOldestAndCountsIt) {
   o.odometry_queue_capacity = 2;
   StartInput(o);
   for (int i = 0; i < 5; ++i) {
-    atlas::odometry_t m{};
+    atlasd::odometry_t m{};
     m.x = i;
     bus_->publish("ATLAS_RAW_ODOMETRY", &m);
   }

@@ -7,7 +7,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "atlas/health_t.hpp"
+#include "atlasd/health_t.hpp"
 #include "daemon/lcm_out/epoch_clock.h"
 #include "daemon/lcm_out/lcm_convert.h"
 #include "formats/config/daemon_options.h"
@@ -21,7 +21,7 @@ class AtlasPublisher {
       : lcm_(lcm), channels_(channels), epoch_(epoch) {}
 
   void Pose(Time stamp, const DominantOutput& d) { Send(channels_.pose, ToPoseMessage(stamp, d)); }
-  void ReferencePose(const atlas::reference_pose_t& m) { Send(channels_.reference_pose, m); }
+  void ReferencePose(const atlasd::reference_pose_t& m) { Send(channels_.reference_pose, m); }
   void Graph(Time stamp, const Atlas& a) { Send(channels_.graph, ToGraphMessage(stamp, a)); }
   void Hypotheses(Time stamp, const Atlas& a) {
     Send(channels_.hypotheses, ToHypothesesMessage(stamp, a));
@@ -29,7 +29,7 @@ class AtlasPublisher {
   void LocalMap(Time stamp, const Atlas& a) {
     Send(channels_.local_map, ToLocalMapMessage(stamp, a));
   }
-  void Health(const atlas::health_t& h) { Send(channels_.health, h); }
+  void Health(const atlasd::health_t& h) { Send(channels_.health, h); }
   void RawLaser(const LaserScan& s) { Send(channels_.raw_laser, ToLaserMessage(s)); }
   void RawOdometry(const OdometrySample& s) { Send(channels_.raw_odometry, ToOdometryMessage(s)); }
   void RawSonar(const SonarReading& s) { Send(channels_.raw_sonar, ToSonarMessage(s)); }

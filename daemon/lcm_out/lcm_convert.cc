@@ -17,8 +17,8 @@ void CopyCov3(const Mat3& m, double out[9]) {
 int64_t ToUtime(Time t) { return t.time_since_epoch().count() / 1000; }
 Time FromUtime(int64_t utime) { return Time(Duration(utime * 1000)); }
 
-atlas::pose_t ToPoseMessage(Time stamp, const DominantOutput& d) {
-  atlas::pose_t m{};
+atlasd::pose_t ToPoseMessage(Time stamp, const DominantOutput& d) {
+  atlasd::pose_t m{};
   m.utime = ToUtime(stamp);
   m.frame_id = d.valid ? d.frame : -1;
   m.x = d.pose.mean.x;
@@ -31,10 +31,10 @@ atlas::pose_t ToPoseMessage(Time stamp, const DominantOutput& d) {
   return m;
 }
 
-atlas::reference_pose_t ToReferencePoseMessage(Time stamp, const DominantOutput& d,
+atlasd::reference_pose_t ToReferencePoseMessage(Time stamp, const DominantOutput& d,
                                                FrameId reference,
                                                const std::optional<PlacedPose>& placed) {
-  atlas::reference_pose_t m{};
+  atlasd::reference_pose_t m{};
   m.utime = ToUtime(stamp);
   m.reference_frame_id = reference;
   m.frame_id = d.valid ? d.frame : -1;
@@ -53,10 +53,10 @@ atlas::reference_pose_t ToReferencePoseMessage(Time stamp, const DominantOutput&
   return m;
 }
 
-atlas::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_projected) {
+atlasd::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_projected) {
   const AtlasGraph& g = atlas.Graph();
   const DominantOutput d = atlas.Dominant();
-  atlas::atlas_graph_t m{};
+  atlasd::atlas_graph_t m{};
   m.utime = ToUtime(stamp);
   m.step = atlas.StepCount();
   m.dominant_frame_id = d.valid ? d.frame : -1;
@@ -70,7 +70,7 @@ atlas::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_proj
   m.frames.resize(m.num_frames);
   for (FrameId id = 0; id < g.FrameCount(); ++id) {
     const MapFrame& f = g.Frame(id);
-    atlas::atlas_frame_t& out = m.frames[id];
+    atlasd::atlas_frame_t& out = m.frames[id];
     out.id = id;
     out.num_features = f.map ? f.map->Complexity() : 0;
     out.created_step = f.created_step;
@@ -87,7 +87,7 @@ atlas::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_proj
   m.edges.resize(m.num_edges);
   for (int i = 0; i < g.EdgeCount(); ++i) {
     const AtlasEdge& e = g.Edge(i);
-    atlas::atlas_edge_t& out = m.edges[i];
+    atlasd::atlas_edge_t& out = m.edges[i];
     out.frame_from = e.a;
     out.frame_to = e.b;
     out.x = e.b_in_a.mean.x;
@@ -101,12 +101,12 @@ atlas::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_proj
   return m;
 }
 
-atlas::hypotheses_t ToHypothesesMessage(Time stamp, const Atlas& atlas) {
-  atlas::hypotheses_t m{};
+atlasd::hypotheses_t ToHypothesesMessage(Time stamp, const Atlas& atlas) {
+  atlasd::hypotheses_t m{};
   m.utime = ToUtime(stamp);
   m.dominant_id = -1;
   for (const Hypothesis& h : atlas.Hypotheses()) {
-    atlas::hypothesis_t out{};
+    atlasd::hypothesis_t out{};
     out.id = h.id;
     out.frame_id = h.frame;
     switch (h.state) {
@@ -136,8 +136,8 @@ atlas::hypotheses_t ToHypothesesMessage(Time stamp, const Atlas& atlas) {
   return m;
 }
 
-atlas::local_map_t ToLocalMapMessage(Time stamp, const Atlas& atlas) {
-  atlas::local_map_t m{};
+atlasd::local_map_t ToLocalMapMessage(Time stamp, const Atlas& atlas) {
+  atlasd::local_map_t m{};
   m.utime = ToUtime(stamp);
   m.frame_id = -1;
   const DominantOutput d = atlas.Dominant();
@@ -150,7 +150,7 @@ atlas::local_map_t ToLocalMapMessage(Time stamp, const Atlas& atlas) {
   m.robot_y = d.pose.mean.y;
   m.robot_theta = d.pose.mean.theta;
   for (const MapLine& l : map.Lines()) {
-    atlas::line_segment_t s{};
+    atlasd::line_segment_t s{};
     s.id = l.id;
     s.rho = l.rho;
     s.alpha = l.alpha;
@@ -186,9 +186,9 @@ int8_t ToDriverStateCode(DriverState s) {
   return 0;
 }
 
-atlas::driver_health_t ToDriverHealthMessage(const std::string& name, const DriverHealth& h,
+atlasd::driver_health_t ToDriverHealthMessage(const std::string& name, const DriverHealth& h,
                                              int32_t queue_depth, int32_t queue_capacity) {
-  atlas::driver_health_t m{};
+  atlasd::driver_health_t m{};
   m.name = name;
   m.device = h.device;
   m.state = ToDriverStateCode(h.state);
@@ -214,8 +214,8 @@ atlas::driver_health_t ToDriverHealthMessage(const std::string& name, const Driv
   return m;
 }
 
-atlas::laser_scan_t ToLaserMessage(const LaserScan& scan) {
-  atlas::laser_scan_t m{};
+atlasd::laser_scan_t ToLaserMessage(const LaserScan& scan) {
+  atlasd::laser_scan_t m{};
   m.utime = ToUtime(scan.stamp);
   m.angle_min = scan.angle_min;
   m.angle_increment = scan.angle_increment;
@@ -228,7 +228,7 @@ atlas::laser_scan_t ToLaserMessage(const LaserScan& scan) {
   return m;
 }
 
-LaserScan FromLaserMessage(const atlas::laser_scan_t& m) {
+LaserScan FromLaserMessage(const atlasd::laser_scan_t& m) {
   LaserScan s;
   s.stamp = FromUtime(m.utime);
   s.angle_min = m.angle_min;
@@ -239,8 +239,8 @@ LaserScan FromLaserMessage(const atlas::laser_scan_t& m) {
   return s;
 }
 
-atlas::odometry_t ToOdometryMessage(const OdometrySample& sample) {
-  atlas::odometry_t m{};
+atlasd::odometry_t ToOdometryMessage(const OdometrySample& sample) {
+  atlasd::odometry_t m{};
   m.utime = ToUtime(sample.stamp);
   m.x = sample.pose.x;
   m.y = sample.pose.y;
@@ -252,7 +252,7 @@ atlas::odometry_t ToOdometryMessage(const OdometrySample& sample) {
   return m;
 }
 
-OdometrySample FromOdometryMessage(const atlas::odometry_t& m) {
+OdometrySample FromOdometryMessage(const atlasd::odometry_t& m) {
   OdometrySample s;
   s.stamp = FromUtime(m.utime);
   s.pose = Pose2{m.x, m.y, m.theta};
@@ -263,8 +263,8 @@ OdometrySample FromOdometryMessage(const atlas::odometry_t& m) {
   return s;
 }
 
-atlas::sonar_t ToSonarMessage(const SonarReading& reading) {
-  atlas::sonar_t m{};
+atlasd::sonar_t ToSonarMessage(const SonarReading& reading) {
+  atlasd::sonar_t m{};
   m.utime = ToUtime(reading.stamp);
   m.num_returns = static_cast<int32_t>(reading.returns.size());
   for (const SonarReturn& r : reading.returns) {
@@ -274,7 +274,7 @@ atlas::sonar_t ToSonarMessage(const SonarReading& reading) {
   return m;
 }
 
-SonarReading FromSonarMessage(const atlas::sonar_t& m) {
+SonarReading FromSonarMessage(const atlasd::sonar_t& m) {
   SonarReading s;
   s.stamp = FromUtime(m.utime);
   const size_t n = std::min(m.transducer.size(), m.range.size());

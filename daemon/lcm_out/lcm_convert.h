@@ -12,15 +12,15 @@
 #include <cstdint>
 #include <string>
 
-#include "atlas/atlas_graph_t.hpp"
-#include "atlas/driver_health_t.hpp"
-#include "atlas/hypotheses_t.hpp"
-#include "atlas/laser_scan_t.hpp"
-#include "atlas/local_map_t.hpp"
-#include "atlas/odometry_t.hpp"
-#include "atlas/pose_t.hpp"
-#include "atlas/reference_pose_t.hpp"
-#include "atlas/sonar_t.hpp"
+#include "atlasd/atlas_graph_t.hpp"
+#include "atlasd/driver_health_t.hpp"
+#include "atlasd/hypotheses_t.hpp"
+#include "atlasd/laser_scan_t.hpp"
+#include "atlasd/local_map_t.hpp"
+#include "atlasd/odometry_t.hpp"
+#include "atlasd/pose_t.hpp"
+#include "atlasd/reference_pose_t.hpp"
+#include "atlasd/sonar_t.hpp"
 #include "core/atlas/atlas.h"
 #include "core/common/sensor_types.h"
 #include "daemon/lcm_out/reference_placement.h"
@@ -34,36 +34,36 @@ int64_t ToUtime(Time t);
 Time FromUtime(int64_t utime);
 
 // The dominant pose (pose_t); frame_id -1 and q 0 when `dominant.valid` is false.
-atlas::pose_t ToPoseMessage(Time stamp, const DominantOutput& dominant);
+atlasd::pose_t ToPoseMessage(Time stamp, const DominantOutput& dominant);
 
 // The dominant pose in the reference frame (reference_pose_t): `placed` is what
 // ReferencePlacement::Place(dominant) returned; placed false and zeros without it.
-atlas::reference_pose_t ToReferencePoseMessage(Time stamp, const DominantOutput& dominant,
+atlasd::reference_pose_t ToReferencePoseMessage(Time stamp, const DominantOutput& dominant,
                                                FrameId reference,
                                                const std::optional<PlacedPose>& placed);
 
 // The whole graph. Frames reached by a Dijkstra projection from the dominant frame (at most
 // `max_projected` frames, for display) carry their pose in the dominant frame.
-atlas::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_projected = 256);
+atlasd::atlas_graph_t ToGraphMessage(Time stamp, const Atlas& atlas, int max_projected = 256);
 
 // Every hypothesis, the dominant one as STATE_DOMINANT.
-atlas::hypotheses_t ToHypothesesMessage(Time stamp, const Atlas& atlas);
+atlasd::hypotheses_t ToHypothesesMessage(Time stamp, const Atlas& atlas);
 
 // The map of the dominant frame with the robot pose in it; frame_id -1 and no lines when there
 // is no dominant hypothesis.
-atlas::local_map_t ToLocalMapMessage(Time stamp, const Atlas& atlas);
+atlasd::local_map_t ToLocalMapMessage(Time stamp, const Atlas& atlas);
 
 // One driver's health and its queue ("laser", "odometry", "sonar").
-atlas::driver_health_t ToDriverHealthMessage(const std::string& name, const DriverHealth& h,
+atlasd::driver_health_t ToDriverHealthMessage(const std::string& name, const DriverHealth& h,
                                              int32_t queue_depth, int32_t queue_capacity);
 int8_t ToDriverStateCode(DriverState s);
 
 // Raw sensor data, both ways.
-atlas::laser_scan_t ToLaserMessage(const LaserScan& scan);
-LaserScan FromLaserMessage(const atlas::laser_scan_t& m);
-atlas::odometry_t ToOdometryMessage(const OdometrySample& sample);
-OdometrySample FromOdometryMessage(const atlas::odometry_t& m);
-atlas::sonar_t ToSonarMessage(const SonarReading& reading);
-SonarReading FromSonarMessage(const atlas::sonar_t& m);
+atlasd::laser_scan_t ToLaserMessage(const LaserScan& scan);
+LaserScan FromLaserMessage(const atlasd::laser_scan_t& m);
+atlasd::odometry_t ToOdometryMessage(const OdometrySample& sample);
+OdometrySample FromOdometryMessage(const atlasd::odometry_t& m);
+atlasd::sonar_t ToSonarMessage(const SonarReading& reading);
+SonarReading FromSonarMessage(const atlasd::sonar_t& m);
 
 }  // namespace atlas

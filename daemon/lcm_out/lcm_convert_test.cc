@@ -30,7 +30,7 @@ TEST(LcmConvertTest, RawLaserRoundTripsExactly) {
 
 TEST(LcmConvertTest, RawOdometryAndSonarRoundTrip) {
   const OdometrySample o{FromSeconds(3.000001), Pose2{1, 2, -0.5}, 12.345, -6.789, 0.75, -0.125};
-  const atlas::odometry_t om = ToOdometryMessage(o);
+  const atlasd::odometry_t om = ToOdometryMessage(o);
   EXPECT_EQ(om.left_m, 12.345);
   EXPECT_EQ(om.right_m, -6.789);
   EXPECT_EQ(om.linear_velocity, 0.75);
@@ -43,7 +43,7 @@ TEST(LcmConvertTest, RawOdometryAndSonarRoundTrip) {
   SonarReading r;
   r.stamp = FromSeconds(4.0);
   r.returns = {{3, 1.25f}, {7, kNoReturn}};
-  const atlas::sonar_t m = ToSonarMessage(r);
+  const atlasd::sonar_t m = ToSonarMessage(r);
   EXPECT_EQ(m.num_returns, 2);
   const SonarReading rb = FromSonarMessage(m);
   ASSERT_EQ(rb.returns.size(), 2u);
@@ -59,7 +59,7 @@ TEST(LcmConvertTest, DriverHealthKeepsCountersAndState) {
   h.garbage_bytes = 40;
   h.drops = 2;
   h.last_error = "gone";
-  const atlas::driver_health_t m = ToDriverHealthMessage("laser", h, 3, 8);
+  const atlasd::driver_health_t m = ToDriverHealthMessage("laser", h, 3, 8);
   EXPECT_EQ(m.name, "laser");
   EXPECT_EQ(m.state, 4);  // STATE_RECONNECTING (generated constants have no definition)
   EXPECT_EQ(m.bad_crc, 7);
@@ -76,7 +76,7 @@ TEST(LcmConvertTest, GraphHypothesesAndPoseDescribeTheAtlas) {
   for (int i = 0; i < 40; ++i) atlas.Step(Pose2{0.5, 0, 0}, TestScan());
   ASSERT_GT(atlas.Graph().FrameCount(), 1);  // the robot left the first frame's radius
   const Time t = FromSeconds(100.0);
-  const atlas::atlas_graph_t g = ToGraphMessage(t, atlas);
+  const atlasd::atlas_graph_t g = ToGraphMessage(t, atlas);
   EXPECT_EQ(g.utime, 100000000);
   EXPECT_EQ(g.num_frames, atlas.Graph().FrameCount());
   EXPECT_EQ(static_cast<int>(g.frames.size()), g.num_frames);
@@ -91,12 +91,12 @@ TEST(LcmConvertTest, GraphHypothesesAndPoseDescribeTheAtlas) {
     EXPECT_GE(e.frame_from, 0);
     EXPECT_LT(e.frame_to, g.num_frames);
   }
-  const atlas::hypotheses_t h = ToHypothesesMessage(t, atlas);
+  const atlasd::hypotheses_t h = ToHypothesesMessage(t, atlas);
   EXPECT_EQ(h.num_hypotheses, static_cast<int>(atlas.Hypotheses().size()));
   int dominant = 0;
   for (const auto& x : h.hypotheses) dominant += x.state == 2;
   EXPECT_EQ(dominant, 1);
-  const atlas::pose_t p = ToPoseMessage(t, d);
+  const atlasd::pose_t p = ToPoseMessage(t, d);
   EXPECT_EQ(p.frame_id, d.frame);
   EXPECT_DOUBLE_EQ(p.x, d.pose.mean.x);
   EXPECT_DOUBLE_EQ(p.covariance[4], d.pose.cov(1, 1));
@@ -106,10 +106,10 @@ TEST(LcmConvertTest, GraphHypothesesAndPoseDescribeTheAtlas) {
   DominantOutput switched = d;
   switched.switched = true;
   EXPECT_TRUE(ToPoseMessage(t, switched).switched);
-  const atlas::pose_t none = ToPoseMessage(t, DominantOutput{});
+  const atlasd::pose_t none = ToPoseMessage(t, DominantOutput{});
   EXPECT_EQ(none.hypothesis_id, -1);
   EXPECT_FALSE(none.switched);
-  const atlas::local_map_t m = ToLocalMapMessage(t, atlas);
+  const atlasd::local_map_t m = ToLocalMapMessage(t, atlas);
   EXPECT_EQ(m.frame_id, d.frame);
   EXPECT_EQ(m.num_lines, static_cast<int>(m.lines.size()));
 }
@@ -123,8 +123,8 @@ TEST(LcmConvertTest, PublisherSendsOnTheConfiguredChannelsWithEpochUtimeOverMemq
   AtlasPublisher publisher(&lcm, channels, epoch);
   struct Handler {
     int count = 0;
-    atlas::pose_t last{};
-    void On(const lcm::ReceiveBuffer*, const std::string&, const atlas::pose_t* m) {
+    atlasd::pose_t last{};
+    void On(const lcm::ReceiveBuffer*, const std::string&, const atlasd::pose_t* m) {
       ++count;
       last = *m;
     }

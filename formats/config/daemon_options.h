@@ -208,7 +208,7 @@ struct LcmOptions {
 
 // Where atlasd's laser scans and odometry come from (docs/lcm.md, "LCM input"): the devices of
 // [laser] and [odometry], or messages on LCM (lcm.url), stamped with their arrival time like a
-// device's data. Message types: atlasd's own (atlas.laser_scan_t, atlas.odometry_t, what
+// device's data. Message types: atlasd's own (atlasd.laser_scan_t, atlasd.odometry_t, what
 // lcm.republish_raw publishes) or libbot's (bot_core.planar_lidar_t, bot_core.pose_t).
 enum class InputSource { kDevices, kLcm };
 enum class InputLaserType { kLaserScan, kPlanarLidar };

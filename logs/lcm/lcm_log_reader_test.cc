@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "atlas/pose_t.hpp"
+#include "atlasd/pose_t.hpp"
 
 namespace atlas {
 namespace {
@@ -33,7 +33,7 @@ class LcmLogReaderTest : public ::testing::Test {
     EXPECT_TRUE(log.good());
     std::vector<uint8_t> buffer;
     for (int i = 0; i < n + (bad_pose ? 1 : 0); ++i) {
-      pose_t p{};
+      atlasd::pose_t p{};
       p.utime = 1000 * i;
       p.x = i;
       p.frame_id = i;
@@ -84,7 +84,7 @@ TEST_F(LcmLogReaderTest, ReadsWhatLcmWrote) {
     EXPECT_EQ(e.eventnum, i);
     EXPECT_EQ(e.timestamp, 5000 + i);
     EXPECT_EQ(e.channel, "ATLAS_POSE");
-    pose_t p{};
+    atlasd::pose_t p{};
     ASSERT_TRUE(r.Decode(e, &p));
     EXPECT_EQ(p.utime, 1000 * i);
     EXPECT_EQ(p.x, i);
@@ -202,7 +202,7 @@ TEST_F(LcmLogReaderTest, CountsEventsThatDoNotDecode) {
   LcmLogEvent e;
   int decoded = 0;
   while (r.Next(&e)) {
-    pose_t p{};
+    atlasd::pose_t p{};
     decoded += r.Decode(e, &p);
   }
   EXPECT_EQ(decoded, 2);

@@ -19,7 +19,7 @@
 namespace {
 
 constexpr const char* kDescription =
-    R"(Writes the scans of a CARMEN log as atlas.laser_scan_t and its odometry as atlas.odometry_t
+    R"(Writes the scans of a CARMEN log as atlasd.laser_scan_t and its odometry as atlasd.odometry_t
 (--types atlas), or as libbot's bot_core.planar_lidar_t and bot_core.pose_t (--types bot_core:
 the scanner's mount is then not in the messages), into an lcm-logger file, each event at its log
 time (utime and event timestamp: the log's stamp in microseconds), for lcm-logplayer. The

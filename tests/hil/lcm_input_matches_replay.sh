@@ -2,8 +2,8 @@
 # HIL: atlasd's LCM input (input.source = "lcm") maps a recording played on LCM to the poses
 # atlas-replay computes from the same recording. Usage: lcm_input_matches_replay.sh [TYPES]
 # (atlas, the default, or bot_core: the played file is then in libbot's types). The first MAX_SCANS scans of mit-csail are
-# converted by atlas-carmen-to-lcm into an lcm-logger file of atlas.laser_scan_t and
-# atlas.odometry_t (the odometry interpolated at 50 Hz, as a base sends it), which lcm-logplayer
+# converted by atlas-carmen-to-lcm into an lcm-logger file of atlasd.laser_scan_t and
+# atlasd.odometry_t (the odometry interpolated at 50 Hz, as a base sends it), which lcm-logplayer
 # plays at SPEED times real time into atlasd in a private network namespace; lcm-logger records
 # ATLAS_POSE, ATLAS_HEALTH and the scans as atlasd received them. atlas-replay replays the same
 # file with the same configuration.

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "atlas/health_t.hpp"
-#include "atlas/laser_scan_t.hpp"
-#include "atlas/pose_t.hpp"
+#include "atlasd/health_t.hpp"
+#include "atlasd/laser_scan_t.hpp"
+#include "atlasd/pose_t.hpp"
 #include "bot_core/planar_lidar_t.hpp"
 #include "formats/text_rows.h"
 #include "formats/trajectory_tsv.h"
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
                       "write the poses received: \"t x y theta frame q r\" (t: utime in seconds,\n"
                       "r: the logger's receive time in seconds)");
   atlas::cli::AddText(app, "--scans", "FILE", &scans_path,
-                      "write the laser scans (atlas.laser_scan_t or bot_core.planar_lidar_t)\n"
+                      "write the laser scans (atlasd.laser_scan_t or bot_core.planar_lidar_t)\n"
                       "received on --scan-channel:\n"
                       "\"r t\" (r: the logger's receive time, t: utime, in seconds)");
   atlas::cli::AddText(app, "--scan-channel", "NAME", &scan_channel,
@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
   int64_t pose_count = 0, health_count = 0, last_pose_ts = -1;
   double max_gap = 0;
   bool fault = false;
-  atlas::health_t last{};
+  atlasd::health_t last{};
   int64_t max_overruns = 0;
   std::map<std::string, std::string> states;
   std::vector<atlas::formats::FramePoseRow> trajectory;
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   while (log.Next(&e)) {
     ++events[e.channel];
     if (e.channel == "ATLAS_POSE") {
-      atlas::pose_t p{};
+      atlasd::pose_t p{};
       if (!log.Decode(e, &p)) continue;
       ++pose_count;
       if (last_pose_ts >= 0) max_gap = std::max(max_gap, (e.timestamp - last_pose_ts) * 1e-6);
@@ -123,8 +123,8 @@ int main(int argc, char** argv) {
           trajectory.push_back(row);
       }
     } else if (scans != nullptr && e.channel == scan_channel) {
-      // atlas.laser_scan_t, else bot_core.planar_lidar_t (counted when neither).
-      atlas::laser_scan_t m{};
+      // atlasd.laser_scan_t, else bot_core.planar_lidar_t (counted when neither).
+      atlasd::laser_scan_t m{};
       bot_core::planar_lidar_t b{};
       const int size = static_cast<int>(e.data.size());
       int64_t utime = 0;
@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
       }
       std::fprintf(scans, "%s %s\n", Seconds(e.timestamp).c_str(), Seconds(utime).c_str());
     } else if (e.channel == "ATLAS_HEALTH") {
-      atlas::health_t h{};
+      atlasd::health_t h{};
       if (!log.Decode(e, &h)) continue;
       ++health_count;
       if (h.status.find("LASER FAULT") != std::string::npos) fault = true;

@@ -43,8 +43,8 @@ dpkg-deb --fsys-tarfile "$deb" | tar -t | sed -e 's|^\./|/|' -e 's|/$||' | grep 
 INSTALLED=1
 dpkg -i "$deb" >"$WORK/dpkg-i.err" 2>&1 || fail "dpkg -i failed: $(tail -n 20 "$WORK/dpkg-i.err")"
 for f in /usr/bin/atlasd /usr/bin/atlas-fakedev /usr/bin/atlas-sim /usr/bin/atlas-lcm-log-summary \
-  /usr/share/man/man8/atlasd.8.gz /lib/systemd/system/atlasd.service /usr/include/atlas/pose_t.hpp \
-  /usr/share/atlasd/lcmtypes/pose_t.lcm /usr/lib/python3/dist-packages/atlas/pose_t.py \
+  /usr/share/man/man8/atlasd.8.gz /lib/systemd/system/atlasd.service /usr/include/atlasd/pose_t.hpp \
+  /usr/share/atlasd/lcmtypes/pose_t.lcm /usr/lib/python3/dist-packages/atlasd/pose_t.py \
   /usr/share/doc/atlasd/copyright /usr/share/doc/atlasd/examples/80-atlasd-can0.network; do
   [ -e "$f" ] || fail "the package did not install $f"
 done
@@ -56,7 +56,7 @@ if command -v systemd-analyze >/dev/null; then
 fi
 dpkg-query -W -f='${Conffiles}\n' atlasd | grep -q '^ /etc/atlasd/atlasd.toml ' ||
   fail "/etc/atlasd/atlasd.toml is not a conffile: $(dpkg-query -W -f='${Conffiles}' atlasd)"
-PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -c 'from atlas import pose_t
+PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -c 'from atlasd import pose_t
 p = pose_t(); p.x = 1.5
 assert pose_t.decode(p.encode()).x == 1.5' 2>"$WORK/python.err" ||
   fail "the installed Python types do not round-trip: $(cat "$WORK/python.err")"
@@ -127,8 +127,8 @@ while IFS= read -r f; do
   fi
   left+=("$f")
 done <"$WORK/contents"
-for f in /etc/atlasd /usr/share/doc/atlasd /usr/share/atlasd /usr/include/atlas \
-  /usr/lib/python3/dist-packages/atlas; do
+for f in /etc/atlasd /usr/share/doc/atlasd /usr/share/atlasd /usr/include/atlasd \
+  /usr/lib/python3/dist-packages/atlasd; do
   [ -e "$f" ] && left+=("$f")
 done
 [ ${#left[@]} = 0 ] || fail "left after dpkg -P atlasd: ${left[*]}"

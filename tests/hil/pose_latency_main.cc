@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "atlas/pose_t.hpp"
+#include "atlasd/pose_t.hpp"
 #include "core/common/time.h"
 #include "daemon/lcm_out/epoch_clock.h"
 #include "tools/cli/command_line.h"
@@ -45,7 +45,7 @@ struct Collector {
   int64_t last_utime = -1;
   long skipped = 0, warmup = 20;
   int repeated = 0;
-  void Handle(const lcm::ReceiveBuffer*, const std::string&, const atlas::pose_t* p) {
+  void Handle(const lcm::ReceiveBuffer*, const std::string&, const atlasd::pose_t* p) {
     const int64_t now_us = atlas::Now().time_since_epoch().count() / 1000;
     if (p->utime == last_utime) {  // the same stamp again: not a new scan
       ++repeated;

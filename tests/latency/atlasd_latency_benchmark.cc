@@ -66,8 +66,8 @@
 #include <thread>
 #include <vector>
 
-#include "atlas/health_t.hpp"
-#include "atlas/pose_t.hpp"
+#include "atlasd/health_t.hpp"
+#include "atlasd/pose_t.hpp"
 #include "atlas_paths.h"
 #include "daemon/atlasd/daemon_setup.h"
 #include "daemon/atlasd/live_daemon.h"
@@ -210,21 +210,21 @@ class PoseSubscriber {
   }
   size_t count() const { return count_.load(std::memory_order_acquire); }
   const Receipt& at(size_t i) const { return receipts_[i]; }
-  atlas::health_t LastHealth() {
+  atlasd::health_t LastHealth() {
     std::lock_guard<std::mutex> lock(health_mutex_);
     return health_;
   }
   const std::string& schedule_error() const { return schedule_error_; }
 
  private:
-  void OnPose(const lcm::ReceiveBuffer*, const std::string&, const atlas::pose_t* p) {
+  void OnPose(const lcm::ReceiveBuffer*, const std::string&, const atlasd::pose_t* p) {
     const Time now = Now();
     const size_t n = count_.load(std::memory_order_relaxed);
     if (n == receipts_.size()) return;
     receipts_[n] = Receipt{epoch_.ToMonotonic(p->utime), now};
     count_.store(n + 1, std::memory_order_release);
   }
-  void OnHealth(const lcm::ReceiveBuffer*, const std::string&, const atlas::health_t* h) {
+  void OnHealth(const lcm::ReceiveBuffer*, const std::string&, const atlasd::health_t* h) {
     std::lock_guard<std::mutex> lock(health_mutex_);
     health_ = *h;
   }
@@ -234,7 +234,7 @@ class PoseSubscriber {
   std::vector<Receipt> receipts_;
   std::atomic<size_t> count_{0};
   std::mutex health_mutex_;
-  atlas::health_t health_{};
+  atlasd::health_t health_{};
   std::thread thread_;
   std::atomic<bool> stop_{false};
   std::string schedule_error_;
@@ -425,7 +425,7 @@ void BM_TelegramToPoseReceived(benchmark::State& state) {
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last poses
   const double load_end = LoadAverage();
-  const atlas::health_t health = subscriber.LastHealth();
+  const atlasd::health_t health = subscriber.LastHealth();
   const int exit_code = daemon.Stop();
   subscriber.Stop();
   base.Stop();

@@ -12,17 +12,17 @@ namespace atlas::view {
 
 const char* DriverStateName(int8_t state) {
   switch (state) {
-    case atlas::driver_health_t::STATE_STOPPED:
+    case atlasd::driver_health_t::STATE_STOPPED:
       return "stopped";
-    case atlas::driver_health_t::STATE_CONNECTING:
+    case atlasd::driver_health_t::STATE_CONNECTING:
       return "connecting";
-    case atlas::driver_health_t::STATE_RUNNING:
+    case atlasd::driver_health_t::STATE_RUNNING:
       return "running";
-    case atlas::driver_health_t::STATE_STALLED:
+    case atlasd::driver_health_t::STATE_STALLED:
       return "stalled";
-    case atlas::driver_health_t::STATE_RECONNECTING:
+    case atlasd::driver_health_t::STATE_RECONNECTING:
       return "reconnecting";
-    case atlas::driver_health_t::STATE_FAILED:
+    case atlasd::driver_health_t::STATE_FAILED:
       return "failed";
   }
   return "unknown";
@@ -30,13 +30,13 @@ const char* DriverStateName(int8_t state) {
 
 const char* HypothesisStateName(int8_t state) {
   switch (state) {
-    case atlas::hypothesis_t::STATE_JUVENILE:
+    case atlasd::hypothesis_t::STATE_JUVENILE:
       return "juvenile";
-    case atlas::hypothesis_t::STATE_MATURE:
+    case atlasd::hypothesis_t::STATE_MATURE:
       return "mature";
-    case atlas::hypothesis_t::STATE_DOMINANT:
+    case atlasd::hypothesis_t::STATE_DOMINANT:
       return "dominant";
-    case atlas::hypothesis_t::STATE_RETIRED:
+    case atlasd::hypothesis_t::STATE_RETIRED:
       return "retired";
   }
   return "unknown";
@@ -196,8 +196,8 @@ void WritePlaced(Json& j, const Placed& p) {
 
 double Age(Time now, Time at) { return ToSeconds(now - at); }
 
-void WriteHealth(Json& j, const Received<atlas::health_t>& r, Time now) {
-  const atlas::health_t& h = r.message;
+void WriteHealth(Json& j, const Received<atlasd::health_t>& r, Time now) {
+  const atlasd::health_t& h = r.message;
   j.Open('{');
   j.Key("status").Str(h.status).Key("version").Str(h.version);
   j.Key("uptime_s").Num(static_cast<double>(h.uptime_us) * 1e-6, 1).Key("steps").Int(h.steps);
@@ -210,7 +210,7 @@ void WriteHealth(Json& j, const Received<atlas::health_t>& r, Time now) {
   j.Key("dropped_scans").Int(h.dropped_scans).Key("rss_bytes").Int(h.resident_memory_bytes);
   j.Key("store_errors").Int(h.store_errors).Key("age_s").Num(Age(now, r.at), 1);
   j.Key("drivers").Open('[');
-  for (const atlas::driver_health_t& d : h.drivers) {
+  for (const atlasd::driver_health_t& d : h.drivers) {
     j.Open('{');
     j.Key("name").Str(d.name).Key("device").Str(d.device);
     j.Key("state").Str(DriverStateName(d.state)).Key("rate_hz").Num(d.message_rate_hz, 1);
@@ -236,10 +236,10 @@ std::string BuildViewJson(const ViewState& state, Time now, int max_frames) {
   std::string graph_error;
   int frame_count = 0;
   if (state.graph()) {
-    const atlas::atlas_graph_t& g = state.graph()->message;
+    const atlasd::atlas_graph_t& g = state.graph()->message;
     std::vector<eval::EdgeRow> rows;
     rows.reserve(g.edges.size());
-    for (const atlas::atlas_edge_t& e : g.edges) {
+    for (const atlasd::atlas_edge_t& e : g.edges) {
       eval::EdgeRow row;
       row.from = e.frame_from;
       row.to = e.frame_to;
@@ -293,7 +293,7 @@ std::string BuildViewJson(const ViewState& state, Time now, int max_frames) {
     j.Key("lines").Open('[');
     if (auto it = state.maps().find(f.frame); it != state.maps().end()) {
       const RigidTransform t(f.pose.mean);
-      for (const atlas::line_segment_t& l : it->second.message.lines) {
+      for (const atlasd::line_segment_t& l : it->second.message.lines) {
         const Vec2 a = t.Apply(Vec2(l.x0, l.y0)), b = t.Apply(Vec2(l.x1, l.y1));
         j.Open('[').Num(a.x()).Num(a.y()).Num(b.x()).Num(b.y()).Close(']');
       }
@@ -305,7 +305,7 @@ std::string BuildViewJson(const ViewState& state, Time now, int max_frames) {
 
   j.Key("edges").Open('[');
   if (state.graph() && graph_error.empty()) {
-    for (const atlas::atlas_edge_t& e : state.graph()->message.edges) {
+    for (const atlasd::atlas_edge_t& e : state.graph()->message.edges) {
       if (find(e.frame_from) == nullptr || find(e.frame_to) == nullptr) continue;
       j.Open('{').Key("a").Int(e.frame_from).Key("b").Int(e.frame_to);
       j.Key("kind").Str(EdgeKindCodeName(e.kind)).Close('}');
@@ -315,7 +315,7 @@ std::string BuildViewJson(const ViewState& state, Time now, int max_frames) {
 
   j.Key("pose");
   if (state.pose() && state.pose()->message.frame_id >= 0) {
-    const atlas::pose_t& p = state.pose()->message;
+    const atlasd::pose_t& p = state.pose()->message;
     const ProjectedFrame* f = find(p.frame_id);
     j.Open('{').Key("frame").Int(p.frame_id).Key("q").Num(p.q, 4);
     j.Key("placed").Bool(f != nullptr).Key("age_s").Num(Age(now, state.pose()->at), 2);
@@ -327,7 +327,7 @@ std::string BuildViewJson(const ViewState& state, Time now, int max_frames) {
 
   j.Key("hypotheses").Open('[');
   if (state.hypotheses()) {
-    for (const atlas::hypothesis_t& h : state.hypotheses()->message.hypotheses) {
+    for (const atlasd::hypothesis_t& h : state.hypotheses()->message.hypotheses) {
       const ProjectedFrame* f = find(h.frame_id);
       j.Open('{').Key("id").Int(h.id).Key("frame").Int(h.frame_id);
       j.Key("state").Str(HypothesisStateName(h.state)).Key("q").Num(h.q, 4);
@@ -339,7 +339,7 @@ std::string BuildViewJson(const ViewState& state, Time now, int max_frames) {
   j.Close(']');
 
   j.Key("map");
-  if (const Received<atlas::local_map_t>* m = state.latest_map()) {
+  if (const Received<atlasd::local_map_t>* m = state.latest_map()) {
     j.Open('{').Key("frame").Int(m->message.frame_id).Key("lines").Int(m->message.num_lines);
     j.Key("capacity")
         .Int(m->message.capacity)

@@ -22,11 +22,11 @@ void BM_BuildViewJson(benchmark::State& bench) {
   const int n = static_cast<int>(bench.range(0));
   const int side = static_cast<int>(std::ceil(std::sqrt(n)));
   ViewState s(ViewChannels{}, n);
-  atlas::atlas_graph_t g{};
+  atlasd::atlas_graph_t g{};
   g.num_frames = n;
   g.frames.resize(static_cast<size_t>(n));
   auto edge = [&](int a, int b, double x, double y) {
-    atlas::atlas_edge_t e{};
+    atlasd::atlas_edge_t e{};
     e.frame_from = a;
     e.frame_to = b;
     e.x = x;
@@ -38,11 +38,11 @@ void BM_BuildViewJson(benchmark::State& bench) {
   for (int i = 0; i < n; ++i) {
     if (i % side > 0) edge(i - 1, i, 5, 0);
     if (i >= side) edge(i - side, i, 0, 5);
-    atlas::local_map_t m{};
+    atlasd::local_map_t m{};
     m.frame_id = i;
     m.capacity = 10;
     for (int k = 0; k < 10; ++k) {
-      atlas::line_segment_t l{};
+      atlasd::line_segment_t l{};
       l.x0 = k * 0.3;
       l.x1 = k * 0.3 + 2;
       l.y1 = 1;
@@ -54,13 +54,13 @@ void BM_BuildViewJson(benchmark::State& bench) {
   g.num_edges = static_cast<int32_t>(g.edges.size());
   g.dominant_frame_id = n / 2;
   Feed(s, "ATLAS_GRAPH", g);
-  atlas::pose_t p{};
+  atlasd::pose_t p{};
   p.frame_id = n / 2;
   p.covariance[0] = p.covariance[4] = 0.01;
   Feed(s, "ATLAS_POSE", p);
-  atlas::hypotheses_t hs{};
+  atlasd::hypotheses_t hs{};
   for (int i = 0; i < 5; ++i) {
-    atlas::hypothesis_t h{};
+    atlasd::hypothesis_t h{};
     h.id = i;
     h.frame_id = (n / 2 + i) % n;
     hs.hypotheses.push_back(h);

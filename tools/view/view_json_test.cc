@@ -17,9 +17,9 @@ void FeedStored(ViewState& s, const std::string& channel, const Message& m, Time
   ASSERT_EQ(s.Ingest(channel, b.data(), b.size(), at), IngestResult::kStored) << channel;
 }
 
-atlas::atlas_edge_t EdgeOf(int32_t from, int32_t to, double x, double y, double theta,
+atlasd::atlas_edge_t EdgeOf(int32_t from, int32_t to, double x, double y, double theta,
                            int8_t kind) {
-  atlas::atlas_edge_t e{};
+  atlasd::atlas_edge_t e{};
   e.frame_from = from;
   e.frame_to = to;
   e.x = x;
@@ -35,30 +35,30 @@ atlas::atlas_edge_t EdgeOf(int32_t from, int32_t to, double x, double y, double 
 // Frames 0 - 1 - 2: frame 1 at (1, 0, 90 deg) in frame 0 (Genesis), frame 2 at (1, 0, 0) in
 // frame 1 (map-matching). Frame 1's map holds one line from (0, 0) to (2, 0).
 void FeedGraph(ViewState& s, Time at) {
-  atlas::atlas_graph_t g{};
+  atlasd::atlas_graph_t g{};
   g.dominant_frame_id = 0;
   g.num_frames = 3;
   for (int i = 0; i < 3; ++i) {
-    atlas::atlas_frame_t f{};
+    atlasd::atlas_frame_t f{};
     f.id = i;
     g.frames.push_back(f);
   }
-  g.edges.push_back(EdgeOf(0, 1, 1, 0, std::numbers::pi / 2, atlas::atlas_edge_t::KIND_GENESIS));
-  g.edges.push_back(EdgeOf(1, 2, 1, 0, 0, atlas::atlas_edge_t::KIND_MAP_MATCH));
+  g.edges.push_back(EdgeOf(0, 1, 1, 0, std::numbers::pi / 2, atlasd::atlas_edge_t::KIND_GENESIS));
+  g.edges.push_back(EdgeOf(1, 2, 1, 0, 0, atlasd::atlas_edge_t::KIND_MAP_MATCH));
   g.num_edges = 2;
   FeedStored(s, "ATLAS_GRAPH", g, at);
-  atlas::local_map_t m{};
+  atlasd::local_map_t m{};
   m.frame_id = 1;
   m.capacity = 30;
-  atlas::line_segment_t l{};
+  atlasd::line_segment_t l{};
   l.x1 = 2;
   m.lines.push_back(l);
   m.num_lines = 1;
   FeedStored(s, "ATLAS_LOCAL_MAP", m, at);
 }
 
-atlas::pose_t PoseIn(int32_t frame, double x, double y, double theta) {
-  atlas::pose_t p{};
+atlasd::pose_t PoseIn(int32_t frame, double x, double y, double theta) {
+  atlasd::pose_t p{};
   p.frame_id = frame;
   p.x = x;
   p.y = y;
@@ -109,11 +109,11 @@ TEST(BuildViewJson, PlacesFramesLinesPoseAndHypothesesByTheProjection) {
   ViewState s(ViewChannels{}, 10);
   FeedGraph(s, FromSeconds(10));
   FeedStored(s, "ATLAS_POSE", PoseIn(0, 0.5, 0, 0), FromSeconds(10.5));
-  atlas::hypotheses_t hs{};
-  atlas::hypothesis_t h{};
+  atlasd::hypotheses_t hs{};
+  atlasd::hypothesis_t h{};
   h.id = 42;
   h.frame_id = 1;
-  h.state = atlas::hypothesis_t::STATE_JUVENILE;
+  h.state = atlasd::hypothesis_t::STATE_JUVENILE;
   h.q = 0.25;
   h.x = 1;
   h.covariance[0] = 4;
@@ -177,10 +177,10 @@ TEST(BuildViewJson, APoseInAFrameTheGraphDoesNotHaveYetIsNotPlaced) {
 
 TEST(BuildViewJson, AGraphThatIsNotOneIsNamedAndNotDrawn) {
   ViewState s(ViewChannels{}, 10);
-  atlas::atlas_graph_t g{};
+  atlasd::atlas_graph_t g{};
   g.num_frames = 2;
   g.frames.resize(2);
-  g.edges.push_back(EdgeOf(0, 5, 1, 0, 0, atlas::atlas_edge_t::KIND_GENESIS));
+  g.edges.push_back(EdgeOf(0, 5, 1, 0, 0, atlasd::atlas_edge_t::KIND_GENESIS));
   g.num_edges = 1;
   FeedStored(s, "ATLAS_GRAPH", g, FromSeconds(1));
   const std::string j = BuildViewJson(s, FromSeconds(1), 100);
@@ -190,17 +190,17 @@ TEST(BuildViewJson, AGraphThatIsNotOneIsNamedAndNotDrawn) {
 
 TEST(BuildViewJson, HealthPanelWithEachDriversStateAndLastError) {
   ViewState s(ViewChannels{}, 10);
-  atlas::health_t h{};
+  atlasd::health_t h{};
   h.status = "mapping: 3 frames";
   h.version = "0.1.0";
-  atlas::driver_health_t laser{}, odometry{};
+  atlasd::driver_health_t laser{}, odometry{};
   laser.name = "laser";
   laser.device = "/dev/sick";
-  laser.state = atlas::driver_health_t::STATE_RECONNECTING;
+  laser.state = atlasd::driver_health_t::STATE_RECONNECTING;
   laser.last_error = "bad \"CRC\"\nthen silence";
   laser.bad_crc = 3;
   odometry.name = "odometry";
-  odometry.state = atlas::driver_health_t::STATE_RUNNING;
+  odometry.state = atlasd::driver_health_t::STATE_RUNNING;
   odometry.message_rate_hz = 50;
   h.drivers = {laser, odometry};
   h.num_drivers = 2;
@@ -228,10 +228,10 @@ TEST(BuildViewJson, NumbersThatAreNotFiniteAreNull) {
 }
 
 TEST(StateNames, EveryCodeHasAName) {
-  EXPECT_STREQ(DriverStateName(atlas::driver_health_t::STATE_FAILED), "failed");
+  EXPECT_STREQ(DriverStateName(atlasd::driver_health_t::STATE_FAILED), "failed");
   EXPECT_STREQ(DriverStateName(99), "unknown");
-  EXPECT_STREQ(HypothesisStateName(atlas::hypothesis_t::STATE_DOMINANT), "dominant");
-  EXPECT_STREQ(EdgeKindCodeName(atlas::atlas_edge_t::KIND_REFINED), "refined");
+  EXPECT_STREQ(HypothesisStateName(atlasd::hypothesis_t::STATE_DOMINANT), "dominant");
+  EXPECT_STREQ(EdgeKindCodeName(atlasd::atlas_edge_t::KIND_REFINED), "refined");
   EXPECT_STREQ(EdgeKindCodeName(-1), "unknown");
 }
 

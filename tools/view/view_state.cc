@@ -34,7 +34,7 @@ bool Decode(const void* data, size_t size, Message* out) {
 ViewState::ViewState(const ViewChannels& channels, int max_maps)
     : channels_(channels), max_maps_(std::max(1, max_maps)) {}
 
-const Received<atlas::local_map_t>* ViewState::latest_map() const {
+const Received<atlasd::local_map_t>* ViewState::latest_map() const {
   auto it = maps_.find(latest_map_frame_);
   return it == maps_.end() ? nullptr : &it->second;
 }
@@ -47,31 +47,31 @@ IngestResult ViewState::Ingest(std::string_view channel, const void* data, size_
   } else if (size > kMaxMessageBytes || size > static_cast<size_t>(INT_MAX)) {
     r = IngestResult::kTooLarge;
   } else if (channel == channels_.pose) {
-    atlas::pose_t m;
+    atlasd::pose_t m;
     if (!Decode(data, size, &m))
       r = IngestResult::kUndecodable;
     else
-      pose_ = Received<atlas::pose_t>{m, now};
+      pose_ = Received<atlasd::pose_t>{m, now};
   } else if (channel == channels_.graph) {
-    atlas::atlas_graph_t m;
+    atlasd::atlas_graph_t m;
     if (!Decode(data, size, &m))
       r = IngestResult::kUndecodable;
     else
-      graph_ = Received<atlas::atlas_graph_t>{std::move(m), now};
+      graph_ = Received<atlasd::atlas_graph_t>{std::move(m), now};
   } else if (channel == channels_.hypotheses) {
-    atlas::hypotheses_t m;
+    atlasd::hypotheses_t m;
     if (!Decode(data, size, &m))
       r = IngestResult::kUndecodable;
     else
-      hypotheses_ = Received<atlas::hypotheses_t>{std::move(m), now};
+      hypotheses_ = Received<atlasd::hypotheses_t>{std::move(m), now};
   } else if (channel == channels_.health) {
-    atlas::health_t m;
+    atlasd::health_t m;
     if (!Decode(data, size, &m))
       r = IngestResult::kUndecodable;
     else
-      health_ = Received<atlas::health_t>{std::move(m), now};
+      health_ = Received<atlasd::health_t>{std::move(m), now};
   } else {
-    atlas::local_map_t m;
+    atlasd::local_map_t m;
     if (!Decode(data, size, &m)) {
       r = IngestResult::kUndecodable;
     } else if (m.frame_id >= 0) {  // -1: no dominant hypothesis, nothing to remember
@@ -83,7 +83,7 @@ IngestResult ViewState::Ingest(std::string_view channel, const void* data, size_
         maps_.erase(oldest);
         ++forgotten_maps_;
       }
-      maps_[frame] = Received<atlas::local_map_t>{std::move(m), now};
+      maps_[frame] = Received<atlasd::local_map_t>{std::move(m), now};
       latest_map_frame_ = frame;
     }
   }

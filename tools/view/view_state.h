@@ -13,11 +13,11 @@
 #include <optional>
 #include <string_view>
 
-#include "atlas/atlas_graph_t.hpp"
-#include "atlas/health_t.hpp"
-#include "atlas/hypotheses_t.hpp"
-#include "atlas/local_map_t.hpp"
-#include "atlas/pose_t.hpp"
+#include "atlasd/atlas_graph_t.hpp"
+#include "atlasd/health_t.hpp"
+#include "atlasd/hypotheses_t.hpp"
+#include "atlasd/local_map_t.hpp"
+#include "atlasd/pose_t.hpp"
 #include "core/common/time.h"
 #include "tools/view/view_options.h"
 
@@ -47,14 +47,14 @@ class ViewState {
 
   IngestResult Ingest(std::string_view channel, const void* data, size_t size, Time now);
 
-  const std::optional<Received<atlas::pose_t>>& pose() const { return pose_; }
-  const std::optional<Received<atlas::atlas_graph_t>>& graph() const { return graph_; }
-  const std::optional<Received<atlas::hypotheses_t>>& hypotheses() const { return hypotheses_; }
-  const std::optional<Received<atlas::health_t>>& health() const { return health_; }
+  const std::optional<Received<atlasd::pose_t>>& pose() const { return pose_; }
+  const std::optional<Received<atlasd::atlas_graph_t>>& graph() const { return graph_; }
+  const std::optional<Received<atlasd::hypotheses_t>>& hypotheses() const { return hypotheses_; }
+  const std::optional<Received<atlasd::health_t>>& health() const { return health_; }
   // The latest map of each frame seen dominant, by frame id.
-  const std::map<int32_t, Received<atlas::local_map_t>>& maps() const { return maps_; }
+  const std::map<int32_t, Received<atlasd::local_map_t>>& maps() const { return maps_; }
   // The latest local map received (the dominant frame's), or nullptr.
-  const Received<atlas::local_map_t>* latest_map() const;
+  const Received<atlasd::local_map_t>* latest_map() const;
 
   // Increases with every stored message: a page update is due only when it changed.
   uint64_t version() const { return version_; }
@@ -65,11 +65,11 @@ class ViewState {
  private:
   ViewChannels channels_;
   int max_maps_;
-  std::optional<Received<atlas::pose_t>> pose_;
-  std::optional<Received<atlas::atlas_graph_t>> graph_;
-  std::optional<Received<atlas::hypotheses_t>> hypotheses_;
-  std::optional<Received<atlas::health_t>> health_;
-  std::map<int32_t, Received<atlas::local_map_t>> maps_;
+  std::optional<Received<atlasd::pose_t>> pose_;
+  std::optional<Received<atlasd::atlas_graph_t>> graph_;
+  std::optional<Received<atlasd::hypotheses_t>> hypotheses_;
+  std::optional<Received<atlasd::health_t>> health_;
+  std::map<int32_t, Received<atlasd::local_map_t>> maps_;
   int32_t latest_map_frame_ = -1;
   uint64_t version_ = 0;
   int64_t stored_ = 0, rejected_ = 0, forgotten_maps_ = 0;

@@ -22,12 +22,12 @@ IngestResult Feed(ViewState& s, const std::string& channel, const Message& m, Ti
   return s.Ingest(channel, b.data(), b.size(), at);
 }
 
-atlas::local_map_t MapOf(int32_t frame, int lines) {
-  atlas::local_map_t m{};
+atlasd::local_map_t MapOf(int32_t frame, int lines) {
+  atlasd::local_map_t m{};
   m.frame_id = frame;
   m.capacity = 30;
   for (int i = 0; i < lines; ++i) {
-    atlas::line_segment_t l{};
+    atlasd::line_segment_t l{};
     l.id = i;
     l.x1 = i + 1.0;
     m.lines.push_back(l);
@@ -50,18 +50,18 @@ TEST(ViewState, StoresWhatLcmDelivers) {
   } sink{&state, {}};
   lcm.subscribe("ATLAS_.*", &Sink::Raw, &sink);
 
-  atlas::pose_t pose{};
+  atlasd::pose_t pose{};
   pose.frame_id = 3;
   pose.x = 1.5;
   pose.theta = -0.25;
   pose.covariance[0] = 0.01;
   pose.q = 0.875;
   lcm.publish("ATLAS_POSE", &pose);
-  atlas::health_t health{};
+  atlasd::health_t health{};
   health.status = "mapping";
-  atlas::driver_health_t laser{};
+  atlasd::driver_health_t laser{};
   laser.name = "laser";
-  laser.state = atlas::driver_health_t::STATE_STALLED;
+  laser.state = atlasd::driver_health_t::STATE_STALLED;
   laser.last_error = "no telegram for 2.0 s";
   health.drivers.push_back(laser);
   health.num_drivers = 1;
@@ -89,9 +89,9 @@ TEST(ViewState, StoresWhatLcmDelivers) {
 
 TEST(ViewState, RefusesTheWrongTypeAndCutMessagesWithoutChangingAnything) {
   ViewState state(ViewChannels{}, 10);
-  atlas::health_t health{};
+  atlasd::health_t health{};
   EXPECT_EQ(Feed(state, "ATLAS_POSE", health), IngestResult::kUndecodable);
-  atlas::pose_t pose{};
+  atlasd::pose_t pose{};
   std::vector<uint8_t> b = Encode(pose);
   EXPECT_EQ(state.Ingest("ATLAS_POSE", b.data(), b.size() - 1, {}), IngestResult::kUndecodable);
   b.push_back(0);
@@ -107,7 +107,7 @@ TEST(ViewState, ChannelNamesAreConfigurable) {
   ViewChannels c;
   c.pose = "ROBOT2_POSE";
   ViewState state(c, 10);
-  atlas::pose_t pose{};
+  atlasd::pose_t pose{};
   EXPECT_EQ(Feed(state, "ATLAS_POSE", pose), IngestResult::kUnknownChannel);
   EXPECT_EQ(Feed(state, "ROBOT2_POSE", pose), IngestResult::kStored);
 }
