@@ -89,7 +89,14 @@ install(DIRECTORY ${ATLAS_LCM_CPP_DIR} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
 install(DIRECTORY ${ATLAS_LCM_PYTHON_DIR} DESTINATION ${ATLAS_PYTHON_DIR}
         FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 if(TARGET atlas_lcmtypes_jar)
-  install(FILES ${ATLAS_LCM_JAR} DESTINATION ${CMAKE_INSTALL_DATADIR}/java)
+  # Debian's Java policy: the jar versioned, the plain name a symlink to it.
+  install(FILES ${ATLAS_LCM_JAR} DESTINATION ${CMAKE_INSTALL_DATADIR}/java
+          RENAME atlasd-lcmtypes-${PROJECT_VERSION}.jar)
+  file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/packaging)
+  file(CREATE_LINK atlasd-lcmtypes-${PROJECT_VERSION}.jar
+       ${CMAKE_BINARY_DIR}/packaging/atlasd-lcmtypes.jar SYMBOLIC)
+  install(FILES ${CMAKE_BINARY_DIR}/packaging/atlasd-lcmtypes.jar
+          DESTINATION ${CMAKE_INSTALL_DATADIR}/java)
   install(PROGRAMS ${CMAKE_SOURCE_DIR}/scripts/atlas-spy DESTINATION ${CMAKE_INSTALL_BINDIR})
   if(HELP2MAN)
     _atlas_man(atlas-spy 1 "lcm-spy with atlasd's message types"
@@ -130,6 +137,9 @@ add_custom_command(
 add_custom_target(atlas_deb_changelog ALL DEPENDS ${CMAKE_BINARY_DIR}/packaging/changelog.Debian.gz)
 install(FILES ${_atlas_deb_dir}/copyright ${CMAKE_BINARY_DIR}/packaging/changelog.Debian.gz
         DESTINATION ${_atlas_doc_dir})
+# Lintian's overrides for what a package built outside Debian's archive cannot avoid.
+install(FILES ${_atlas_deb_dir}/lintian-overrides DESTINATION ${CMAKE_INSTALL_DATADIR}/lintian/overrides
+        RENAME atlasd)
 
 # CPack DEB. Run-time dependencies come from the binaries (dpkg-shlibdeps), and python3;
 # atlas-spy's Java ones are recommended.

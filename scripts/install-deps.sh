@@ -26,6 +26,7 @@ packages=(
   xvfb xauth imagemagick        # lcm-spy under a virtual display, and its screenshot
   systemd                       # systemd-analyze verify
   help2man dpkg-dev file        # the Debian package: man pages from --help, cpack's shlibdeps
+  lintian                       # the package's test: Debian's checks
   libcpp-httplib-dev            # atlas-view's HTTP server (one page, server-sent events)
   chromium curl                 # atlas-view's browser test: headless Chromium, and HTTP checks
 )

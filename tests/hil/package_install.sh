@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # HIL (package): the Debian package of this build tree on this machine, as a user would have it.
-#   1. cpack makes the package; dpkg -i installs it;
+#   1. cpack makes the package; lintian finds no error or warning in it; dpkg -i installs it;
 #   2. systemd-analyze verifies the installed unit; the installed atlasd checks the installed
 #      /etc/atlasd/atlasd.toml (a conffile);
 #   3. the installed atlas-sim makes a run, the installed atlas-fakedev plays it, and the
@@ -17,7 +17,8 @@ skip() {
   exit 77
 }
 [ "$(id -u)" = 0 ] || skip "needs root (dpkg -i)"
-command -v dpkg >/dev/null && command -v cpack >/dev/null || skip "needs dpkg and cpack"
+command -v dpkg >/dev/null && command -v cpack >/dev/null && command -v lintian >/dev/null ||
+  skip "needs dpkg, cpack and lintian"
 [ -f "$BUILD_DIR/CPackConfig.cmake" ] || fail "no CPackConfig.cmake in BUILD_DIR=$BUILD_DIR"
 if dpkg-query -W -f='${db:Status-Status}' atlasd 2>/dev/null | grep -qv '^not-installed$'; then
   skip "an atlasd package is already installed on this machine ($(dpkg-query -W -f='${Version} ${db:Status-Status}' atlasd))"
@@ -38,6 +39,9 @@ cpack --config "$BUILD_DIR/CPackConfig.cmake" -B "$WORK/pkg" >"$WORK/cpack.err" 
 debs=("$WORK"/pkg/atlasd_*.deb)
 [ ${#debs[@]} = 1 ] && [ -f "${debs[0]}" ] || fail "cpack made no single atlasd_*.deb: ${debs[*]}"
 deb=${debs[0]}
+# Debian's checks of the package: no error and no warning (its overrides are in the package).
+lintian --fail-on error,warning "$deb" >"$WORK/lintian.out" 2>&1 ||
+  fail "lintian: $(grep -v 'root privileges' "$WORK/lintian.out" | head -n 20)"
 dpkg-deb --fsys-tarfile "$deb" | tar -t | sed -e 's|^\./|/|' -e 's|/$||' | grep -v '^/\?$' \
   >"$WORK/contents"
 INSTALLED=1
