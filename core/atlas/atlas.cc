@@ -221,6 +221,8 @@ const StepStats& Atlas::MaintainGraph() {
 void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, const LaserScan* scan,
                              const SonarReading* sonar, bool first) {
   bootstrap_failed_.assign(hypotheses_.size(), 0);
+  // One observation for every hypothesis: the maps share its lines.
+  const ScanObservation observation = scan ? ScanObservation(*scan) : ScanObservation();
   for (size_t i = 0; i < hypotheses_.size(); ++i) {
     Hypothesis& h = hypotheses_[i];
     LocalMap& map = MapOf(h);
@@ -231,7 +233,7 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
     }
     const bool mature = h.state == HypothesisState::kMature;
     if (scan) {
-      h.last_update = map.Update(*scan, mature);
+      h.last_update = map.Update(observation, mature);
       h.window.Add(h.last_update);
       if (mature && options_.points.enabled)
         graph_.MutableFrame(h.frame).points.AddScan(map.RobotPose().mean, *scan);
@@ -246,8 +248,8 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
     if (!mature && !h.bootstrapped && !feeds_w) {
       if (!bootstrapper_ && h.steps >= options_.lifecycle.bootstrap_scans) h.bootstrapped = true;
     } else if (!mature && !h.bootstrapped) {
-      h.z.push_back(JuvenileScan{delta, scan ? *scan : LaserScan{}, h.last_update,
-                                 sonar ? *sonar : SonarReading{}});
+      h.z.push_back(
+          JuvenileScan{delta, observation, h.last_update, sonar ? *sonar : SonarReading{}});
       if (static_cast<int>(h.z.size()) >= options_.lifecycle.bootstrap_scans) {
         bool accumulate = false;
         if (bootstrapper_) {

@@ -168,7 +168,7 @@ std::string Atlas::Serialize() const {
     w.Put<uint32_t>(h.z.size());
     for (const JuvenileScan& z : h.z) {
       w.PutPose(z.odometry_delta);
-      PutScan(&w, z.scan);
+      PutScan(&w, z.observation.scan());
       PutUpdate(&w, z.update);
       PutSonar(&w, z.sonar);
     }
@@ -291,10 +291,13 @@ bool Atlas::Deserialize(const std::string& bytes) {
         (nz > 0 && (h.state != HypothesisState::kJuvenile || h.bootstrapped)))
       return false;
     h.z.resize(nz);
-    for (JuvenileScan& z : h.z)
-      if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &z.scan) || !GetUpdate(&r, &z.update) ||
+    for (JuvenileScan& z : h.z) {
+      LaserScan scan;
+      if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &scan) || !GetUpdate(&r, &z.update) ||
           (version >= 3 && !GetSonar(&r, &z.sonar)))
         return false;
+      z.observation = ScanObservation(std::move(scan));  // its lines are extracted on demand
+    }
     if (has_trial && version < 4) {
       // No seed saved: w's Z starts again from the juvenile's current pose.
       h.seed = h.trial_map->RobotPose();

@@ -46,6 +46,7 @@
 #include "core/atlas/atlas_graph.h"
 #include "core/common/sensor_types.h"
 #include "core/localmap/local_map.h"
+#include "core/localmap/scan_observation.h"
 
 namespace atlas {
 
@@ -97,10 +98,11 @@ enum class HypothesisState : uint8_t { kJuvenile = 0, kMature = 1, kRetired = 2 
 const char* HypothesisStateName(HypothesisState s);
 
 // One step kept for the bootstrap function w (eq. 12): a laser scan, or a sonar reading when
-// w solves from sonar (PoseBootstrapper::FromSonar; `scan` is then empty).
+// w solves from sonar (PoseBootstrapper::FromSonar; `observation` then holds an empty scan).
+// The observation is the one the step gave the maps, with the lines they extracted from it.
 struct JuvenileScan {
   Pose2 odometry_delta;  // motion from the previous step to this one, robot frame
-  LaserScan scan;
+  ScanObservation observation;
   ScanUpdate update;  // what the seeded juvenile made of it
   SonarReading sonar;
 };

@@ -2,7 +2,6 @@
 
 #include "core/localmap/bootstrap.h"
 #include "core/localmap/line_ekf_map.h"
-#include "core/localmap/line_extraction.h"
 
 namespace atlas {
 
@@ -17,7 +16,7 @@ PoseBootstrap LineMapBootstrapper::Solve(const LocalMap& map, const LocalMap& /*
   for (int k = static_cast<int>(z.size()) - 1; k >= 0; --k) {
     scans[k].pose_in_current = k_in_current.mean;
     scans[k].pose_cov = k_in_current.cov;
-    scans[k].lines = ExtractRobotFrameLines(z[k].scan, options_.extraction);
+    scans[k].lines = z[k].observation.RobotFrameLines(options_.extraction);
     if (k == 0) break;
     // z[k].odometry_delta is the pose of frame k in frame k-1.
     const UncertainPose delta{z[k].odometry_delta,

@@ -2,12 +2,13 @@
 // w of eq. 12 for the line EKF local map: binds core/localmap's Bootstrap() (bootstrap.h) to
 // the atlas's PoseBootstrapper interface.
 //
-// For the juvenile's accumulated scans Z, lines are extracted in the robot frame of each scan
-// (the same extraction the map uses), each scan's robot frame is placed in the current robot
-// frame by composing the odometry increments backwards (covariance from the map's odometry
-// noise model), and Bootstrap() solves the robot pose from the matched features alone. The
-// seed (the juvenile's current pose) is passed only to propose correspondences, as bootstrap.h
-// specifies; the solution does not otherwise depend on it.
+// For the juvenile's accumulated scans Z, the lines in the robot frame of each scan are those
+// of its observation (the same extraction the map uses, done once per scan: scan_observation.h),
+// each scan's robot frame is placed in the current robot frame by composing the odometry
+// increments backwards (covariance from the map's odometry noise model), and Bootstrap()
+// solves the robot pose from the matched features alone. The seed (the juvenile's current pose)
+// is passed only to propose correspondences, as bootstrap.h specifies; the solution does not
+// otherwise depend on it.
 //
 // Outcomes (hypothesis.h): Bootstrap()'s kSolved is kSolved. kUnderconstrained (the matched map
 // lines leave a direction free, e.g. only the two parallel walls of a corridor) is

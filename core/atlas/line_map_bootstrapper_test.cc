@@ -47,7 +47,7 @@ struct Corridor {
       LaserScan scan = scanner.Scan(truth);
       if (blind) scan.ranges.assign(scan.ranges.size(), kNoReturn);
       const ScanUpdate u = trial->Update(scan, false);
-      z.push_back(JuvenileScan{delta, scan, u, SonarReading{}});
+      z.push_back(JuvenileScan{delta, ScanObservation(scan), u, SonarReading{}});
     }
     return LineMapBootstrapper(options).Solve(*trial, map, z, trial->RobotPose());
   }

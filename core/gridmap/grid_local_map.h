@@ -124,6 +124,7 @@ class GridLocalMap final : public LocalMap {
   std::unique_ptr<LocalMap> Clone() const override;
   void Predict(const Pose2& odometry_delta) override;
   void Predict(const Pose2& odometry_delta, const Mat3& covariance) override;
+  using LocalMap::Update;
   ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override;
   UncertainPose RobotPose() const override;
   void ResetRobotPose(const UncertainPose& pose) override;

@@ -15,7 +15,7 @@ PoseBootstrap GridMapBootstrapper::Solve(const LocalMap& map, const LocalMap& fr
   Pose2 k_in_current;
   for (int k = static_cast<int>(z.size()) - 1; k >= 0; --k) {
     const RigidTransform t(k_in_current);
-    for (const Vec2& q : frame->AlignmentPoints(z[k].scan)) all.push_back(t.Apply(q));
+    for (const Vec2& q : frame->AlignmentPoints(z[k].observation.scan())) all.push_back(t.Apply(q));
     if (k > 0) k_in_current = Compose(k_in_current, Inverse(z[k].odometry_delta));
   }
   const std::vector<Vec2> points = EvenSubsample(all, options_.bootstrap.max_points);

@@ -43,7 +43,7 @@ Juvenile JuvenileAt(const std::vector<sim::Wall>& walls, const GridLocalMap& fra
   Pose2 truth = Compose(end, Inverse(Compose(u, Compose(u, u))));
   for (int k = 0; k < 4; ++k) {
     if (k > 0) truth = Compose(truth, u);
-    j.z.push_back(JuvenileScan{k > 0 ? u : Pose2{}, scanner.Scan(truth), {}, {}});
+    j.z.push_back(JuvenileScan{k > 0 ? u : Pose2{}, ScanObservation(scanner.Scan(truth)), {}, {}});
   }
   j.seed = UncertainPose{seed_mean, Mat3::Identity() * seed_sigma * seed_sigma};
   j.seed.cov(2, 2) = 0.01;

@@ -204,6 +204,10 @@ ScanUpdate LineEkfMap::Update(const LaserScan& scan, bool allow_new_features) {
   return UpdateWithLines(ExtractRobotFrameLines(scan, options_.extraction), allow_new_features);
 }
 
+ScanUpdate LineEkfMap::Update(const ScanObservation& observation, bool allow_new_features) {
+  return UpdateWithLines(observation.RobotFrameLines(options_.extraction), allow_new_features);
+}
+
 ScanUpdate LineEkfMap::UpdateWithLines(const std::vector<ObservedLine>& observed,
                                        bool allow_new_features) {
   ScanUpdate out;

@@ -48,6 +48,8 @@ class LineEkfMap final : public LocalMap {
   void Predict(const Pose2& odometry_delta) override;
   void Predict(const Pose2& odometry_delta, const Mat3& covariance) override;
   ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override;
+  // Update(scan) on observation.RobotFrameLines(Options().extraction).
+  ScanUpdate Update(const ScanObservation& observation, bool allow_new_features) override;
   UncertainPose RobotPose() const override;
   void ResetRobotPose(const UncertainPose& pose) override;
   int Complexity() const override { return static_cast<int>(extents_.size()); }

@@ -324,6 +324,44 @@ TEST(LineEkfMapTest, CloneIsIndependent) {
   EXPECT_EQ(clone->Complexity(), map.Complexity());
 }
 
+TEST(LineEkfMapTest, UpdateFromASharedObservationEqualsUpdateFromTheScan) {
+  LineEkfMap map(SimOptions());
+  RunCorridor(map, 13, 20);
+  // Two maps as a mature and a juvenile hypothesis: each updated from the scan, and from one
+  // observation shared by both.
+  std::unique_ptr<LocalMap> mature_scan = map.Clone(), mature_obs = map.Clone();
+  std::unique_ptr<LocalMap> juvenile_scan = map.Clone(), juvenile_obs = map.Clone();
+  for (LocalMap* m : {juvenile_scan.get(), juvenile_obs.get()})
+    m->ResetRobotPose(UncertainPose{Pose2{2.1, 0.05, 0.02}, Mat3::Identity() * 0.01});
+  FakeLaserOptions lo;
+  lo.range_sigma = SimOptions().extraction.range_sigma;
+  FakeWallScanner scanner(sim::CorridorWalls(), lo, 14);
+  Pose2 truth{2.0, 0.0, 0.0};
+  int matched = 0;
+  for (int s = 0; s < 30; ++s) {
+    const Pose2 u{0.1, 0.0, 0.01};
+    truth = Compose(truth, u);
+    for (LocalMap* m :
+         {mature_scan.get(), mature_obs.get(), juvenile_scan.get(), juvenile_obs.get()})
+      m->Predict(u);
+    const LaserScan scan = scanner.Scan(truth);
+    const ScanObservation observation(scan);
+    const ScanUpdate a = mature_scan->Update(scan, true);
+    const ScanUpdate b = mature_obs->Update(observation, true);
+    const ScanUpdate c = juvenile_scan->Update(scan, false);
+    const ScanUpdate d = juvenile_obs->Update(observation, false);
+    EXPECT_EQ(a.observations, b.observations);
+    EXPECT_EQ(a.matched, b.matched);
+    EXPECT_EQ(a.added, b.added);
+    EXPECT_EQ(c.observations, d.observations);
+    EXPECT_EQ(c.matched, d.matched);
+    matched += b.matched + d.matched;
+    EXPECT_EQ(mature_obs->Serialize(), mature_scan->Serialize());
+    EXPECT_EQ(juvenile_obs->Serialize(), juvenile_scan->Serialize());
+  }
+  EXPECT_GT(matched, 60);
+}
+
 TEST(LineEkfMapTest, ResetRobotPoseClearsCorrelation) {
   LineEkfMap map(SimOptions());
   RunCorridor(map, 12, 20);

@@ -8,7 +8,8 @@
 // Contract:
 // - Every quantity is in the coordinates of the map-frame that owns the map.
 // - Predict() then Update() per scan (or UpdateWithSonar() per sonar reading); the caller
-//   integrates odometry up to the measurement's stamp.
+//   integrates odometry up to the measurement's stamp. Update(ScanObservation) is Update(scan)
+//   with the scan's lines shared by every map the observation is given to (scan_observation.h).
 // - A juvenile hypothesis calls Update() with allow_new_features = false (Section III-E).
 // - New features are added only while Complexity() < Capacity() (Section I-A, map capacity).
 // - No I/O, no exceptions; data-dependent outcomes are typed results.
@@ -20,6 +21,7 @@
 
 #include "core/common/sensor_types.h"
 #include "core/geometry/se2.h"
+#include "core/localmap/scan_observation.h"
 
 namespace atlas {
 
@@ -59,6 +61,13 @@ class LocalMap {
 
   // Updates the map and pose with a laser scan taken at the current (predicted) pose.
   virtual ScanUpdate Update(const LaserScan& scan, bool allow_new_features) = 0;
+  // The same update from an observation of the scan: maps that extract lines take them from
+  // `observation` (extracted once for all maps given it) and give the result of
+  // Update(observation.scan(), ...) exactly. Default: Update(observation.scan(), ...).
+  // A map overriding only one of the two declares `using LocalMap::Update;`.
+  virtual ScanUpdate Update(const ScanObservation& observation, bool allow_new_features) {
+    return Update(observation.scan(), allow_new_features);
+  }
 
   // Updates with one sonar ring reading taken at the current (predicted) pose. For q (eq. 5)
   // the result's `observations` are the usable returns and `matched` those applied to a

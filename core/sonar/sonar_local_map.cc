@@ -127,14 +127,23 @@ void SonarLocalMap::PredictWith(const Pose2& u, const Mat3* covariance) {
   }
 }
 
-ScanUpdate SonarLocalMap::Update(const LaserScan& scan, bool allow_new_features) {
+template <typename Laser>
+ScanUpdate SonarLocalMap::UpdateWithLaser(const Laser& laser, bool allow_new_features) {
   if (o_.sensors == RangeSensors::kSonar) return ScanUpdate{};
-  if (vantages_.Size() == 0) return ekf_.Update(scan, allow_new_features);
+  if (vantages_.Size() == 0) return ekf_.Update(laser, allow_new_features);
   const Eigen::VectorXd x0 = ekf_.State();
   const Eigen::MatrixXd p0 = ekf_.Covariance();
-  const ScanUpdate out = ekf_.Update(scan, allow_new_features);
+  const ScanUpdate out = ekf_.Update(laser, allow_new_features);
   vantages_.Follow(x0, p0, ekf_.State(), ekf_.Covariance());
   return out;
+}
+
+ScanUpdate SonarLocalMap::Update(const LaserScan& scan, bool allow_new_features) {
+  return UpdateWithLaser(scan, allow_new_features);
+}
+
+ScanUpdate SonarLocalMap::Update(const ScanObservation& observation, bool allow_new_features) {
+  return UpdateWithLaser(observation, allow_new_features);
 }
 
 void SonarLocalMap::ResetRobotPose(const UncertainPose& pose) {

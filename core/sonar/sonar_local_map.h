@@ -102,6 +102,7 @@ class SonarLocalMap final : public LocalMap {
   void Predict(const Pose2& odometry_delta) override;
   void Predict(const Pose2& odometry_delta, const Mat3& covariance) override;
   ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override;
+  ScanUpdate Update(const ScanObservation& observation, bool allow_new_features) override;
   UncertainPose RobotPose() const override { return ekf_.RobotPose(); }
   void ResetRobotPose(const UncertainPose& pose) override;
   int Complexity() const override { return ekf_.Complexity(); }
@@ -136,6 +137,9 @@ class SonarLocalMap final : public LocalMap {
   const SonarLocalMapOptions& Options() const { return o_; }
 
  private:
+  // The laser path of both Update overloads (a LaserScan or a ScanObservation, given to ekf_).
+  template <typename Laser>
+  ScanUpdate UpdateWithLaser(const Laser& laser, bool allow_new_features);
   // Predict with the given covariance, or the odometry noise model when null.
   void PredictWith(const Pose2& u, const Mat3* covariance);
   bool Duplicate(const ObservedLine& z) const;

@@ -73,6 +73,7 @@ class FakeLocalMap : public LocalMap {
     ++predicts_;
   }
 
+  using LocalMap::Update;
   ScanUpdate Update(const LaserScan& scan, bool allow_new_features) override {
     ScanUpdate u;
     if (script_ && script_->observations >= 0) {
