@@ -157,6 +157,9 @@ if [[ $CONSTANT == 1 ]]; then
     scripts/constant-time.sh "$OUT/constant-time"
     echo '```'
   } >"$FRAGMENTS/constant-time.md"
+  # The page's two pictures of the run, beside it.
+  cp "$OUT/constant-time/constant-time-time.png" "$(dirname "$PAGE")/atlas-constant-time.png"
+  cp "$OUT/constant-time/constant-time-frames.png" "$(dirname "$PAGE")/atlas-constant-time-frames.png"
 fi
 
 python3 - "$PAGE" "$FRAGMENTS" <<'PY'
