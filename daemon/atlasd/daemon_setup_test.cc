@@ -40,7 +40,7 @@ TEST(DaemonSetup, DriverThreadsFollowTheLoopsRealTimePriority) {
 TEST(DaemonSetup, LcmInputTakesTheInputKeysAndTheLasersMount) {
   DaemonOptions o;
   o.input.source = InputSource::kLcm;
-  o.input.laser_type = InputLaserType::kPlanarLidar;
+  o.input.laser_type = LaserMessageType::kPlanarLidar;
   o.input.odometry_channel = "POSE";
   o.lcm.url = "udpm://239.255.76.67:7667?ttl=1";
   o.laser.mount = MountPose{0.2, -0.1, 90.0};
@@ -49,7 +49,7 @@ TEST(DaemonSetup, LcmInputTakesTheInputKeysAndTheLasersMount) {
   o.odometry.queue_capacity = 7;
   const LcmInputOptions i = ToLcmInputOptions(o);
   EXPECT_EQ(i.url, o.lcm.url);
-  EXPECT_EQ(i.laser_type, InputLaserType::kPlanarLidar);
+  EXPECT_EQ(i.laser_type, LaserMessageType::kPlanarLidar);
   EXPECT_EQ(i.laser_channel, "ATLAS_RAW_LASER");
   EXPECT_EQ(i.odometry_channel, "POSE");
   EXPECT_EQ(i.laser.sensor_pose.x, 0.2);

@@ -1,12 +1,10 @@
 #include "daemon/lcm_in/lcm_input.h"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <cmath>
-#include <cstring>
 #include <exception>
 #include <span>
+
+#include "drivers/device/realtime_priority.h"
 
 namespace atlas {
 
@@ -153,11 +151,8 @@ void LcmInput::Stop() {
 
 void LcmInput::Run() {
   if (options_.realtime_priority > 0) {
-    sched_param p{};
-    p.sched_priority = options_.realtime_priority;
-    if (const int e = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); e != 0)
-      odometry_.Failed("SCHED_FIFO priority " + std::to_string(options_.realtime_priority) +
-                       " refused (" + std::strerror(e) + "): the LCM input runs normally");
+    if (const std::string why = UseRealtimePriority(options_.realtime_priority); !why.empty())
+      odometry_.Failed(why + ": the LCM input runs normally");
   }
   while (!stop_.load(std::memory_order_acquire)) {
     // Short waits keep Stop() prompt and the silences checked.

@@ -30,8 +30,8 @@ namespace atlas {
 struct LcmInputOptions {
   std::string url;            // the LCM provider to subscribe on
   bool laser_enabled = true;  // false: odometry only
-  InputLaserType laser_type = InputLaserType::kLaserScan;
-  InputOdometryType odometry_type = InputOdometryType::kOdometry;
+  LaserMessageType laser_type = LaserMessageType::kLaserScan;
+  OdometryMessageType odometry_type = OdometryMessageType::kOdometry;
   std::string laser_channel = "ATLAS_RAW_LASER";
   std::string odometry_channel = "ATLAS_RAW_ODOMETRY";
   LaserSetup laser;  // for the laser types that do not carry it

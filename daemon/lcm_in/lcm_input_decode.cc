@@ -54,11 +54,11 @@ std::string NotA(const char* type, const char* key) {
 
 }  // namespace
 
-const char* InputTypeName(InputLaserType type) {
-  return type == InputLaserType::kPlanarLidar ? "bot_core.planar_lidar_t" : "laser_scan_t";
+const char* InputTypeName(LaserMessageType type) {
+  return type == LaserMessageType::kPlanarLidar ? "bot_core.planar_lidar_t" : "laser_scan_t";
 }
-const char* InputTypeName(InputOdometryType type) {
-  return type == InputOdometryType::kBotPose ? "bot_core.pose_t" : "odometry_t";
+const char* InputTypeName(OdometryMessageType type) {
+  return type == OdometryMessageType::kBotPose ? "bot_core.pose_t" : "odometry_t";
 }
 
 double YawOfQuaternion(double w, double x, double y, double z) {
@@ -130,10 +130,10 @@ Decoded<OdometrySample> FromBotPose(const bot_core::pose_t& m, Time arrival) {
   return d;
 }
 
-Decoded<LaserScan> DecodeLaserMessage(InputLaserType type, std::span<const uint8_t> bytes,
+Decoded<LaserScan> DecodeLaserMessage(LaserMessageType type, std::span<const uint8_t> bytes,
                                       const LaserSetup& setup, Time arrival) {
   // Offsets of the first array length: 8 bytes of fingerprint, then the fields before it.
-  if (type == InputLaserType::kPlanarLidar) {
+  if (type == LaserMessageType::kPlanarLidar) {
     bot_core::planar_lidar_t m;
     if (!ArraysFit(bytes, 8 + 8, 2) || !DecodeBytes(bytes, &m))
       return {std::nullopt, NotA("bot_core.planar_lidar_t", "laser_type")};
@@ -145,9 +145,9 @@ Decoded<LaserScan> DecodeLaserMessage(InputLaserType type, std::span<const uint8
   return FromAtlasLaserScan(m, arrival);
 }
 
-Decoded<OdometrySample> DecodeOdometryMessage(InputOdometryType type,
+Decoded<OdometrySample> DecodeOdometryMessage(OdometryMessageType type,
                                               std::span<const uint8_t> bytes, Time arrival) {
-  if (type == InputOdometryType::kBotPose) {
+  if (type == OdometryMessageType::kBotPose) {
     bot_core::pose_t m;
     if (!DecodeBytes(bytes, &m)) return {std::nullopt, NotA("bot_core.pose_t", "odometry_type")};
     return FromBotPose(m, arrival);

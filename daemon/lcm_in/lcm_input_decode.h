@@ -59,13 +59,13 @@ Decoded<OdometrySample> FromBotPose(const bot_core::pose_t& m, Time arrival);
 double YawOfQuaternion(double w, double x, double y, double z);
 
 // The bytes of one LCM message (fingerprint first) as `type`.
-Decoded<LaserScan> DecodeLaserMessage(InputLaserType type, std::span<const uint8_t> bytes,
+Decoded<LaserScan> DecodeLaserMessage(LaserMessageType type, std::span<const uint8_t> bytes,
                                       const LaserSetup& setup, Time arrival);
-Decoded<OdometrySample> DecodeOdometryMessage(InputOdometryType type,
+Decoded<OdometrySample> DecodeOdometryMessage(OdometryMessageType type,
                                               std::span<const uint8_t> bytes, Time arrival);
 
 // The configuration's name of a type ("laser_scan_t", "bot_core.planar_lidar_t", ...).
-const char* InputTypeName(InputLaserType type);
-const char* InputTypeName(InputOdometryType type);
+const char* InputTypeName(LaserMessageType type);
+const char* InputTypeName(OdometryMessageType type);
 
 }  // namespace atlas

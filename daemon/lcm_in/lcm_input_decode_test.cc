@@ -46,7 +46,7 @@ const Time kArrival = FromSeconds(123.456789);
 TEST(LcmInputDecodeTest, PlanarLidarBytesBecomeAScanStampedAtArrival) {
   const auto bytes = Encoded(Lidar({1.0f, 0.0f, -1.0f, 9.0f, NAN, 2.5f}));
   const Decoded<LaserScan> d =
-      DecodeLaserMessage(InputLaserType::kPlanarLidar, bytes, kSetup, kArrival);
+      DecodeLaserMessage(LaserMessageType::kPlanarLidar, bytes, kSetup, kArrival);
   ASSERT_TRUE(d.sample) << d.error;
   const LaserScan& s = *d.sample;
   EXPECT_EQ(s.stamp, kArrival);
@@ -72,7 +72,7 @@ TEST(LcmInputDecodeTest, AtlasLaserScanBytesKeepTheirMountAndRanges) {
   in.sensor_pose = Pose2{0.3, 0.0, 0.1};
   const auto bytes = Encoded(ToLaserMessage(in));
   const Decoded<LaserScan> d =
-      DecodeLaserMessage(InputLaserType::kLaserScan, bytes, kSetup, kArrival);
+      DecodeLaserMessage(LaserMessageType::kLaserScan, bytes, kSetup, kArrival);
   ASSERT_TRUE(d.sample) << d.error;
   EXPECT_EQ(d.sample->stamp, kArrival);
   EXPECT_EQ(d.sample->max_range, 50.0f);
@@ -87,7 +87,7 @@ TEST(LcmInputDecodeTest, BotPoseGivesPositionAndYaw) {
   for (double yaw : {0.0, 0.7, -2.5, M_PI - 1e-9}) {
     const auto bytes = Encoded(BotPose(1.5, -2.0, yaw));
     const Decoded<OdometrySample> d =
-        DecodeOdometryMessage(InputOdometryType::kBotPose, bytes, kArrival);
+        DecodeOdometryMessage(OdometryMessageType::kBotPose, bytes, kArrival);
     ASSERT_TRUE(d.sample) << d.error;
     EXPECT_EQ(d.sample->stamp, kArrival);
     EXPECT_EQ(d.sample->pose.x, 1.5);
@@ -108,7 +108,7 @@ TEST(LcmInputDecodeTest, AtlasOdometryBytesStampedAtArrival) {
   const OdometrySample in{FromSeconds(3), Pose2{1, 2, -0.5}, 12.0, 13.0, 0.5, 0.1};
   const auto bytes = Encoded(ToOdometryMessage(in));
   const Decoded<OdometrySample> d =
-      DecodeOdometryMessage(InputOdometryType::kOdometry, bytes, kArrival);
+      DecodeOdometryMessage(OdometryMessageType::kOdometry, bytes, kArrival);
   ASSERT_TRUE(d.sample) << d.error;
   EXPECT_EQ(d.sample->stamp, kArrival);
   EXPECT_EQ(d.sample->pose.y, 2.0);
@@ -119,13 +119,13 @@ TEST(LcmInputDecodeTest, AtlasOdometryBytesStampedAtArrival) {
 TEST(LcmInputDecodeTest, AnotherTypeOnTheChannelIsAnErrorNamingTheKey) {
   const auto pose = Encoded(BotPose(0, 0, 0));
   const Decoded<OdometrySample> o =
-      DecodeOdometryMessage(InputOdometryType::kOdometry, pose, kArrival);
+      DecodeOdometryMessage(OdometryMessageType::kOdometry, pose, kArrival);
   EXPECT_FALSE(o.sample);
   EXPECT_NE(o.error.find("not a atlasd.odometry_t"), std::string::npos) << o.error;
   EXPECT_NE(o.error.find("input.odometry_type"), std::string::npos) << o.error;
   const auto lidar = Encoded(Lidar({1.0f}));
   const Decoded<LaserScan> l =
-      DecodeLaserMessage(InputLaserType::kLaserScan, lidar, kSetup, kArrival);
+      DecodeLaserMessage(LaserMessageType::kLaserScan, lidar, kSetup, kArrival);
   EXPECT_FALSE(l.sample);
   EXPECT_NE(l.error.find("input.laser_type"), std::string::npos) << l.error;
 }
@@ -134,17 +134,17 @@ TEST(LcmInputDecodeTest, DamagedBytesAreErrorsNeverAllocations) {
   std::vector<uint8_t> bytes = Encoded(Lidar({1.0f, 2.0f}));
   // nranges (after the fingerprint and utime) says two billion beams.
   bytes[16] = 0x7f;
-  EXPECT_FALSE(DecodeLaserMessage(InputLaserType::kPlanarLidar, bytes, kSetup, kArrival).sample);
+  EXPECT_FALSE(DecodeLaserMessage(LaserMessageType::kPlanarLidar, bytes, kSetup, kArrival).sample);
   bytes[16] = 0xff;  // negative
-  EXPECT_FALSE(DecodeLaserMessage(InputLaserType::kPlanarLidar, bytes, kSetup, kArrival).sample);
+  EXPECT_FALSE(DecodeLaserMessage(LaserMessageType::kPlanarLidar, bytes, kSetup, kArrival).sample);
   const std::vector<uint8_t> good = Encoded(Lidar({1.0f, 2.0f}));
   for (size_t n = 0; n < good.size(); ++n) {  // every truncation
     const std::span<const uint8_t> cut(good.data(), n);
-    EXPECT_FALSE(DecodeLaserMessage(InputLaserType::kPlanarLidar, cut, kSetup, kArrival).sample)
+    EXPECT_FALSE(DecodeLaserMessage(LaserMessageType::kPlanarLidar, cut, kSetup, kArrival).sample)
         << n;
   }
   const std::vector<uint8_t> none;
-  EXPECT_FALSE(DecodeOdometryMessage(InputOdometryType::kBotPose, none, kArrival).sample);
+  EXPECT_FALSE(DecodeOdometryMessage(OdometryMessageType::kBotPose, none, kArrival).sample);
 }
 
 TEST(LcmInputDecodeTest, MessagesNoScanOrPoseCanHoldAreErrors) {

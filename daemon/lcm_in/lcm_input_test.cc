@@ -38,8 +38,8 @@ class LcmInputTest : public ::testing::Test {
 TEST_F(LcmInputTest, QueuesPlainStructsStampedAtArrival) {
   int woken = 0;
   LcmInputOptions o;
-  o.laser_type = InputLaserType::kPlanarLidar;
-  o.odometry_type = InputOdometryType::kBotPose;
+  o.laser_type = LaserMessageType::kPlanarLidar;
+  o.odometry_type = OdometryMessageType::kBotPose;
   o.laser_channel = "SCAN";
   o.odometry_channel = "POSE";
   o.laser = LaserSetup{Pose2{0.2, 0, 0}, 10.0f};

@@ -1,11 +1,9 @@
 #include "drivers/device/device_reader.h"
 
-#include <pthread.h>
-#include <sched.h>
-#include <string.h>
-
 #include <algorithm>
 #include <exception>
+
+#include "drivers/device/realtime_priority.h"
 
 namespace atlas {
 
@@ -95,12 +93,8 @@ bool DeviceReader::TrackSilence(bool got_data, Time now) {
 
 void DeviceReader::Loop() {
   if (reconnect_.realtime_priority > 0) {
-    sched_param p{};
-    p.sched_priority = reconnect_.realtime_priority;
-    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0) {
-      const std::string why = "SCHED_FIFO priority " +
-                              std::to_string(reconnect_.realtime_priority) + " refused (" +
-                              strerror(err) + "): running at normal priority";
+    if (std::string why = UseRealtimePriority(reconnect_.realtime_priority); !why.empty()) {
+      why += ": running at normal priority";
       health_.SetError(why);
       ReportCondition(LogPriority::kWarning, why);
     }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <any>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -557,6 +558,19 @@ std::string CheckAbsolutePath(const std::string& s) {
 
 namespace {
 
+// The channels atlasd publishes on, by their key under lcm.channels.
+std::array<std::pair<const char*, const std::string*>, 9> PublishedChannels(const LcmChannels& c) {
+  return {{{"pose", &c.pose},
+           {"reference_pose", &c.reference_pose},
+           {"local_map", &c.local_map},
+           {"graph", &c.graph},
+           {"hypotheses", &c.hypotheses},
+           {"health", &c.health},
+           {"raw_odometry", &c.raw_odometry},
+           {"raw_laser", &c.raw_laser},
+           {"raw_sonar", &c.raw_sonar}}};
+}
+
 // input.source = "lcm": no device is opened; atlasd must not read what it publishes itself.
 template <typename Read>
 void CheckLcmInput(const DaemonOptions& o, const Read& read,
@@ -571,17 +585,7 @@ void CheckLcmInput(const DaemonOptions& o, const Read& read,
       o.input.laser_channel == o.input.odometry_channel) {
     report("input.odometry_channel", "is the same channel as input.laser_channel");
   }
-  const LcmChannels& c = o.lcm.channels;
-  const std::pair<const char*, const std::string*> published[] = {
-      {"pose", &c.pose},
-      {"reference_pose", &c.reference_pose},
-      {"local_map", &c.local_map},
-      {"graph", &c.graph},
-      {"hypotheses", &c.hypotheses},
-      {"health", &c.health},
-      {"raw_odometry", &c.raw_odometry},
-      {"raw_laser", &c.raw_laser},
-      {"raw_sonar", &c.raw_sonar}};
+  const auto published = PublishedChannels(o.lcm.channels);
   const std::pair<const char*, const std::string*> inputs[] = {
       {"input.laser_channel", &o.input.laser_channel},
       {"input.odometry_channel", &o.input.odometry_channel}};
@@ -654,17 +658,7 @@ void CrossCheck(const DaemonOptions& o,
       report("scheduling.cpu_affinity", "lists CPU " + std::to_string(c) + " twice");
     }
   }
-  const LcmChannels& c = o.lcm.channels;
-  const std::pair<const char*, const std::string*> channels[] = {
-      {"pose", &c.pose},
-      {"reference_pose", &c.reference_pose},
-      {"local_map", &c.local_map},
-      {"graph", &c.graph},
-      {"hypotheses", &c.hypotheses},
-      {"health", &c.health},
-      {"raw_odometry", &c.raw_odometry},
-      {"raw_laser", &c.raw_laser},
-      {"raw_sonar", &c.raw_sonar}};
+  const auto channels = PublishedChannels(o.lcm.channels);
   for (size_t i = 0; i < std::size(channels); ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (read({std::string("lcm.channels.") + channels[i].first,

@@ -194,8 +194,8 @@ TEST(ConfigLoader, InputChoosesDevicesOrLcmWithItsTypesAndChannels) {
       "test.toml");
   ASSERT_TRUE(r.ok()) << r.errors[0].ToString();
   EXPECT_EQ(r.options.input.source, InputSource::kLcm);
-  EXPECT_EQ(r.options.input.laser_type, InputLaserType::kPlanarLidar);
-  EXPECT_EQ(r.options.input.odometry_type, InputOdometryType::kBotPose);
+  EXPECT_EQ(r.options.input.laser_type, LaserMessageType::kPlanarLidar);
+  EXPECT_EQ(r.options.input.odometry_type, OdometryMessageType::kBotPose);
   EXPECT_EQ(r.options.input.laser_channel, "SCAN");
   EXPECT_EQ(r.options.input.odometry_channel, "POSE");
   EXPECT_EQ(DaemonOptions{}.input.laser_channel, DaemonOptions{}.lcm.channels.raw_laser);

@@ -31,12 +31,12 @@ using EnumNames = std::array<std::pair<const char*, E>, N>;
 
 inline constexpr EnumNames<InputSource, 2> kInputSourceNames{
     {{"devices", InputSource::kDevices}, {"lcm", InputSource::kLcm}}};
-inline constexpr EnumNames<InputLaserType, 2> kInputLaserTypeNames{
-    {{"laser_scan_t", InputLaserType::kLaserScan},
-     {"bot_core.planar_lidar_t", InputLaserType::kPlanarLidar}}};
-inline constexpr EnumNames<InputOdometryType, 2> kInputOdometryTypeNames{
-    {{"odometry_t", InputOdometryType::kOdometry},
-     {"bot_core.pose_t", InputOdometryType::kBotPose}}};
+inline constexpr EnumNames<LaserMessageType, 2> kLaserMessageTypeNames{
+    {{"laser_scan_t", LaserMessageType::kLaserScan},
+     {"bot_core.planar_lidar_t", LaserMessageType::kPlanarLidar}}};
+inline constexpr EnumNames<OdometryMessageType, 2> kOdometryMessageTypeNames{
+    {{"odometry_t", OdometryMessageType::kOdometry},
+     {"bot_core.pose_t", OdometryMessageType::kBotPose}}};
 
 inline constexpr EnumNames<sick::Unit, 2> kLaserUnitNames{
     {{"cm", sick::Unit::kCentimetre}, {"mm", sick::Unit::kMillimetre}}};
@@ -74,8 +74,8 @@ void VisitOptions(V& v, DaemonOptions& o) {
   v.Section("input", [&] {
     InputOptions& i = o.input;
     v.Enum("source", i.source, kInputSourceNames);
-    v.Enum("laser_type", i.laser_type, kInputLaserTypeNames);
-    v.Enum("odometry_type", i.odometry_type, kInputOdometryTypeNames);
+    v.Enum("laser_type", i.laser_type, kLaserMessageTypeNames);
+    v.Enum("odometry_type", i.odometry_type, kOdometryMessageTypeNames);
     v.String("laser_channel", i.laser_channel, CheckChannelName);
     v.String("odometry_channel", i.odometry_channel, CheckChannelName);
   });

@@ -211,13 +211,13 @@ struct LcmOptions {
 // device's data. Message types: atlasd's own (atlasd.laser_scan_t, atlasd.odometry_t, what
 // lcm.republish_raw publishes) or libbot's (bot_core.planar_lidar_t, bot_core.pose_t).
 enum class InputSource { kDevices, kLcm };
-enum class InputLaserType { kLaserScan, kPlanarLidar };
-enum class InputOdometryType { kOdometry, kBotPose };
+enum class LaserMessageType { kLaserScan, kPlanarLidar };
+enum class OdometryMessageType { kOdometry, kBotPose };
 
 struct InputOptions {
   InputSource source = InputSource::kDevices;
-  InputLaserType laser_type = InputLaserType::kLaserScan;
-  InputOdometryType odometry_type = InputOdometryType::kOdometry;
+  LaserMessageType laser_type = LaserMessageType::kLaserScan;
+  OdometryMessageType odometry_type = OdometryMessageType::kOdometry;
   // Defaults: the raw channels atlasd republishes on (a recording of one atlasd feeds another).
   std::string laser_channel = LcmChannels{}.raw_laser;
   std::string odometry_channel = LcmChannels{}.raw_odometry;
