@@ -19,12 +19,8 @@
 # stepped every scan played, at most 1 % of the poses left out by the mapping, matched relation
 # counts within 2 %, and mean relation errors within 0.5 m / 3 deg of replay's: the live run
 # differs from the replay only by the arrival stamps (scheduling delays times SPEED) and the
-# atlas's discrete decisions that amplify them. Measured (2-core machine shared with builds):
-# the default 1200 scans (256 s of log, 64 s at 4x): replay 0.176 m / 2.86 deg, 36 frames, LCM
-# input 0.182 m / 2.99 deg, 35 frames; the whole log (MAX_SCANS=0, 106 s at 4x): replay
-# 1.502 m / 4.99 deg, 53 frames, LCM input 1.583 m / 5.52 deg, 52 frames; bot_core, 600 scans:
-# replay 0.046 m / 3.09 deg, LCM input 0.062 m / 3.47 deg; nothing dropped. The one pose left
-# out is published before the first scan (dead reckoning on the first odometry).
+# atlas's discrete decisions that amplify them. One pose per run is left out: it is published
+# before the first scan (dead reckoning on the first odometry). Figures: docs/journal/atlasd.md.
 source "$(dirname "$0")/hil_lib.sh"
 need_multicast
 need_dataset
