@@ -17,6 +17,7 @@ std::string AtlasOptions::Validate() const {
   if (max_degree < 2) return "max_degree must be at least 2";
   if (!(q_traverse >= 0 && q_traverse <= 1)) return "q_traverse must lie in [0, 1]";
   if (max_seeds_per_step < 0) return "max_seeds_per_step must be non-negative";
+  if (max_bootstraps_per_step < 1) return "max_bootstraps_per_step must be at least 1";
   if (seed_cooldown_steps < 0) return "seed_cooldown_steps must be non-negative";
   if (traversal_max_hops < 1) return "traversal_max_hops must be at least 1";
   if (!(traversal_reach > 0)) return "traversal_reach must be positive";
@@ -221,6 +222,10 @@ const StepStats& Atlas::MaintainGraph() {
 void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, const LaserScan* scan,
                              const SonarReading* sonar, bool first) {
   bootstrap_failed_.assign(hypotheses_.size(), 0);
+  w_searches_ = 0;
+  // With a sliced matcher, w and map-matching share one search per step: when a match waits,
+  // w yields at odd steps (MatchMaps yields whenever w searched).
+  const bool w_yields = matcher_ && match_wanted_ && step_ % 2 == 1;
   // One observation for every hypothesis: the maps share its lines.
   const ScanObservation observation = scan ? ScanObservation(*scan) : ScanObservation();
   for (size_t i = 0; i < hypotheses_.size(); ++i) {
@@ -250,16 +255,34 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
     } else if (!mature && !h.bootstrapped) {
       h.z.push_back(
           JuvenileScan{delta, observation, h.last_update, sonar ? *sonar : SonarReading{}});
-      if (static_cast<int>(h.z.size()) >= options_.lifecycle.bootstrap_scans) {
+      if (static_cast<int>(h.z.size()) >= options_.lifecycle.bootstrap_scans &&
+          !(bootstrapper_ && w_yields) &&
+          (h.w_search || w_searches_ < options_.max_bootstraps_per_step)) {
         bool accumulate = false;
         if (bootstrapper_) {
-          ++stats_.bootstraps;
-          PoseBootstrap r = bootstrapper_->Solve(map, *graph_.Frame(h.frame).map, h.z, h.seed);
+          ++w_searches_;
+          const LocalMap& frame_map = *graph_.Frame(h.frame).map;
+          if (!h.w_search) {
+            ++stats_.bootstraps;
+            h.w_search = bootstrapper_->Begin(map, frame_map, h.z, h.seed);
+            h.w_begun_at = h.z.size();
+          }
+          if (!h.w_search->Continue(map, frame_map, h.z)) {
+            h.q = HypothesisQuality(map.RobotPose().cov,
+                                    h.window.Explanation(options_.quality.empty_explanation),
+                                    options_.quality);
+            continue;  // w goes on at the next step; Z keeps growing meanwhile
+          }
+          PoseBootstrap r = h.w_search->TakeResult();
+          h.w_search.reset();
           if (r.outcome == BootstrapOutcome::kSolved) {
-            if (r.map)
+            if (r.map) {
               h.trial_map = std::move(r.map);  // M_i^new of eq. 12
-            else
+            } else {
+              // The pose at Z's last step as it was at Begin, carried to now by the odometry.
               map.ResetRobotPose(r.pose);
+              for (size_t k = h.w_begun_at; k < h.z.size(); ++k) map.Predict(h.z[k].odometry_delta);
+            }
             h.bootstrapped = true;
           } else if (r.outcome == BootstrapOutcome::kUndetermined &&
                      h.steps < options_.lifecycle.probation_scans) {
@@ -546,8 +569,30 @@ const SelfMatch& Atlas::SelfMatchOf(FrameId f) {
   return slot.self;
 }
 
+bool Atlas::ContinuePendingMatch() {
+  if (!pending_match_) return false;
+  const int n = graph_.FrameCount();
+  if (pending_a_ >= n || pending_b_ >= n) {  // the graph was replaced (Deserialize)
+    pending_match_.reset();
+    return false;
+  }
+  if (!pending_match_->Continue(*graph_.Frame(pending_a_).map, *graph_.Frame(pending_b_).map))
+    return true;
+  ApplyMatch(pending_a_, pending_b_, pending_match_->Result());
+  pending_match_.reset();
+  return true;
+}
+
 void Atlas::MatchMaps(int d) {
   if (d < 0 || options_.match_candidates_per_step == 0) return;
+  // A matcher's search may span steps: one at a time, its slice is this step's search, unless
+  // w searched this step (see UpdateHypotheses).
+  if (matcher_ && pending_match_) {
+    match_wanted_ = true;
+    if (w_searches_ == 0) ContinuePendingMatch();
+    return;
+  }
+  match_wanted_ = false;
   const FrameId dom_frame = hypotheses_[d].frame;
   const LocalMap& dom_map = *graph_.Frame(dom_frame).map;
   if (dom_map.Complexity() < options_.min_match_lines) return;
@@ -579,8 +624,23 @@ void Atlas::MatchMaps(int d) {
       advance = tried;
       continue;
     }
+    if (matcher_) {
+      match_wanted_ = true;
+      if (w_searches_ > 0) {  // this pair at a later step
+        advance = tried;
+        break;
+      }
+    }
     RememberTried(dom_frame, e.frame);
     ++stats_.candidates_matched;
+    if (matcher_) {
+      pending_match_ =
+          matcher_->Begin(*graph_.Frame(dom_frame).map, *graph_.Frame(e.frame).map, &e.pose);
+      pending_a_ = dom_frame;
+      pending_b_ = e.frame;
+      ContinuePendingMatch();
+      break;
+    }
     MatchPair(dom_frame, e.frame, &e.pose);
   }
   match_cursor_ += static_cast<uint64_t>(advance);
@@ -597,9 +657,13 @@ MapMatch Atlas::MatchWithLines(FrameId dom_frame, FrameId other, const Uncertain
 }
 
 void Atlas::MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior) {
-  const MapMatch m =
-      matcher_ ? matcher_->Match(*graph_.Frame(dom_frame).map, *graph_.Frame(other).map, prior)
-               : MatchWithLines(dom_frame, other, prior);
+  ApplyMatch(dom_frame, other,
+             matcher_
+                 ? matcher_->Match(*graph_.Frame(dom_frame).map, *graph_.Frame(other).map, prior)
+                 : MatchWithLines(dom_frame, other, prior));
+}
+
+void Atlas::ApplyMatch(FrameId dom_frame, FrameId other, const MapMatch& m) {
   stats_.match_hypotheses += m.hypotheses;
   stats_.match_by_points += m.by_points ? 1 : 0;
   ++stats_.match_reasons[static_cast<int>(m.reason)];

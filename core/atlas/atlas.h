@@ -18,7 +18,10 @@
 //     `traversal_max_hops`, `traversal_reach` and the return band (`return_q`).
 //  5. Genesis at capacity (III-C).
 //  6. Map-matching (III-D, map_match.h): at most `match_candidates_per_step` bounded searches
-//     (cross-matches or uncached self-matches) per step; the projection only gates.
+//     (cross-matches or uncached self-matches) per step; the projection only gates. With a
+//     matcher (SetMapMatcher), one search at a time, carried over steps in slices
+//     (map_matcher.h): a step continues the pending search, or begins the next candidate's;
+//     map-matching and w (step 1) then share one search slice per step, taking turns.
 //  7. Edge refinement (III-F, edge_refinement.h): at most `max_refinements_per_step`, Genesis
 //     edges only unless `refine_map_match_edges`; observations outside the gate are rejected.
 //
@@ -55,6 +58,10 @@ struct AtlasOptions {
   int max_degree = 16;     // edges per frame
   double q_traverse = 0.6;
   int max_seeds_per_step = 1;
+  // w searches (eq. 12) begun or continued per step; a juvenile whose Z is due waits, its Z
+  // growing, while the step's are spent. A sliced w (PoseBootstrapper::Begin) goes on over
+  // steps.
+  int max_bootstraps_per_step = 8;
   int seed_cooldown_steps = 20;
   int traversal_max_hops = 2;
   // Traversal seeds a frame only when the seeded position lies within this distance (plus 3
@@ -177,7 +184,10 @@ class Atlas {
         std::shared_ptr<const PoseBootstrapper> bootstrapper);
 
   // Map-matching by `matcher` instead of the line matcher (map_matcher.h); null: the lines.
-  void SetMapMatcher(std::shared_ptr<const MapMatcher> matcher) { matcher_ = std::move(matcher); }
+  void SetMapMatcher(std::shared_ptr<const MapMatcher> matcher) {
+    matcher_ = std::move(matcher);
+    pending_match_.reset();
+  }
 
   // One step: `odometry_delta` is the motion since the previous measurement (robot frame at the
   // previous measurement; ignored on the very first step), `scan` the new scan.
@@ -260,6 +270,11 @@ class Atlas {
   // the edge when accepted.
   void MatchPair(FrameId dom_frame, FrameId other, const UncertainPose* prior);
   MapMatch MatchWithLines(FrameId dom_frame, FrameId other, const UncertainPose* prior);
+  // Counts a match's outcome and adds its edge when accepted.
+  void ApplyMatch(FrameId dom_frame, FrameId other, const MapMatch& m);
+  // Runs this step's slice of the matcher's pending search, applying it when it ends. False
+  // when there was none.
+  bool ContinuePendingMatch();
   FrameId AddFrame(std::unique_ptr<LocalMap> map);
   // A new frame without edges, robot at exactly zero, one mature hypothesis in it.
   FrameId StartUnconnectedFrame();
@@ -283,6 +298,12 @@ class Atlas {
   MapFactory factory_;
   std::shared_ptr<const PoseBootstrapper> bootstrapper_;
   std::shared_ptr<const MapMatcher> matcher_;
+  // The matcher's search in progress (map_matcher.h), between frames pending_a_ and pending_b_;
+  // not part of the byte image (a loaded atlas starts without one).
+  std::unique_ptr<MapMatchSearch> pending_match_;
+  FrameId pending_a_ = kNoFrame, pending_b_ = kNoFrame;
+  bool match_wanted_ = false;  // the last MatchMaps had a search pending or to begin
+  int w_searches_ = 0;         // w searches begun or continued this step
   AtlasGraph graph_;
   FrameComponents components_;
   uint64_t resume_cursor_ = 0;

@@ -315,6 +315,7 @@ bool Atlas::Deserialize(const std::string& bytes) {
                    [](const Hypothesis& h) { return h.state == HypothesisState::kMature; }))
     return false;
   graph_ = std::move(graph);
+  pending_match_.reset();
   components_.Rebuild(graph_);
   hypotheses_ = std::move(hypotheses);
   step_ = step;

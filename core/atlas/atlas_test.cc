@@ -425,6 +425,84 @@ TEST(Atlas, UndeterminedJuvenileAccumulatesUntilProbationThenIsKilled) {
   EXPECT_EQ(undetermined->max_z(), o.lifecycle.probation_scans);
 }
 
+// w solved in `slices` steps (PoseBootstrapper::Begin): the solution is the juvenile's pose at
+// Begin moved 0.5 m along the frame's x axis.
+class SlicedBootstrapper : public PoseBootstrapper {
+ public:
+  explicit SlicedBootstrapper(int slices) : slices_(slices) {}
+  PoseBootstrap Solve(const LocalMap&, const LocalMap&, const std::vector<JuvenileScan>&,
+                      const UncertainPose&) const override {
+    ADD_FAILURE() << "the atlas solves w through Begin";
+    return {};
+  }
+  std::unique_ptr<BootstrapSearch> Begin(const LocalMap& map, const LocalMap&,
+                                         const std::vector<JuvenileScan>&,
+                                         const UncertainPose&) const override {
+    return std::make_unique<Search>(this, map.RobotPose().mean);
+  }
+  mutable int continues = 0;  // Continue calls (the test resets it every step)
+  mutable Pose2 last_now;     // the juvenile's pose when the last search finished
+
+ private:
+  class Search : public BootstrapSearch {
+   public:
+    Search(const SlicedBootstrapper* w, const Pose2& begin) : w_(w), begin_(begin) {}
+    bool Continue(const LocalMap& map, const LocalMap&, const std::vector<JuvenileScan>&) override {
+      ++w_->continues;
+      if (++slices_ < w_->slices_) return false;
+      w_->last_now = map.RobotPose().mean;
+      return true;
+    }
+    PoseBootstrap TakeResult() override {
+      PoseBootstrap r;
+      r.outcome = BootstrapOutcome::kSolved;
+      r.pose =
+          UncertainPose{Pose2{begin_.x + 0.5, begin_.y, begin_.theta}, Mat3::Identity() * 1e-4};
+      return r;
+    }
+
+   private:
+    const SlicedBootstrapper* w_;
+    Pose2 begin_;
+    int slices_ = 0;
+  };
+  int slices_;
+};
+
+// A w search spread over steps: at most max_bootstraps_per_step searches go on per step, each
+// takes its slices in as many steps, and its solution (the pose at Begin) is carried to the
+// step it ends at by the odometry since.
+TEST(Atlas, SlicedWIsBoundedPerStepAndCarriedToTheCurrentStep) {
+  TestWorld w;
+  auto sliced = std::make_shared<SlicedBootstrapper>(3);
+  AtlasOptions o = TestWorld::Options();
+  o.max_bootstraps_per_step = 1;
+  ASSERT_LT(o.lifecycle.bootstrap_scans + 2, o.lifecycle.probation_scans);
+  Atlas atlas(o, w.Factory(), sliced);
+  int solved = 0;
+  for (int i = 0; i < 120; ++i) {
+    const double v = i < 60 ? 0.25 : -0.25;
+    std::set<int64_t> unsolved;
+    for (const Hypothesis& h : atlas.Hypotheses())
+      if (h.state == HypothesisState::kJuvenile && !h.bootstrapped) unsolved.insert(h.id);
+    sliced->continues = 0;
+    atlas.Step(Pose2{v, 0.0, 0.0}, TestScan());
+    CheckInvariants(atlas);
+    EXPECT_LE(sliced->continues, 1);
+    for (const Hypothesis& h : atlas.Hypotheses()) {
+      if (!unsolved.count(h.id) || !h.bootstrapped) continue;
+      ++solved;
+      // Solved this step, after 3 steps of w: Z holds the 2 steps since Begin too.
+      EXPECT_GE(h.steps, o.lifecycle.bootstrap_scans + 2);
+      const Pose2 p = atlas.PoseOf(h).mean;
+      EXPECT_NEAR(p.x, sliced->last_now.x + 0.5, 1e-9);
+      EXPECT_NEAR(p.y, sliced->last_now.y, 1e-9);
+      EXPECT_NEAR(p.theta, sliced->last_now.theta, 1e-9);
+    }
+  }
+  EXPECT_GT(solved, 0);
+}
+
 TEST(Atlas, WorkPerStepIsBoundedOnALongRun) {
   TestWorld w;
   w.radius = 1.0;
@@ -1045,6 +1123,79 @@ TEST(Atlas, MapMatchingClosesTheLoop) {
   EXPECT_GE(loop_edges, 1) << "no edge closes the loop";
   std::printf("frames %d, map-match edges accepted %d, loop edges %d\n", atlas.Graph().FrameCount(),
               accepted, loop_edges);
+}
+
+// A matcher whose searches take `slices` steps and accept the prior's placement.
+class SlicedMatcher : public MapMatcher {
+ public:
+  explicit SlicedMatcher(int slices) : slices_(slices) {}
+  MapMatch Match(const LocalMap&, const LocalMap&, const UncertainPose*) const override {
+    ADD_FAILURE() << "the atlas matches through Begin";
+    return {};
+  }
+  std::unique_ptr<MapMatchSearch> Begin(const LocalMap&, const LocalMap&,
+                                        const UncertainPose* prior) const override {
+    ++begun;
+    return std::make_unique<Search>(this, prior ? *prior : UncertainPose{});
+  }
+  mutable int begun = 0, continues = 0;  // continues: reset by the test every step
+
+ private:
+  class Search : public MapMatchSearch {
+   public:
+    Search(const SlicedMatcher* m, const UncertainPose& prior) : m_(m) {
+      result_.result = MapMatchResult::kAccepted;
+      result_.reason = MapMatchReason::kMatched;
+      result_.b_in_a = prior;
+    }
+    bool Continue(const LocalMap&, const LocalMap&) override {
+      ++m_->continues;
+      return ++slices_ >= m_->slices_;
+    }
+    const MapMatch& Result() const override { return result_; }
+
+   private:
+    const SlicedMatcher* m_;
+    int slices_ = 0;
+    MapMatch result_;
+  };
+  int slices_;
+};
+
+// With a matcher, one search goes on at a time, one slice per step, and an accepted one adds
+// its edge at the step it ends; w and map-matching never both search in one step.
+TEST(Atlas, SlicedMapMatchingGoesOnOneSlicePerStep) {
+  TestWorld w;
+  const auto frame_in_world = InstallSquareRoom(&w);
+  AtlasOptions o = TestWorld::Options();
+  o.max_bootstraps_per_step = 1;
+  auto matcher = std::make_shared<SlicedMatcher>(4);
+  auto sliced_w = std::make_shared<SlicedBootstrapper>(2);
+  Atlas atlas(o, w.Factory(), sliced_w);
+  atlas.SetMapMatcher(matcher);
+  Pose2 truth{};
+  int accepted = 0, both = 0, w_steps = 0, match_steps = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Pose2 delta = SquareRouteDelta(i);
+    if (i > 0) truth = Compose(truth, delta);
+    matcher->continues = 0;
+    sliced_w->continues = 0;
+    const int begun = matcher->begun;
+    const StepStats& s = atlas.Step(delta, TestScan());
+    CheckInvariants(atlas);
+    EXPECT_LE(matcher->continues, 1);
+    EXPECT_LE(matcher->begun - begun, 1);
+    both += matcher->continues > 0 && sliced_w->continues > 0;
+    w_steps += sliced_w->continues > 0;
+    match_steps += matcher->continues > 0;
+    accepted += s.match_accepted;
+    EXPECT_LE(s.match_accepted + s.match_rejected + s.match_ambiguous, matcher->continues);
+    PlaceNewFrames(atlas.Graph(), truth, frame_in_world.get());
+  }
+  EXPECT_EQ(both, 0);
+  EXPECT_GT(w_steps, 0);
+  EXPECT_GT(match_steps, 3 * accepted);  // each accepted search took 4 steps
+  EXPECT_GE(accepted, 1);
 }
 
 // The two halves of a step: Localize() gives the step's output, MaintainGraph() (map-matching,

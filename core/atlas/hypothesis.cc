@@ -134,4 +134,30 @@ int DominantIndex(const std::vector<Hypothesis>& hypotheses, double switch_margi
   return best;
 }
 
+namespace {
+
+class WholeBootstrap final : public BootstrapSearch {
+ public:
+  WholeBootstrap(const PoseBootstrapper& w, const UncertainPose& seed) : w_(w), seed_(seed) {}
+  bool Continue(const LocalMap& map, const LocalMap& frame_map,
+                const std::vector<JuvenileScan>& z) override {
+    result_ = w_.Solve(map, frame_map, z, seed_);
+    return true;
+  }
+  PoseBootstrap TakeResult() override { return std::move(result_); }
+
+ private:
+  const PoseBootstrapper& w_;
+  UncertainPose seed_;
+  PoseBootstrap result_;
+};
+
+}  // namespace
+
+std::unique_ptr<BootstrapSearch> PoseBootstrapper::Begin(const LocalMap&, const LocalMap&,
+                                                         const std::vector<JuvenileScan>&,
+                                                         const UncertainPose& seed) const {
+  return std::make_unique<WholeBootstrap>(*this, seed);
+}
+
 }  // namespace atlas

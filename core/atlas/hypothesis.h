@@ -125,12 +125,33 @@ struct PoseBootstrap {
 // works on a clone, so it holds nothing of the seed); `seed` is x_i* of eq. 10-11 as the
 // juvenile was seeded, before Z's first increment. w must not rely on either pose beyond
 // proposing correspondences (and, for the sonar's w, gating the solution).
+//
+// w may also be solved in slices over several steps (Begin, then BootstrapSearch::Continue once
+// per step), so that a search larger than a step's budget costs each step a bounded share
+// (docs/design.md, "Constant time"). A sliced search solves for the pose at the last step of Z
+// as it was at Begin; the atlas carries it to the current step by the odometry since.
+class BootstrapSearch {
+ public:
+  virtual ~BootstrapSearch() = default;
+  // One slice. `map`, `frame_map` and `z` as for Solve, now (z holds the steps it held at Begin
+  // first). True when TakeResult() is final.
+  virtual bool Continue(const LocalMap& map, const LocalMap& frame_map,
+                        const std::vector<JuvenileScan>& z) = 0;
+  // Once, when Continue returned true.
+  virtual PoseBootstrap TakeResult() = 0;
+};
+
 class PoseBootstrapper {
  public:
   virtual ~PoseBootstrapper() = default;
   virtual PoseBootstrap Solve(const LocalMap& map, const LocalMap& frame_map,
                               const std::vector<JuvenileScan>& z,
                               const UncertainPose& seed) const = 0;
+  // Solve in slices; the bootstrapper must outlive the search. Default: Solve at the first
+  // Continue.
+  virtual std::unique_ptr<BootstrapSearch> Begin(const LocalMap& map, const LocalMap& frame_map,
+                                                 const std::vector<JuvenileScan>& z,
+                                                 const UncertainPose& seed) const;
   // Whether Z holds the juvenile's sonar steps (true) or its laser steps (false, the default).
   virtual bool FromSonar() const { return false; }
 };
@@ -152,6 +173,9 @@ struct Hypothesis {
   bool bootstrapped = false;
   std::vector<JuvenileScan> z;
   UncertainPose seed;  // x_i* of eq. 10-11 when seeded: the pose before z's first increment
+  // w in progress (BootstrapSearch), begun when z held w_begun_at steps; not in the byte image.
+  std::unique_ptr<BootstrapSearch> w_search;
+  size_t w_begun_at = 0;
 };
 
 struct LifecycleOptions {

@@ -53,6 +53,7 @@ BranchAndBoundSearch::BranchAndBoundSearch(const PrecomputationGridStack& grids,
       center_(center),
       window_(WindowFor(grids, points, options)) {
   assert(options_.Validate().empty());
+  assert(grids.complete());
   DiscretizeScans(grids.limits(), points, center, window_, &scans_);
   min_sum_ = MinimumSum(grids, options.min_score, scans_.points);
   stack_.resize(grids.depth());

@@ -50,8 +50,8 @@ enum class SearchStatus { kRunning, kDone };
 
 class BranchAndBoundSearch {
  public:
-  // `grids` must outlive the search; `points` are in the frame of the pose searched for, and
-  // `center` is the window's centre (points' frame in the grid's frame).
+  // `grids` must be complete() and outlive the search; `points` are in the frame of the pose
+  // searched for, and `center` is the window's centre (points' frame in the grid's frame).
   BranchAndBoundSearch(const PrecomputationGridStack& grids, const std::vector<Vec2>& points,
                        const Pose2& center, const BranchAndBoundOptions& options);
 

@@ -21,6 +21,10 @@ class PrecomputationGrid {
   explicit PrecomputationGrid(const ProbabilityGrid& grid);
   // The level of twice the width of `finer`.
   static PrecomputationGrid Coarser(const PrecomputationGrid& finer);
+  // The same level with no row filled yet (all 0); FillRows(finer, 0, rows()) completes it.
+  static PrecomputationGrid EmptyCoarser(const PrecomputationGrid& finer);
+  // Fills rows [begin, end) of this level (made by EmptyCoarser(finer)) from `finer`.
+  void FillRows(const PrecomputationGrid& finer, int begin, int end);
 
   // Max over [c, c + width) in both axes of the level-0 values; c in the grid's storage cells.
   // 0 where the block lies wholly outside the grid.
@@ -30,6 +34,8 @@ class PrecomputationGrid {
     return values_[static_cast<size_t>(y) * stride_ + x];
   }
   int width() const { return width_; }
+  int rows() const { return rows_; }
+  int stride() const { return stride_; }
 
  private:
   PrecomputationGrid() = default;
@@ -40,13 +46,23 @@ class PrecomputationGrid {
   std::vector<uint8_t> values_;
 };
 
-// Levels 0 .. depth-1 of one grid, built once and shared by many searches.
+// Levels 0 .. depth-1 of one grid, built once and shared by many searches. The levels above 0
+// may be built in slices (Build), so that a large grid's build costs no single step more than a
+// bound; a search needs a complete() stack.
 class PrecomputationGridStack {
  public:
-  PrecomputationGridStack(const ProbabilityGrid& grid, int depth);
+  enum class Building { kAtOnce, kInSlices };
+  // kInSlices: level 0 only; Build() makes the rest.
+  PrecomputationGridStack(const ProbabilityGrid& grid, int depth,
+                          Building building = Building::kAtOnce);
+
+  // Fills at most about `max_cells` cells of the missing levels (whole rows, at least one);
+  // returns the cells filled. complete() once every level is built.
+  int64_t Build(int64_t max_cells);
+  bool complete() const { return static_cast<int>(levels_.size()) == depth_ && next_row_ == 0; }
 
   const PrecomputationGrid& Level(int k) const { return levels_[k]; }
-  int depth() const { return static_cast<int>(levels_.size()); }
+  int depth() const { return depth_; }
   const GridLimits& limits() const { return limits_; }
   double min_probability() const { return min_probability_; }
   double max_probability() const { return max_probability_; }
@@ -55,6 +71,8 @@ class PrecomputationGridStack {
 
  private:
   std::vector<PrecomputationGrid> levels_;
+  int depth_ = 1;
+  int next_row_ = 0;  // of levels_.back() while it is being filled
   GridLimits limits_;
   double min_probability_ = 0.0;
   double max_probability_ = 1.0;

@@ -3,24 +3,27 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/grid/branch_and_bound.h"
 #include "core/grid/scan_alignment.h"
 
 namespace atlas {
 
-const PrecomputationGridStack& PrecomputedGrids::Of(const GridLocalMap& map) {
+std::shared_ptr<PrecomputationGridStack> PrecomputedGrids::Of(
+    const GridLocalMap& map, PrecomputationGridStack::Building building) {
   for (const Cached& c : cache_) {
-    if (c.revision == map.Revision()) return *c.grids;
+    if (c.revision == map.Revision()) return c.grids;
   }
-  Cached fresh{map.Revision(), std::make_unique<PrecomputationGridStack>(map.Grid(), depth_)};
+  Cached fresh{map.Revision(),
+               std::make_shared<PrecomputationGridStack>(map.Grid(), depth_, building)};
   if (cache_.size() < kCached) {
     cache_.push_back(std::move(fresh));
-    return *cache_.back().grids;
+    return cache_.back().grids;
   }
   Cached& slot = cache_[next_++ % kCached];
   slot = std::move(fresh);
-  return *slot.grids;
+  return slot.grids;
 }
 
 std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max) {
@@ -32,45 +35,91 @@ std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max) {
   return out;
 }
 
-DenseResult SearchAndRefine(const PrecomputationGridStack& grids, const ProbabilityGrid& grid,
-                            const std::vector<Vec2>& points, const UncertainPose& prior,
-                            const GridSearchOptions& o, const GridLocalMapOptions& map) {
-  DenseResult out;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(prior.cov.topLeftCorner<2, 2>());
-  BranchAndBoundOptions search = map.grid.search;
-  search.linear_window = std::clamp(3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1))),
-                                    o.min_linear_window, o.max_linear_window);
-  search.angular_window = std::clamp(3.0 * std::sqrt(std::max(0.0, prior.cov(2, 2))),
-                                     o.min_angular_window, o.max_angular_window);
-  search.min_score = o.min_score;
-  BranchAndBoundSearch bnb(grids, points, prior.mean, search);
-  const SearchStatus status = bnb.Run(o.max_nodes);
-  const BranchAndBoundResult& r = bnb.result();
-  out.nodes = r.nodes;
-  if (status != SearchStatus::kDone) {
-    out.outcome = DenseOutcome::kWorkBound;
-    return out;
+DenseSearch::DenseSearch(std::shared_ptr<PrecomputationGridStack> grids, std::vector<Vec2> points,
+                         const UncertainPose& prior, const GridSearchOptions& search,
+                         const GridLocalMapOptions& map)
+    : grids_(std::move(grids)),
+      points_(std::move(points)),
+      prior_(prior),
+      search_(search),
+      map_(map) {}
+
+bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
+  const int64_t per_node = std::max<int64_t>(1, static_cast<int64_t>(points_.size()));
+  work = std::max<int64_t>(work, per_node);
+  switch (phase_) {
+    case Phase::kPrecompute:
+      work -= grids_->Build(work);
+      if (!grids_->complete() || work < per_node) return false;
+      phase_ = Phase::kSearch;
+      [[fallthrough]];
+    case Phase::kSearch: {
+      if (!bnb_) {
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(prior_.cov.topLeftCorner<2, 2>());
+        BranchAndBoundOptions o = map_.grid.search;
+        o.linear_window = std::clamp(3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1))),
+                                     search_.min_linear_window, search_.max_linear_window);
+        o.angular_window = std::clamp(3.0 * std::sqrt(std::max(0.0, prior_.cov(2, 2))),
+                                      search_.min_angular_window, search_.max_angular_window);
+        o.min_score = search_.min_score;
+        bnb_ = std::make_unique<BranchAndBoundSearch>(*grids_, points_, prior_.mean, o);
+        work -= static_cast<int64_t>(bnb_->window().headings()) * per_node;
+      }
+      const int64_t left = search_.max_nodes - bnb_->result().nodes;
+      const int64_t nodes = std::min(left, std::max<int64_t>(1, work / per_node));
+      const SearchStatus status = left > 0 ? bnb_->Run(nodes) : SearchStatus::kRunning;
+      result_.nodes = bnb_->result().nodes;
+      if (status == SearchStatus::kRunning) {
+        if (result_.nodes < search_.max_nodes) return false;
+        result_.outcome = DenseOutcome::kWorkBound;
+        phase_ = Phase::kDone;
+        return true;
+      }
+      const BranchAndBoundResult& r = bnb_->result();
+      result_.score = r.best.score;
+      result_.margin = r.margin;
+      if (!r.best.found) {  // kLowScore
+        phase_ = Phase::kDone;
+        return true;
+      }
+      if (r.margin < search_.min_margin) {
+        result_.outcome = DenseOutcome::kRepetitive;
+        phase_ = Phase::kDone;
+        return true;
+      }
+      phase_ = Phase::kRefine;
+      return false;
+    }
+    case Phase::kRefine: {
+      ScanAligner aligner(map_.grid.alignment);
+      const AlignmentResult a = aligner.Align(grid, points_, bnb_->result().best.pose);
+      phase_ = Phase::kDone;
+      if (a.outcome != AlignmentOutcome::kAligned) {
+        result_.outcome = DenseOutcome::kUnconstrained;
+        return true;
+      }
+      result_.outcome = DenseOutcome::kFound;
+      result_.pose = a.pose;
+      result_.pose.cov /= map_.information_scale;
+      const double xy = std::max(map_.min_sigma_xy, search_.min_sigma_xy);
+      const double th = std::max(map_.min_sigma_theta, search_.min_sigma_theta);
+      result_.pose.cov.diagonal() += Vec3(xy * xy, xy * xy, th * th);
+      return true;
+    }
+    case Phase::kDone:
+      return true;
   }
-  out.score = r.best.score;
-  out.margin = r.margin;
-  if (!r.best.found) return out;  // kLowScore
-  if (r.margin < o.min_margin) {
-    out.outcome = DenseOutcome::kRepetitive;
-    return out;
+  return true;
+}
+
+DenseResult SearchAndRefine(std::shared_ptr<PrecomputationGridStack> grids,
+                            const ProbabilityGrid& grid, const std::vector<Vec2>& points,
+                            const UncertainPose& prior, const GridSearchOptions& search,
+                            const GridLocalMapOptions& map) {
+  DenseSearch s(std::move(grids), points, prior, search, map);
+  while (!s.Continue(grid, std::numeric_limits<int64_t>::max() / 4)) {
   }
-  ScanAligner aligner(map.grid.alignment);
-  const AlignmentResult a = aligner.Align(grid, points, r.best.pose);
-  if (a.outcome != AlignmentOutcome::kAligned) {
-    out.outcome = DenseOutcome::kUnconstrained;
-    return out;
-  }
-  out.outcome = DenseOutcome::kFound;
-  out.pose = a.pose;
-  out.pose.cov /= map.information_scale;
-  const double xy = std::max(map.min_sigma_xy, o.min_sigma_xy);
-  const double th = std::max(map.min_sigma_theta, o.min_sigma_theta);
-  out.pose.cov.diagonal() += Vec3(xy * xy, xy * xy, th * th);
-  return out;
+  return s.result();
 }
 
 }  // namespace atlas

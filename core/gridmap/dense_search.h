@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/grid/branch_and_bound.h"
 #include "core/grid/precomputation_grid.h"
 #include "core/gridmap/grid_local_map.h"
 
@@ -35,17 +36,20 @@ struct DenseResult {
 };
 
 // The precomputed grids of the last few maps searched in, by GridLocalMap::Revision (not
-// thread-safe: the Atlas steps on one thread).
+// thread-safe: the Atlas steps on one thread). A stack may be handed out before it is complete
+// (kInSlices): its searches build it first (DenseSearch).
 class PrecomputedGrids {
  public:
   explicit PrecomputedGrids(int depth) : depth_(depth) {}
-  const PrecomputationGridStack& Of(const GridLocalMap& map);
+  std::shared_ptr<PrecomputationGridStack> Of(
+      const GridLocalMap& map,
+      PrecomputationGridStack::Building building = PrecomputationGridStack::Building::kAtOnce);
 
  private:
-  static constexpr size_t kCached = 6;
+  static constexpr size_t kCached = 16;  // a 512 x 512 grid's stack of 6 levels: about 1.8 MB
   struct Cached {
     std::pair<uint64_t, int> revision;
-    std::unique_ptr<PrecomputationGridStack> grids;
+    std::shared_ptr<PrecomputationGridStack> grids;
   };
   int depth_;
   std::vector<Cached> cache_;
@@ -55,9 +59,37 @@ class PrecomputedGrids {
 // At most `max` of `points`, evenly spread over the sequence.
 std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max);
 
-// `grids` must be built from `grid`. `prior`: the window's centre and, by its covariance, size.
-DenseResult SearchAndRefine(const PrecomputationGridStack& grids, const ProbabilityGrid& grid,
-                            const std::vector<Vec2>& points, const UncertainPose& prior,
-                            const GridSearchOptions& search, const GridLocalMapOptions& map);
+// Points searched for in a grid (the outcomes above), in slices of bounded work so that one
+// search can be spread over several steps: Continue(grid, work) does at most about `work` cell
+// visits (precomputed cells filled, points scored at a node, points discretised), and returns
+// true once result() is final. The refinement runs in a call of its own. The result does not
+// depend on the slicing. `grids` must be built (or be building) from the grid passed to
+// Continue; `prior`: the window's centre and, by its covariance, size.
+class DenseSearch {
+ public:
+  DenseSearch(std::shared_ptr<PrecomputationGridStack> grids, std::vector<Vec2> points,
+              const UncertainPose& prior, const GridSearchOptions& search,
+              const GridLocalMapOptions& map);
+  bool Continue(const ProbabilityGrid& grid, int64_t work);
+  bool done() const { return phase_ == Phase::kDone; }
+  const DenseResult& result() const { return result_; }
+
+ private:
+  enum class Phase { kPrecompute, kSearch, kRefine, kDone };
+  std::shared_ptr<PrecomputationGridStack> grids_;
+  std::vector<Vec2> points_;
+  UncertainPose prior_;
+  GridSearchOptions search_;
+  GridLocalMapOptions map_;
+  std::unique_ptr<BranchAndBoundSearch> bnb_;
+  Phase phase_ = Phase::kPrecompute;
+  DenseResult result_;
+};
+
+// The whole search at once.
+DenseResult SearchAndRefine(std::shared_ptr<PrecomputationGridStack> grids,
+                            const ProbabilityGrid& grid, const std::vector<Vec2>& points,
+                            const UncertainPose& prior, const GridSearchOptions& search,
+                            const GridLocalMapOptions& map);
 
 }  // namespace atlas

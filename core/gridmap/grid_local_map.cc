@@ -28,7 +28,8 @@ std::string GridSearchOptions::Validate() const {
     return "linear window: need 0 < min <= max";
   if (!(min_angular_window > 0.0 && max_angular_window >= min_angular_window))
     return "angular window: need 0 < min <= max";
-  if (max_points < 1 || max_nodes < 1) return "max_points and max_nodes must be >= 1";
+  if (max_points < 1 || max_nodes < 1 || work_per_step < 1)
+    return "max_points, max_nodes and work_per_step must be >= 1";
   if (!(min_score >= 0.0 && min_score <= 1.0) || !(min_margin >= 0.0))
     return "min_score in [0, 1], min_margin >= 0";
   return "";

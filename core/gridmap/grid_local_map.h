@@ -55,8 +55,11 @@ struct GridSearchOptions {
   double max_angular_window = 0.35;
   int max_points = 600;        // points searched for (evenly subsampled)
   int64_t max_nodes = 400000;  // branch-and-bound work bound
-  double min_score = 0.4;      // mean cell probability of the best placement
-  double min_margin = 0.05;    // best minus runner-up outside its peak (Condition 2)
+  // A search spread over steps (map-matching) does at most about this many cell visits per
+  // step (DenseSearch::Continue): precomputed cells, and points scored at each node.
+  int64_t work_per_step = 700000;
+  double min_score = 0.4;    // mean cell probability of the best placement
+  double min_margin = 0.05;  // best minus runner-up outside its peak (Condition 2)
   // Floors of the placement's standard deviations (at least GridLocalMapOptions::min_sigma_*).
   double min_sigma_xy = 0.0;     // metres
   double min_sigma_theta = 0.0;  // radians

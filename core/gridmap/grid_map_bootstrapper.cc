@@ -4,25 +4,10 @@
 
 namespace atlas {
 
-PoseBootstrap GridMapBootstrapper::Solve(const LocalMap& map, const LocalMap& frame_map,
-                                         const std::vector<JuvenileScan>& z,
-                                         const UncertainPose& seed) const {
+namespace {
+
+PoseBootstrap ToBootstrap(const DenseResult& r) {
   PoseBootstrap out;
-  const auto* frame = dynamic_cast<const GridLocalMap*>(&frame_map);
-  if (z.empty() || frame == nullptr || frame->Grid().known_cells() == 0) return out;
-  // Z's returns in the current (last) robot frame.
-  std::vector<Vec2> all;
-  Pose2 k_in_current;
-  for (int k = static_cast<int>(z.size()) - 1; k >= 0; --k) {
-    const RigidTransform t(k_in_current);
-    for (const Vec2& q : frame->AlignmentPoints(z[k].observation.scan())) all.push_back(t.Apply(q));
-    if (k > 0) k_in_current = Compose(k_in_current, Inverse(z[k].odometry_delta));
-  }
-  const std::vector<Vec2> points = EvenSubsample(all, options_.bootstrap.max_points);
-  if (static_cast<int>(points.size()) < options_.grid.alignment.min_points) return out;
-  const DenseResult r =
-      SearchAndRefine(grids_.Of(*frame), frame->Grid(), points,
-                      UncertainPose{map.RobotPose().mean, seed.cov}, options_.bootstrap, options_);
   switch (r.outcome) {
     case DenseOutcome::kFound:
       out.outcome = BootstrapOutcome::kSolved;
@@ -38,6 +23,74 @@ PoseBootstrap GridMapBootstrapper::Solve(const LocalMap& map, const LocalMap& fr
       break;
   }
   return out;
+}
+
+// Z's returns in the current (last) robot frame, at most max_points of them.
+std::vector<Vec2> ZPoints(const GridLocalMap& frame, const std::vector<JuvenileScan>& z,
+                          int max_points) {
+  std::vector<Vec2> all;
+  Pose2 k_in_current;
+  for (int k = static_cast<int>(z.size()) - 1; k >= 0; --k) {
+    const RigidTransform t(k_in_current);
+    for (const Vec2& q : frame.AlignmentPoints(z[k].observation.scan())) all.push_back(t.Apply(q));
+    if (k > 0) k_in_current = Compose(k_in_current, Inverse(z[k].odometry_delta));
+  }
+  return EvenSubsample(all, max_points);
+}
+
+class GridBootstrapSearch final : public BootstrapSearch {
+ public:
+  GridBootstrapSearch(const GridLocalMapOptions& options, DenseSearch search)
+      : options_(options), search_(std::move(search)) {}
+  bool Continue(const LocalMap&, const LocalMap& frame_map,
+                const std::vector<JuvenileScan>&) override {
+    const auto* frame = dynamic_cast<const GridLocalMap*>(&frame_map);
+    if (frame == nullptr) return true;  // kFailed
+    if (!search_.Continue(frame->Grid(), options_.bootstrap.work_per_step)) return false;
+    result_ = ToBootstrap(search_.result());
+    return true;
+  }
+  PoseBootstrap TakeResult() override { return std::move(result_); }
+
+ private:
+  GridLocalMapOptions options_;
+  DenseSearch search_;
+  PoseBootstrap result_;
+};
+
+class FailedBootstrap final : public BootstrapSearch {
+ public:
+  bool Continue(const LocalMap&, const LocalMap&, const std::vector<JuvenileScan>&) override {
+    return true;
+  }
+  PoseBootstrap TakeResult() override { return {}; }
+};
+
+}  // namespace
+
+std::unique_ptr<BootstrapSearch> GridMapBootstrapper::Begin(const LocalMap& map,
+                                                            const LocalMap& frame_map,
+                                                            const std::vector<JuvenileScan>& z,
+                                                            const UncertainPose& seed) const {
+  const auto* frame = dynamic_cast<const GridLocalMap*>(&frame_map);
+  if (z.empty() || frame == nullptr || frame->Grid().known_cells() == 0)
+    return std::make_unique<FailedBootstrap>();
+  std::vector<Vec2> points = ZPoints(*frame, z, options_.bootstrap.max_points);
+  if (static_cast<int>(points.size()) < options_.grid.alignment.min_points)
+    return std::make_unique<FailedBootstrap>();
+  return std::make_unique<GridBootstrapSearch>(
+      options_, DenseSearch(grids_.Of(*frame, PrecomputationGridStack::Building::kInSlices),
+                            std::move(points), UncertainPose{map.RobotPose().mean, seed.cov},
+                            options_.bootstrap, options_));
+}
+
+PoseBootstrap GridMapBootstrapper::Solve(const LocalMap& map, const LocalMap& frame_map,
+                                         const std::vector<JuvenileScan>& z,
+                                         const UncertainPose& seed) const {
+  const std::unique_ptr<BootstrapSearch> search = Begin(map, frame_map, z, seed);
+  while (!search->Continue(map, frame_map, z)) {
+  }
+  return search->TakeResult();
 }
 
 }  // namespace atlas

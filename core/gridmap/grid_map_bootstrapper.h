@@ -29,6 +29,12 @@ class GridMapBootstrapper : public PoseBootstrapper {
   // `seed` its size.
   PoseBootstrap Solve(const LocalMap& map, const LocalMap& frame_map,
                       const std::vector<JuvenileScan>& z, const UncertainPose& seed) const override;
+  // The same in slices of at most options.bootstrap.work_per_step (DenseSearch): the frame's
+  // precomputed grids when not cached, the branch and bound, then the refinement. Z's points
+  // are those at Begin.
+  std::unique_ptr<BootstrapSearch> Begin(const LocalMap& map, const LocalMap& frame_map,
+                                         const std::vector<JuvenileScan>& z,
+                                         const UncertainPose& seed) const override;
 
  private:
   GridLocalMapOptions options_;

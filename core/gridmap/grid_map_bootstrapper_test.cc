@@ -65,6 +65,27 @@ TEST(GridMapBootstrapper, SolvesAPoseHalfAMetreFromTheSeed) {
   EXPECT_EQ(r.map, nullptr);
 }
 
+// w in slices of a small work bound ends with the pose of the whole search.
+TEST(GridMapBootstrapper, SlicedSearchEqualsTheWholeSolve) {
+  const std::vector<sim::Wall> walls = RoomWalls();
+  const GridLocalMap frame = FrameAlong(walls, Pose2{-3.5, 0.0, 0.0}, 0.2, 30);
+  const Juvenile j = JuvenileAt(walls, frame, Pose2{1.0, -1.0, 0.7}, Pose2{1.4, -0.7, 0.75}, 0.3);
+  const PoseBootstrap whole = GridMapBootstrapper(frame.Options()).Solve(j.map, frame, j.z, j.seed);
+  ASSERT_EQ(whole.outcome, BootstrapOutcome::kSolved);
+  GridLocalMapOptions small = frame.Options();
+  small.bootstrap.work_per_step = 20000;
+  const GridMapBootstrapper w(small);
+  const std::unique_ptr<BootstrapSearch> search = w.Begin(j.map, frame, j.z, j.seed);
+  int slices = 1;
+  while (!search->Continue(j.map, frame, j.z)) ++slices;
+  EXPECT_GT(slices, 10);
+  const PoseBootstrap r = search->TakeResult();
+  ASSERT_EQ(r.outcome, BootstrapOutcome::kSolved);
+  EXPECT_DOUBLE_EQ(r.pose.mean.x, whole.pose.mean.x);
+  EXPECT_DOUBLE_EQ(r.pose.mean.y, whole.pose.mean.y);
+  EXPECT_DOUBLE_EQ(r.pose.mean.theta, whole.pose.mean.theta);
+}
+
 TEST(GridMapBootstrapper, ACorridorsLengthIsUndeterminedAndAnotherPlaceFails) {
   const std::vector<sim::Wall> corridor = LongCorridorWalls();
   const GridLocalMap frame = FrameAlong(corridor, Pose2{0.0, 0.0, 0.0}, 0.2, 30);

@@ -49,59 +49,120 @@ FreeSpaceConflict FreeSpaceConflictOf(const ProbabilityGrid& a, const Probabilit
   return out;
 }
 
-MapMatch GridMapMatcher::Match(const LocalMap& a_map, const LocalMap& b_map,
-                               const UncertainPose* prior) const {
-  MapMatch m;
-  const auto* a = dynamic_cast<const GridLocalMap*>(&a_map);
-  const auto* b = dynamic_cast<const GridLocalMap*>(&b_map);
-  if (a == nullptr || b == nullptr || prior == nullptr || b->Grid().known_cells() == 0) return m;
-  const std::vector<Vec2> points = EvenSubsample(a->LastScanPoints(), options_.match.max_points);
-  if (static_cast<int>(points.size()) < options_.grid.alignment.min_points) return m;
-  const UncertainPose robot_a = a->RobotPose();
-  const UncertainPose robot_b_prior = Compose(Inverse(*prior), robot_a);
-  const DenseResult r =
-      SearchAndRefine(grids_.Of(*b), b->Grid(), points, robot_b_prior, options_.match, options_);
-  m.hypotheses = static_cast<int>(std::min<int64_t>(r.nodes, 1 << 30));
+namespace {
+
+class GridMatchSearch final : public MapMatchSearch {
+ public:
+  GridMatchSearch(const GridLocalMapOptions& options,
+                  std::shared_ptr<PrecomputationGridStack> grids, std::vector<Vec2> points,
+                  const UncertainPose& robot_a, const UncertainPose& prior)
+      : options_(options),
+        robot_a_(robot_a),
+        prior_(prior),
+        search_(std::move(grids), std::move(points), Compose(Inverse(prior), robot_a),
+                options.match, options) {}
+
+  bool Continue(const LocalMap& a_map, const LocalMap& b_map) override {
+    if (done_) return true;
+    const auto* a = dynamic_cast<const GridLocalMap*>(&a_map);
+    const auto* b = dynamic_cast<const GridLocalMap*>(&b_map);
+    if (a == nullptr || b == nullptr) return Finish();
+    if (!search_.Continue(b->Grid(), options_.match.work_per_step)) return false;
+    Judge(*a, *b);
+    return Finish();
+  }
+  const MapMatch& Result() const override { return m_; }
+
+ private:
+  bool Finish() {
+    done_ = true;
+    return true;
+  }
+  void Judge(const GridLocalMap& a, const GridLocalMap& b);
+
+  GridLocalMapOptions options_;
+  UncertainPose robot_a_, prior_;
+  DenseSearch search_;
+  bool done_ = false;
+  MapMatch m_;
+};
+
+void GridMatchSearch::Judge(const GridLocalMap& a, const GridLocalMap& b) {
+  const DenseResult& r = search_.result();
+  m_.hypotheses = static_cast<int>(std::min<int64_t>(r.nodes, 1 << 30));
   switch (r.outcome) {
     case DenseOutcome::kWorkBound:
-      m.reason = MapMatchReason::kWorkBound;
-      return m;
+      m_.reason = MapMatchReason::kWorkBound;
+      return;
     case DenseOutcome::kLowScore:
-      m.reason = MapMatchReason::kTooLittleSupport;
-      return m;
+      m_.reason = MapMatchReason::kTooLittleSupport;
+      return;
     case DenseOutcome::kRepetitive:
-      m.result = MapMatchResult::kAmbiguous;
-      m.reason = MapMatchReason::kRepetitive;
-      return m;
+      m_.result = MapMatchResult::kAmbiguous;
+      m_.reason = MapMatchReason::kRepetitive;
+      return;
     case DenseOutcome::kUnconstrained:
-      m.reason = MapMatchReason::kDegenerate;
-      return m;
+      m_.reason = MapMatchReason::kDegenerate;
+      return;
     case DenseOutcome::kFound:
       break;
   }
   UncertainPose robot_b = r.pose;
-  robot_b.cov += b->GridCovarianceNear(Vec2(robot_b.mean.x, robot_b.mean.y));
-  const UncertainPose t = Compose(robot_a, Inverse(robot_b));
-  const Vec3 v(t.mean.x - prior->mean.x, t.mean.y - prior->mean.y,
-               WrapAngle(t.mean.theta - prior->mean.theta));
-  const Mat3 gate = (t.cov + prior->cov).inverse();
+  robot_b.cov += b.GridCovarianceNear(Vec2(robot_b.mean.x, robot_b.mean.y));
+  const UncertainPose t = Compose(robot_a_, Inverse(robot_b));
+  const Vec3 v(t.mean.x - prior_.mean.x, t.mean.y - prior_.mean.y,
+               WrapAngle(t.mean.theta - prior_.mean.theta));
+  const Mat3 gate = (t.cov + prior_.cov).inverse();
   if (!gate.allFinite() || v.dot(gate * v) > kPriorGateChi2) {
-    m.reason = MapMatchReason::kOutsidePrior;
-    return m;
+    m_.reason = MapMatchReason::kOutsidePrior;
+    return;
   }
-  const Vec2 at_a(robot_a.mean.x, robot_a.mean.y), at_b(robot_b.mean.x, robot_b.mean.y);
+  const Vec2 at_a(robot_a_.mean.x, robot_a_.mean.y), at_b(robot_b.mean.x, robot_b.mean.y);
   const double b_in_a =
-      FreeSpaceConflictOf(a->Grid(), b->Grid(), t.mean, at_b, kFreeSpaceRadius).Fraction();
+      FreeSpaceConflictOf(a.Grid(), b.Grid(), t.mean, at_b, kFreeSpaceRadius).Fraction();
   const double a_in_b =
-      FreeSpaceConflictOf(b->Grid(), a->Grid(), Inverse(t.mean), at_a, kFreeSpaceRadius).Fraction();
+      FreeSpaceConflictOf(b.Grid(), a.Grid(), Inverse(t.mean), at_a, kFreeSpaceRadius).Fraction();
   if (std::max(b_in_a, a_in_b) > options_.max_free_space_conflict) {
-    m.reason = MapMatchReason::kFreeSpace;
-    return m;
+    m_.reason = MapMatchReason::kFreeSpace;
+    return;
   }
-  m.result = MapMatchResult::kAccepted;
-  m.reason = MapMatchReason::kMatched;
-  m.b_in_a = t;
-  return m;
+  m_.result = MapMatchResult::kAccepted;
+  m_.reason = MapMatchReason::kMatched;
+  m_.b_in_a = t;
+}
+
+// A search that ended before it began (not both grids, no prior, too few points).
+class NoSearch final : public MapMatchSearch {
+ public:
+  bool Continue(const LocalMap&, const LocalMap&) override { return true; }
+  const MapMatch& Result() const override { return m_; }
+
+ private:
+  MapMatch m_;
+};
+
+}  // namespace
+
+std::unique_ptr<MapMatchSearch> GridMapMatcher::Begin(const LocalMap& a_map, const LocalMap& b_map,
+                                                      const UncertainPose* prior) const {
+  const auto* a = dynamic_cast<const GridLocalMap*>(&a_map);
+  const auto* b = dynamic_cast<const GridLocalMap*>(&b_map);
+  if (a == nullptr || b == nullptr || prior == nullptr || b->Grid().known_cells() == 0)
+    return std::make_unique<NoSearch>();
+  std::vector<Vec2> points = EvenSubsample(a->LastScanPoints(), options_.match.max_points);
+  if (static_cast<int>(points.size()) < options_.grid.alignment.min_points)
+    return std::make_unique<NoSearch>();
+  return std::make_unique<GridMatchSearch>(
+      options_, grids_.Of(*b, PrecomputationGridStack::Building::kInSlices), std::move(points),
+      a->RobotPose(), *prior);
+}
+
+MapMatch GridMapMatcher::Match(const LocalMap& a, const LocalMap& b,
+                               const UncertainPose* prior) const {
+  const std::unique_ptr<MapMatchSearch> search = Begin(a, b, prior);
+  while (!search->Continue(a, b)) {
+  }
+  return search->Result();
 }
 
 }  // namespace atlas

@@ -19,11 +19,11 @@
 //    for is placed on B's walls by construction; the rest of the two frames is what tells a
 //    place from another that looks the same from where the robot stands.
 // The placement found gets at least match.min_sigma_* (the frames' grids are less consistent
-// than GridCovarianceNear says: measured in docs/journal/dense-frames.md).
+// than GridCovarianceNear says; docs/design.md, "Dense frames").
 //
-// Not done yet (docs/journal/dense-frames.md): frames without a prior (after a restart) are
+// Not done yet: frames without a prior (after a restart) are
 // not matched (kTooFewLines), B's correlation with itself is not looked at. The precomputed
-// grids of the last few frames searched in are kept.
+// grids of the last few frames searched in are kept (PrecomputedGrids).
 
 #include <memory>
 #include <utility>
@@ -56,6 +56,12 @@ class GridMapMatcher : public MapMatcher {
  public:
   explicit GridMapMatcher(const GridLocalMapOptions& options) : options_(options) {}
   MapMatch Match(const LocalMap& a, const LocalMap& b, const UncertainPose* prior) const override;
+  // The search of Match in slices of at most options.match.work_per_step (DenseSearch): B's
+  // precomputed grids (built in slices when not cached), the branch and bound, then the
+  // refinement and the tests above, each in later steps. `a`'s last scan and robot pose are
+  // those at Begin.
+  std::unique_ptr<MapMatchSearch> Begin(const LocalMap& a, const LocalMap& b,
+                                        const UncertainPose* prior) const override;
 
  private:
   GridLocalMapOptions options_;

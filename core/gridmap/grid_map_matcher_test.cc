@@ -68,7 +68,7 @@ UncertainPose PriorNearIdentity() {
   return p;
 }
 
-TEST(GridMapMatcher, AcceptsTheTruePlacementOfARevisit) {
+TEST(GridMapMatcher, AcceptsTheTruePlacementOfARevisitWholeOrInSlices) {
   const GridLocalMap a = FrameAlong(RoomAndDeadEnd(), -5.0, 3.0, 0.0, 1);
   const GridLocalMap b = FrameAlong(RoomAndDeadEnd(), -4.0, 4.0, 0.3, 11);
   const UncertainPose prior = PriorNearIdentity();
@@ -84,6 +84,25 @@ TEST(GridMapMatcher, AcceptsTheTruePlacementOfARevisit) {
       FreeSpaceConflictOf(a.Grid(), b.Grid(), m.b_in_a.mean, Vec2(3.0, 0.0), kFreeSpaceRadius);
   EXPECT_GT(ba.occupied, 200);
   EXPECT_LT(ba.Fraction(), 0.01);
+
+  // In slices of a small work bound the search takes many steps and ends with the same
+  // placement: the slicing changes when, not what.
+  GridLocalMapOptions small = a.Options();
+  small.match.work_per_step = 20000;
+  const GridMapMatcher matcher(small);
+  const std::unique_ptr<MapMatchSearch> search = matcher.Begin(a, b, &prior);
+  int slices = 1;
+  while (!search->Continue(a, b)) ++slices;
+  EXPECT_GT(slices, 20);
+  const MapMatch& sliced = search->Result();
+  ASSERT_EQ(sliced.result, MapMatchResult::kAccepted) << MapMatchReasonName(sliced.reason);
+  EXPECT_EQ(sliced.hypotheses, m.hypotheses);
+  EXPECT_DOUBLE_EQ(sliced.b_in_a.mean.x, m.b_in_a.mean.x);
+  EXPECT_DOUBLE_EQ(sliced.b_in_a.mean.y, m.b_in_a.mean.y);
+  EXPECT_DOUBLE_EQ(sliced.b_in_a.mean.theta, m.b_in_a.mean.theta);
+  EXPECT_TRUE(search->Continue(a, b));  // finished stays finished
+  // No prior: nothing to search, finished at once.
+  EXPECT_TRUE(matcher.Begin(a, b, nullptr)->Continue(a, b));
 }
 
 // B's frame is another place whose dead end looks the same, but B holds a wall across space A
