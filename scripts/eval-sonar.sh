@@ -11,7 +11,7 @@
 #   over the twenty invocations), map-match edges, false closures (chi-square 3 dof > 14.16)
 #   and gross ones (> 0.5 m or 5 deg).
 # Prints a markdown fragment (the commands and two tables) on stdout, progress on stderr. The
-# invocations run JOBS at a time under nice; about 12 minutes on two cores.
+# invocations run JOBS at a time under nice; about 25 minutes on two cores.
 #
 # Usage: scripts/eval-sonar.sh [OUT]            (default OUT: /tmp/atlas-eval-sonar)
 # Environment: ATLAS_BIN (directory of atlas-sonar-eval; default <repo>/build/release/bin,

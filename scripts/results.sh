@@ -11,7 +11,7 @@
 #                    tens of minutes on two cores)
 #   --constant-time  the 25 km simulated run (scripts/constant-time.sh; several minutes)
 #   --sonar          sonar-only maps and atlases on the simulator (scripts/eval-sonar.sh; about
-#                    12 minutes on two cores)
+#                    25 minutes on two cores)
 #   --all            every part
 #   --out DIR        where the runs write (default /tmp/atlas-results)
 # Environment: ATLAS_BIN (directory of the tools; default <repo>/build/release/bin, built if
