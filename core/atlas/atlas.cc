@@ -55,18 +55,6 @@ AtlasOptions SonarAtlasOptions(AtlasOptions o) {
   return o;
 }
 
-AtlasOptions BaselineAtlasOptions() {
-  AtlasOptions o = SonarAtlasOptions();
-  o.match = MapMatchOptions{};
-  o.max_hypotheses = 4;
-  o.lifecycle.probation_scans = 8;
-  o.quality.sigma_x = 0.5;
-  o.quality.sigma_y = 0.5;
-  o.quality.sigma_theta = 0.2;
-  o.match_candidates_per_step = 1;
-  return o;
-}
-
 Atlas::Atlas(const AtlasOptions& options, MapFactory factory,
              std::shared_ptr<const PoseBootstrapper> bootstrapper)
     : options_(options),

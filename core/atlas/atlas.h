@@ -121,13 +121,6 @@ struct AtlasOptions {
 // (docs/design.md, "III-E. Traversal"). The defaults above are the laser atlas's.
 AtlasOptions SonarAtlasOptions(AtlasOptions o = {});
 
-// The atlas without the settings measured on the laser logs: generic map-matching
-// (MapMatchOptions{}), no points, no return band, the paper's Genesis edge, 4 hypotheses, a
-// probation of 8 scans, q's sigmas 0.5 m, 0.5 m, 0.2 rad and one map-matching candidate per
-// step. The simulator's sonar figures (tools/sonar_eval; docs/results.md) were measured with
-// it, and the scripted worlds of the tests (core/testing) are written for it.
-AtlasOptions BaselineAtlasOptions();
-
 // The largest odometry translation one step may carry (metres); more is a fault of the
 // odometry, not motion (StepStats::rejected_input).
 inline constexpr double kMaxStepTranslation = 1000.0;

@@ -12,6 +12,22 @@
 
 namespace atlas {
 
+// The atlas the scripted worlds are written for: SonarAtlasOptions (no points, no return band,
+// the paper's Genesis edge) with generic map-matching (MapMatchOptions{}), 4 hypotheses, a
+// probation of 8 scans, q's sigmas 0.5 m, 0.5 m, 0.2 rad and one map-matching candidate per
+// step.
+inline AtlasOptions BaselineAtlasOptions() {
+  AtlasOptions o = SonarAtlasOptions();
+  o.match = MapMatchOptions{};
+  o.max_hypotheses = 4;
+  o.lifecycle.probation_scans = 8;
+  o.quality.sigma_x = 0.5;
+  o.quality.sigma_y = 0.5;
+  o.quality.sigma_theta = 0.2;
+  o.match_candidates_per_step = 1;
+  return o;
+}
+
 struct TestWorld {
   double radius = 3.0;
   int capacity = 6;
@@ -36,8 +52,8 @@ struct TestWorld {
       return std::make_unique<FakeLocalMap>(o, script_copy, (*tag)++);
     };
   }
-  // The scripted world's atlas: BaselineAtlasOptions (core/atlas/atlas.h), which the tests'
-  // scripts are written for.
+  // The scripted world's atlas: BaselineAtlasOptions with alpha 0.3 and edge refinement every
+  // 3 steps.
   static AtlasOptions Options() {
     AtlasOptions o = BaselineAtlasOptions();
     o.quality.alpha = 0.3;

@@ -12,21 +12,21 @@ int RunToolMode(int argc, char** argv, const char* tool, const std::string& mode
   ToolOptions options;
   std::string names;
   for (const ToolMode& mode : modes) {
-    CLI::App* sub = command_line.app().add_subcommand(mode.name);
+    CLI::App* sub = command_line.app().add_subcommand(mode.name, mode.description);
     sub->group("Modes");
-    for (const std::string& key : mode.keys) {
+    for (const ToolModeOption& option : mode.options) {
       AddValue(
-          *sub, key, "VALUE",
-          [&options, key](const std::string& v) {
+          *sub, option.name, option.value_name,
+          [&options, key = option.name](const std::string& v) {
             options.values[key] = v;
             return std::string();
           },
-          "");
+          option.help);
     }
-    names += (names.empty() ? "" : ", ") + std::string(mode.name);
+    names += (names.empty() ? "" : ", ") + mode.name;
   }
   bool known = argc < 2 || argv[1][0] == '-';
-  for (const ToolMode& mode : modes) known = known || std::string(argv[1]) == mode.name;
+  for (const ToolMode& mode : modes) known = known || argv[1] == mode.name;
   if (!known)
     return command_line.Usage("unknown MODE '" + std::string(argv[1]) + "' (" + names + ")");
   if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;

@@ -20,7 +20,8 @@ int Call(std::vector<std::string> args) {
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   return RunToolMode(static_cast<int>(argv.size()), argv.data(), "tool", "modes\n",
-                     {{"a", {"--runs"}, RunA}, {"b", {}, RunB}});
+                     {{"a", "runs a", {{"--runs", "N", "how many runs (default 1)"}}, RunA},
+                      {"b", "runs b", {}, RunB}});
 }
 
 TEST(ToolModes, RunsTheNamedModeWithItsOptions) {
@@ -30,6 +31,15 @@ TEST(ToolModes, RunsTheNamedModeWithItsOptions) {
   EXPECT_EQ(Call({"tool", "a", "--runs=4"}), 7);
   EXPECT_EQ(last_runs, "4");
   EXPECT_EQ(Call({"tool", "b"}), 9);
+}
+
+TEST(ToolModes, AModesHelpDescribesItAndEachOption) {
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(Call({"tool", "a", "--help"}), 0);
+  const std::string help = testing::internal::GetCapturedStdout();
+  EXPECT_NE(help.find("runs a"), std::string::npos) << help;
+  EXPECT_NE(help.find("--runs N"), std::string::npos) << help;
+  EXPECT_NE(help.find("how many runs (default 1)"), std::string::npos) << help;
 }
 
 TEST(ToolModes, HelpAndVersionAreZeroAndMistakesAreTwo) {

@@ -9,15 +9,8 @@
 namespace {
 
 constexpr char kUsage[] =
-    "Modes:\n  atlas-localmap-eval mc   [--runs N=50] [--minutes M=4] [--seed S=1] [--capacity "
-    "C=20]\n"
-    "                                [--calibration fixed|per-run|off] [--per-run 0|1] [--dump F]\n"
-    "                                [--set name=v,...]\n"
-    "  atlas-localmap-eval real [--log F] [--relations F] [--stretch M=30] [--capacity "
-    "C=100]\n"
-    "                                [--png F] [--draw-stretch K=3] [--set name=v,...]\n"
-    "                                [--laser-x X=0] [--laser-time-offset S=0] [--scan-match "
-    "0|1=1]\n"
+    "Evaluation of the line-feature EKF local map. 'atlas-localmap-eval MODE --help' lists a\n"
+    "mode's options with their defaults.\n"
     "\n"
     "mc:   Monte Carlo consistency of the line EKF in a simulated 20 m corridor (seeded runs of\n"
     "      M minutes each). Prints the 95 % chi-square band of the average NEES (robot: 3 dof;\n"
@@ -47,16 +40,7 @@ constexpr char kUsage[] =
 }  // namespace
 
 int main(int argc, char** argv) {
-  using atlas::cli::ToolMode;
   namespace le = atlas::localmap_eval;
-  return atlas::cli::RunToolMode(
-      argc, argv, "atlas-localmap-eval", kUsage,
-      {ToolMode{"mc",
-                {"--runs", "--minutes", "--seed", "--capacity", "--per-run", "--dump",
-                 "--calibration", "--set"},
-                le::RunMcMode},
-       ToolMode{"real",
-                {"--log", "--relations", "--stretch", "--capacity", "--png", "--draw-stretch",
-                 "--set", "--laser-x", "--laser-time-offset", "--scan-match"},
-                le::RunRealMode}});
+  return atlas::cli::RunToolMode(argc, argv, "atlas-localmap-eval", kUsage,
+                                 {le::McMode(), le::RealMode()});
 }

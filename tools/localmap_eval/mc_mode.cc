@@ -21,6 +21,7 @@
 #include "sim/ray_caster.h"
 #include "sim/route.h"
 #include "sim/wheel_odometry_model.h"
+#include "tools/cli/command_line.h"
 #include "tools/localmap_eval/filter_overrides.h"
 #include "tools/monte_carlo/corridor.h"
 #include "tools/monte_carlo/nees_band.h"
@@ -291,11 +292,19 @@ std::vector<StepNees> RunOnce(uint64_t seed, double minutes, const LocalMapOptio
   return out;
 }
 
-}  // namespace
+// The options' defaults.
+struct McDefaults {
+  int runs = 50;
+  double minutes = 4;
+  int seed = 1;
+  int capacity = 20;
+  int per_run = 0;
+};
 
 int RunMcMode(const cli::ToolOptions& args) {
-  double minutes = 4;
-  int runs = 50, seed = 1, capacity = 20, per_run = 0;
+  const McDefaults d;
+  double minutes = d.minutes;
+  int runs = d.runs, seed = d.seed, capacity = d.capacity, per_run = d.per_run;
   std::string error;
   if (!GetIntegerOption(args, "--runs", 1, 10000, runs, error) ||
       !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
@@ -481,6 +490,26 @@ int RunMcMode(const cli::ToolOptions& args) {
     std::printf("  %5zu  %.3f  %.3f\n", k, robot_avg.mean[k], feat_avg[k]);
   }
   return 0;
+}
+
+}  // namespace
+
+cli::ToolMode McMode() {
+  const McDefaults d;
+  return {
+      "mc",
+      "Monte Carlo consistency of the line EKF in a simulated corridor",
+      {{"--runs", "N", "runs, noise seeds S..S+N-1 (default " + std::to_string(d.runs) + ")"},
+       {"--minutes", "M", "minutes driven per run (default " + cli::HelpNumber(d.minutes) + ")"},
+       {"--seed", "S", "the first run's noise seed (default " + std::to_string(d.seed) + ")"},
+       {"--capacity", "C", "map capacity (default " + std::to_string(d.capacity) + ")"},
+       {"--per-run", "0|1",
+        "1: each run's NEES at the first scan, mean and max (default " + std::to_string(d.per_run) +
+            ")"},
+       {"--dump", "F", "every run's per-scan NEES to F (default: none)"},
+       {"--calibration", "fixed|per-run|off", "the base's calibration errors (default fixed)"},
+       {"--set", "name=v,...", "filter options overridden, as in real (default: none)"}},
+      RunMcMode};
 }
 
 }  // namespace atlas::localmap_eval

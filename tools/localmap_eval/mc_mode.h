@@ -4,10 +4,10 @@
 // the features per step against the 95 % chi-square band, and the simulator's odometry errors
 // whitened with the filter's Q.
 
-#include "tools/cli/tool_options.h"
+#include "tools/cli/tool_modes.h"
 
 namespace atlas::localmap_eval {
 
-int RunMcMode(const cli::ToolOptions& args);
+cli::ToolMode McMode();
 
 }  // namespace atlas::localmap_eval

@@ -17,6 +17,7 @@
 #include "core/scanmatch/scan_matcher.h"
 #include "formats/text_rows.h"
 #include "logs/carmen/carmen_log.h"
+#include "tools/cli/command_line.h"
 #include "tools/eval/trajectory_files.h"
 #include "tools/localmap_eval/filter_overrides.h"
 #include "tools/render/canvas.h"
@@ -58,15 +59,27 @@ struct ScanRecord {
   const LaserScan* scan = nullptr;
 };
 
-}  // namespace
+// The options' defaults.
+struct RealDefaults {
+  std::string log = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.clf.gz";
+  std::string relations = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.relations";
+  double stretch_m = 30;
+  double draw_stretch = 3;
+  double laser_x = 0.0;
+  double time_offset_s = 0.0;
+  int capacity = 100;
+  int scan_match = 1;
+};
 
 int RunRealMode(const cli::ToolOptions& args) {
-  std::string log_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.clf.gz";
-  std::string rel_path = std::string(ATLAS_SHARED_DIR) + "/datasets/mit-csail/mit-csail.relations";
+  const RealDefaults d;
+  std::string log_path = d.log;
+  std::string rel_path = d.relations;
   if (args.values.count("--log")) log_path = args.values.at("--log");
   if (args.values.count("--relations")) rel_path = args.values.at("--relations");
-  double stretch_m = 30, draw_stretch = 3, laser_x = 0.0, time_offset_s = 0.0;
-  int capacity = 100, scan_match = 1;
+  double stretch_m = d.stretch_m, draw_stretch = d.draw_stretch, laser_x = d.laser_x,
+         time_offset_s = d.time_offset_s;
+  int capacity = d.capacity, scan_match = d.scan_match;
   std::string error;
   if (!GetNumberOption(args, "--stretch", 1, 1e6, stretch_m, error) ||
       !GetNumberOption(args, "--laser-x", -2, 2, laser_x, error) ||
@@ -353,6 +366,34 @@ int RunRealMode(const cli::ToolOptions& args) {
     std::printf("wrote %s (stretch %d)\n", png.c_str(), static_cast<int>(draw_stretch));
   }
   return 0;
+}
+
+}  // namespace
+
+cli::ToolMode RealMode() {
+  const RealDefaults d;
+  return {
+      "real",
+      "mit-csail: one local map per stretch, scored on the relations",
+      {{"--log", "F", "the CARMEN log (default " + d.log + ")"},
+       {"--relations", "F", "its relations (default " + d.relations + ")"},
+       {"--stretch", "M",
+        "metres of travel per local map (default " + cli::HelpNumber(d.stretch_m) + ")"},
+       {"--capacity", "C", "map capacity (default " + std::to_string(d.capacity) + ")"},
+       {"--png", "F", "draws stretch K's map over its scans, .png or .svg (default: none)"},
+       {"--draw-stretch", "K",
+        "the stretch --png draws (default " + cli::HelpNumber(d.draw_stretch) + ")"},
+       {"--set", "name=v,...", "filter options overridden (a bad name lists them; default: none)"},
+       {"--laser-x", "X",
+        "the laser X metres ahead of the robot's centre (default " + cli::HelpNumber(d.laser_x) +
+            ")"},
+       {"--laser-time-offset", "S",
+        "a scan was taken at its stamp + S seconds (default " + cli::HelpNumber(d.time_offset_s) +
+            ")"},
+       {"--scan-match", "0|1",
+        "1: predict with scan matching, as atlasd; 0: odometry (default " +
+            std::to_string(d.scan_match) + ")"}},
+      RunRealMode};
 }
 
 }  // namespace atlas::localmap_eval

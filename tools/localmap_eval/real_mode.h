@@ -5,10 +5,10 @@
 // filter's odometry is interpolated at each scan's stamp + S (step_loop.h). Dead reckoning is
 // the log's odometry at the relation stamps (and, with an offset, also at stamp + S).
 
-#include "tools/cli/tool_options.h"
+#include "tools/cli/tool_modes.h"
 
 namespace atlas::localmap_eval {
 
-int RunRealMode(const cli::ToolOptions& args);
+cli::ToolMode RealMode();
 
 }  // namespace atlas::localmap_eval

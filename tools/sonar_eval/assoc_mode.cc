@@ -11,6 +11,7 @@
 #include "core/sonar/sonar_local_map.h"
 #include "sim/ray_caster.h"
 #include "sim/simulation.h"
+#include "tools/cli/command_line.h"
 #include "tools/sonar_eval/corridor_run.h"
 #include "tools/sonar_eval/sonar_atlas_run.h"
 #include "tools/sonar_eval/world_option.h"
@@ -20,6 +21,16 @@ namespace {
 
 using cli::GetIntegerOption;
 using cli::GetNumberOption;
+
+// The options' defaults.
+struct AssocDefaults {
+  std::string world = "alcoves";
+  int ring = 24;
+  int seed = 1;
+  double km = 0.15;
+  int capacity = 40;
+  int show = 10;
+};
 
 // The wall whose echo the transducer at `sensor` (world) reports, as the simulator decides it
 // (drivers/sim SonarModel::Fire: nearest ray of the cone meeting a wall within the critical
@@ -45,11 +56,10 @@ int EchoingWall(const sim::RayCaster& caster, const sim::SonarOptions& so, const
   return wall;
 }
 
-}  // namespace
-
 int RunAssocMode(const cli::ToolOptions& args) {
-  int ring = 24, seed = 1, capacity = 40, show = 10;
-  double km = 0.15;
+  const AssocDefaults d;
+  int ring = d.ring, seed = d.seed, capacity = d.capacity, show = d.show;
+  double km = d.km;
   AlcoveLoopOptions loop;
   std::string error;
   if (!GetIntegerOption(args, "--ring", 16, 24, ring, error) ||
@@ -60,8 +70,7 @@ int RunAssocMode(const cli::ToolOptions& args) {
     std::fprintf(stderr, "atlas-sonar-eval assoc: %s\n", error.c_str());
     return 2;
   }
-  const std::string world_name =
-      args.values.count("--world") ? args.values.at("--world") : "alcoves";
+  const std::string world_name = args.values.count("--world") ? args.values.at("--world") : d.world;
   sim::World world;
   if (std::string e = SelectWorld(world_name, seed, 6, loop, &world); !e.empty()) {
     std::fprintf(stderr, "atlas-sonar-eval assoc: %s\n", e.c_str());
@@ -149,6 +158,23 @@ int RunAssocMode(const cli::ToolOptions& args) {
         edge ? "edge-echo" : "in-cone", counts[edge][0], counts[edge][1], counts[edge][2]);
   }
   return 0;
+}
+
+}  // namespace
+
+cli::ToolMode AssocMode() {
+  const AssocDefaults d;
+  return {"assoc",
+          "one sonar-only map: each applied return against the wall that echoed it",
+          {{"--world", "building|alcoves", "the world (default " + d.world + ")"},
+           RingOption(d.ring),
+           {"--seed", "S",
+            "noise seed, and the building's layout (default " + std::to_string(d.seed) + ")"},
+           {"--km", "K", "distance driven, km (default " + cli::HelpNumber(d.km) + ")"},
+           {"--capacity", "C", "map capacity (default " + std::to_string(d.capacity) + ")"},
+           {"--show", "N",
+            "wrong pairings listed, the first N (default " + std::to_string(d.show) + ")"}},
+          RunAssocMode};
 }
 
 }  // namespace atlas::sonar_eval

@@ -4,10 +4,10 @@
 // it from (in-cone and edge-of-cone pairings: the true wall's line, another line, or no wall:
 // multipath); the first N wrong pairings are listed; NEES every 10 s.
 
-#include "tools/cli/tool_options.h"
+#include "tools/cli/tool_modes.h"
 
 namespace atlas::sonar_eval {
 
-int RunAssocMode(const cli::ToolOptions& args);
+cli::ToolMode AssocMode();
 
 }  // namespace atlas::sonar_eval

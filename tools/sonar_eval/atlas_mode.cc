@@ -19,6 +19,7 @@
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
 #include "sim/simulation.h"
+#include "tools/cli/command_line.h"
 #include "tools/monte_carlo/nees_band.h"
 #include "tools/sonar_eval/corridor_run.h"
 #include "tools/sonar_eval/sonar_atlas_run.h"
@@ -29,6 +30,20 @@ namespace {
 
 using cli::GetIntegerOption;
 using cli::GetNumberOption;
+
+// The options' defaults: the maps' capacity and w are atlasd's.
+struct AtlasDefaults {
+  std::string world = "building";
+  int ring = 24;
+  int seed = 1;
+  int runs = 1;
+  double km = 0.4;
+  int rooms = 6;
+  int capacity = EvalMapCapacity();
+  int laser = 1;
+  int sonar_w = MapperSettings{}.sonar_bootstrap ? 1 : 0;
+  AlcoveLoopOptions loop;
+};
 
 // Mean over runs of the per-step NEES (steps where every run has a value), against the 95 %
 // band of chi-square(3 runs) / runs, as atlas-localmap-eval mc does for one map.
@@ -171,14 +186,12 @@ struct TraceWriter {
   }
 };
 
-}  // namespace
-
 int RunAtlasMode(const cli::ToolOptions& args) {
-  const AtlasOptions sonar_defaults = SonarEvalAtlasOptions();
-  int ring = 24, seed = 1, rooms = 6, capacity = 10, runs = 1, laser = 1, sonar_w = 1,
-      probation = -1;
-  double km = 0.4;
-  AlcoveLoopOptions loop;
+  const AtlasDefaults d;
+  int ring = d.ring, seed = d.seed, rooms = d.rooms, capacity = d.capacity, runs = d.runs,
+      laser = d.laser, sonar_w = d.sonar_w, probation = 0;
+  double km = d.km;
+  AlcoveLoopOptions loop = d.loop;
   std::string error;
   if (!GetIntegerOption(args, "--ring", 16, 24, ring, error) ||
       !GetIntegerOption(args, "--seed", 0, kMaxSeed, seed, error) ||
@@ -199,8 +212,7 @@ int RunAtlasMode(const cli::ToolOptions& args) {
     std::fprintf(stderr, "atlas-sonar-eval atlas: --ring must be 16 or 24\n");
     return 2;
   }
-  const std::string world_name =
-      args.values.count("--world") ? args.values.at("--world") : "building";
+  const std::string world_name = args.values.count("--world") ? args.values.at("--world") : d.world;
   sim::World world;
   if (std::string e = SelectWorld(world_name, seed, rooms, loop, &world); !e.empty()) {
     std::fprintf(stderr, "atlas-sonar-eval atlas: %s\n", e.c_str());
@@ -247,17 +259,12 @@ int RunAtlasMode(const cli::ToolOptions& args) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar map options: %s\n", e.c_str());
       return 2;
     }
-    AtlasOptions ao = SonarEvalAtlasOptions();
-    ao.lifecycle.probation_scans =
-        probation > 0 ? static_cast<int>(probation)
-        : sonar_w != 0
-            ? std::max(sonar_defaults.lifecycle.probation_scans, kSonarBootstrapProbation)
-            : sonar_defaults.lifecycle.probation_scans;
+    const AtlasOptions ao = SonarEvalAtlasOptions(so.sonar_options.ring, sonar_w != 0, probation);
     if (std::string e = ao.Validate(); !e.empty()) {
       std::fprintf(stderr, "\natlas-sonar-eval atlas: sonar atlas options: %s\n", e.c_str());
       return 2;
     }
-    const AtlasOptions laser_ao = BaselineAtlasOptions();
+    const AtlasOptions laser_ao = LaserEvalAtlasOptions();
     std::shared_ptr<const PoseBootstrapper> sonar_bootstrapper;
     if (sonar_w != 0) sonar_bootstrapper = std::make_shared<SonarMapBootstrapper>();
     Atlas sonar_atlas(
@@ -311,6 +318,44 @@ int RunAtlasMode(const cli::ToolOptions& args) {
     PrintAtlasErrors("dead reckoning", sonar_runs, gap_s * 10, true);
   }
   return 0;
+}
+
+}  // namespace
+
+cli::ToolMode AtlasMode() {
+  const AtlasDefaults d;
+  const auto probation = [](bool w) {
+    return std::to_string(SonarEvalAtlasOptions({}, w).lifecycle.probation_scans);
+  };
+  return {"atlas",
+          "sonar-only and laser-only atlases on simulated runs against the truth",
+          {{"--world", "building|alcoves", "the world (default " + d.world + ")"},
+           RingOption(d.ring),
+           {"--seed", "S",
+            "the first run's noise seed, and the building's layout (default " +
+                std::to_string(d.seed) + ")"},
+           {"--runs", "N", "runs, noise seeds S..S+N-1 (default " + std::to_string(d.runs) + ")"},
+           {"--km", "K", "distance driven per run, km (default " + cli::HelpNumber(d.km) + ")"},
+           {"--rooms", "R", "building: at least R rooms (default " + std::to_string(d.rooms) + ")"},
+           {"--capacity", "C",
+            "map capacity of both atlases (default " + std::to_string(d.capacity) +
+                ", atlasd's atlas.map_capacity)"},
+           {"--laser", "0|1", "0: no laser atlas (default " + std::to_string(d.laser) + ")"},
+           {"--trace", "FILE",
+            "one row per step and live hypothesis of the sonar atlas (default: none)"},
+           {"--period", "P",
+            "alcoves: an alcove every P metres (default " + cli::HelpNumber(d.loop.period) + ")"},
+           {"--loop-length", "L",
+            "alcoves: the loop's length, metres (default " + cli::HelpNumber(d.loop.length) + ")"},
+           {"--loop-width", "W",
+            "alcoves: the loop's width, metres (default " + cli::HelpNumber(d.loop.width) + ")"},
+           {"--sonar-w", "0|1",
+            "the sonar atlas's w from the sonar, as localmap.sonar_bootstrap (default " +
+                std::to_string(d.sonar_w) + ")"},
+           {"--probation", "N",
+            "the sonar atlas's probation, scans (default atlasd's: " + probation(true) +
+                " with w, " + probation(false) + " without)"}},
+          RunAtlasMode};
 }
 
 }  // namespace atlas::sonar_eval

@@ -1,5 +1,7 @@
 #include "tools/sonar_eval/corridor_run.h"
 
+#include <string>
+
 #include "tools/monte_carlo/corridor.h"
 
 namespace atlas::sonar_eval {
@@ -23,6 +25,11 @@ sim::SonarOptions SonarOptionsFor(int ring) {
   sim::SonarOptions s;
   s.ring = ring == 16 ? sim::P3dxSonarRing() : sim::B21SonarRing();
   return s;
+}
+
+cli::ToolModeOption RingOption(int ring) {
+  return {"--ring", "16|24",
+          "transducers of the sonar ring (default " + std::to_string(ring) + ")"};
 }
 
 CorridorRun::CorridorRun(uint64_t seed, int ring)

@@ -11,6 +11,7 @@
 #include "sim/route.h"
 #include "sim/sonar_model.h"
 #include "sim/wheel_odometry_model.h"
+#include "tools/cli/tool_modes.h"
 
 namespace atlas::sonar_eval {
 
@@ -19,6 +20,8 @@ inline constexpr int kMaxSeed = 1000000000;
 
 // The simulated sonar with the P3-DX's 16-transducer ring (`ring` 16) or the B21's 24.
 sim::SonarOptions SonarOptionsFor(int ring);
+// The modes' --ring option (16 or 24 transducers, as SonarOptionsFor), default `ring`.
+cli::ToolModeOption RingOption(int ring);
 
 struct CorridorRun {
   std::vector<sim::Wall> walls;

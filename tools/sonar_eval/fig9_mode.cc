@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/sonar/sonar_local_map.h"
+#include "tools/cli/command_line.h"
 #include "tools/monte_carlo/corridor.h"
 #include "tools/render/canvas.h"
 #include "tools/sonar_eval/corridor_run.h"
@@ -18,6 +19,16 @@ namespace {
 using cli::GetIntegerOption;
 using cli::GetNumberOption;
 
+// The options' defaults.
+struct Fig9Defaults {
+  std::string png = "sonar_fig9.png";
+  int ring = 24;
+  int seed = 1;
+  int lines = 4;
+  int phantoms = 0;
+  double minutes = 3;
+};
+
 void Arc(draw::Canvas& c, const Pose2& sensor, double range, double half, const draw::Stroke& s) {
   std::vector<Vec2> pts;
   for (int i = 0; i <= 12; ++i) {
@@ -27,11 +38,10 @@ void Arc(draw::Canvas& c, const Pose2& sensor, double range, double half, const 
   c.Polyline(pts, s);
 }
 
-}  // namespace
-
 int RunFig9Mode(const cli::ToolOptions& args) {
-  int ring = 24, seed = 1, lines = 4, phantoms = 0;
-  double minutes = 3;
+  const Fig9Defaults d;
+  int ring = d.ring, seed = d.seed, lines = d.lines, phantoms = d.phantoms;
+  double minutes = d.minutes;
   std::string error;
   if (!GetIntegerOption(args, "--ring", 16, 24, ring, error) ||
       !GetIntegerOption(args, "--seed", 0, kMaxSeed, seed, error) ||
@@ -41,7 +51,7 @@ int RunFig9Mode(const cli::ToolOptions& args) {
     std::fprintf(stderr, "atlas-sonar-eval fig9: %s\n", error.c_str());
     return 2;
   }
-  const std::string png = args.values.count("--png") ? args.values.at("--png") : "sonar_fig9.png";
+  const std::string png = args.values.count("--png") ? args.values.at("--png") : d.png;
   draw::ImageFormat format;
   if (!draw::ImageFormatOf(png, &format)) {
     std::fprintf(stderr, "atlas-sonar-eval fig9: --png must end in .png or .svg\n");
@@ -142,6 +152,26 @@ int RunFig9Mode(const cli::ToolOptions& args) {
   }
   std::printf("wrote %s\n", png.c_str());
   return 0;
+}
+
+}  // namespace
+
+cli::ToolMode Fig9Mode() {
+  const Fig9Defaults d;
+  return {
+      "fig9",
+      "sonar feature initialisations drawn like the paper's Fig. 9",
+      {{"--png", "F", "the picture, .png or .svg (default " + d.png + ")"},
+       RingOption(d.ring),
+       {"--seed", "S", "noise seed of the corridor run (default " + std::to_string(d.seed) + ")"},
+       {"--lines", "K",
+        "features drawn, the first K initialised (default " + std::to_string(d.lines) + ")"},
+       {"--phantoms", "0|1",
+        "1: only lines 0.25 m or 10 deg off every wall (default " + std::to_string(d.phantoms) +
+            ")"},
+       {"--minutes", "M",
+        "longest drive to find them, minutes (default " + cli::HelpNumber(d.minutes) + ")"}},
+      RunFig9Mode};
 }
 
 }  // namespace atlas::sonar_eval

@@ -3,10 +3,10 @@
 // vantage points and lines of the first K sonar feature initialisations (map frame, estimated
 // poses) over the true walls, in the corridor of the mc mode.
 
-#include "tools/cli/tool_options.h"
+#include "tools/cli/tool_modes.h"
 
 namespace atlas::sonar_eval {
 
-int RunFig9Mode(const cli::ToolOptions& args);
+cli::ToolMode Fig9Mode();
 
 }  // namespace atlas::sonar_eval

@@ -13,6 +13,7 @@
 #include "core/localmap/jcbb.h"
 #include "core/localmap/line_model.h"
 #include "core/sonar/sonar_local_map.h"
+#include "tools/cli/command_line.h"
 #include "tools/monte_carlo/corridor.h"
 #include "tools/monte_carlo/nees_band.h"
 #include "tools/sonar_eval/corridor_run.h"
@@ -23,6 +24,15 @@ namespace {
 
 using cli::GetIntegerOption;
 using cli::GetNumberOption;
+
+// The options' defaults.
+struct McDefaults {
+  int runs = 20;
+  double minutes = 3;
+  int ring = 24;
+  int seed = 1;
+  int capacity = 20;
+};
 
 struct Step {
   Pose2 truth, sonar, laser, odometry;
@@ -121,11 +131,10 @@ void AddRelativeErrors(const std::vector<Step>& steps, int gap, Pose2 Step::*whi
   }
 }
 
-}  // namespace
-
 int RunMcMode(const cli::ToolOptions& args) {
-  double minutes = 3;
-  int runs = 20, ring = 24, seed = 1, capacity = 20;
+  const McDefaults d;
+  double minutes = d.minutes;
+  int runs = d.runs, ring = d.ring, seed = d.seed, capacity = d.capacity;
   std::string error;
   if (!GetIntegerOption(args, "--runs", 1, 10000, runs, error) ||
       !GetNumberOption(args, "--minutes", 0.05, 600, minutes, error) ||
@@ -214,6 +223,22 @@ int RunMcMode(const cli::ToolOptions& args) {
     }
   }
   return 0;
+}
+
+}  // namespace
+
+cli::ToolMode McMode() {
+  const McDefaults d;
+  return {
+      "mc",
+      "sonar-only and laser-only local maps in a simulated corridor: NEES, errors",
+      {{"--runs", "N", "runs, noise seeds S..S+N-1 (default " + std::to_string(d.runs) + ")"},
+       {"--minutes", "M", "minutes driven per run (default " + cli::HelpNumber(d.minutes) + ")"},
+       RingOption(d.ring),
+       {"--seed", "S", "the first run's noise seed (default " + std::to_string(d.seed) + ")"},
+       {"--capacity", "C",
+        "map capacity of both maps (default " + std::to_string(d.capacity) + ")"}},
+      RunMcMode};
 }
 
 }  // namespace atlas::sonar_eval

@@ -5,10 +5,10 @@
 // initialisation against the nearest true wall (2 dof, and 5 dof with the robot pose), and
 // relative-pose errors over pairs 5, 30 and 90 s apart for sonar, laser and dead reckoning.
 
-#include "tools/cli/tool_options.h"
+#include "tools/cli/tool_modes.h"
 
 namespace atlas::sonar_eval {
 
-int RunMcMode(const cli::ToolOptions& args);
+cli::ToolMode McMode();
 
 }  // namespace atlas::sonar_eval

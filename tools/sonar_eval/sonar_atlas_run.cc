@@ -20,27 +20,34 @@ SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
   SonarLocalMapOptions o;
   o.sensors = sensors;
   o.ring = sonar.ring;
+  o.line_map = LocalMapOptionsOf(MapperSettings{});
   o.line_map.capacity = capacity;
   mc::UseSimulatedWalls(0.01, &o.line_map.extraction);
   o.line_map.odometry = mc::SimulatedBaseOdometry(wheel);
   o.model.range_sigma = sonar.range_sigma;
   o.model.range_sigma_per_m = sonar.range_sigma_per_m;
-  // model_sigma (walls the wide-beam model does not quite explain: the simulator's discrete
-  // rays, corner echoes) stays SonarModelOptions' 0.02 m, as atlasd has it. The one-map check
-  // (atlas-sonar-eval mc --runs 50 --minutes 4, seeds 1-50 / 101-150) has the robot NEES inside
-  // its 95 % band on 94.0 / 89.2 % of steps with 24 transducers and 94.4 / 95.6 % with 16; the
-  // former 0.03 m gave 92.4 / 62.8 % and 86.2 / 74.1 %, too conservative
-  // wherever few phantom lines happened to be made (docs/design.md, "Sonar local maps"). Over
-  // twenty blocks (seeds 1-1000) 0.02 m gives 88.0 / 84.7 % on average (24 / 16), 0.01 m 92.0 /
-  // 89.2 % but more false closures in the atlas.
   return o;
 }
 
-AtlasOptions SonarEvalAtlasOptions() {
-  AtlasOptions o = BaselineAtlasOptions();
-  o.match = SonarMapMatchOptions();
+MapperSettings SonarEvalMapperSettings(const std::vector<SonarTransducer>& ring,
+                                       bool sonar_bootstrap) {
+  MapperSettings s;
+  s.sensors = RangeSensors::kSonar;
+  s.sonar_ring = ring;
+  s.sonar_bootstrap = sonar_bootstrap;
+  return s;
+}
+
+AtlasOptions SonarEvalAtlasOptions(const std::vector<SonarTransducer>& ring, bool sonar_bootstrap,
+                                   int probation) {
+  AtlasOptions o = AtlasOptionsOf(SonarEvalMapperSettings(ring, sonar_bootstrap));
+  if (probation > 0) o.lifecycle.probation_scans = probation;
   return o;
 }
+
+AtlasOptions LaserEvalAtlasOptions() { return AtlasOptionsOf(MapperSettings{}); }
+
+int EvalMapCapacity() { return LocalMapOptionsOf(MapperSettings{}).capacity; }
 
 double PoseNees(const UncertainPose& est, const Pose2& truth) {
   const Vec3 e(truth.x - est.mean.x, truth.y - est.mean.y, WrapAngle(truth.theta - est.mean.theta));

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/atlas/atlas.h"
+#include "core/mapper/mapper_factory.h"
 #include "core/sonar/sonar_options.h"
 #include "replay/closure_check.h"
 #include "sim/simulation.h"
@@ -28,21 +29,28 @@
 
 namespace atlas::sonar_eval {
 
-// The EKF options of the evaluation's maps for the simulator's base and sonar: odometry noise
-// and calibration errors as simulated, the sonar range noise of the model, capacity `capacity`.
+// The mapper settings of the evaluation's sonar atlas: atlasd's for the sonar ring alone
+// (MapperSettings' defaults, equal to config/atlasd.toml, with sensors kSonar), on the ring
+// `ring` (the simulated one), with w (eq. 12) from the sonar when `sonar_bootstrap`.
+MapperSettings SonarEvalMapperSettings(const std::vector<SonarTransducer>& ring,
+                                       bool sonar_bootstrap);
+
+// The options of the sonar atlas of atlas-sonar-eval atlas: the atlas atlasd builds from those
+// settings (AtlasOptionsOf); `probation` > 0 replaces lifecycle.probation_scans.
+AtlasOptions SonarEvalAtlasOptions(const std::vector<SonarTransducer>& ring, bool sonar_bootstrap,
+                                   int probation = 0);
+// The options of its laser atlas: atlasd's for the laser alone, AtlasOptionsOf(MapperSettings{}).
+AtlasOptions LaserEvalAtlasOptions();
+// The map capacity of both atlases' maps unless --capacity gives one: atlasd's.
+int EvalMapCapacity();
+
+// The EKF options of the evaluation's maps: atlasd's (LocalMapOptionsOf(MapperSettings{})) with
+// capacity `capacity` and the noise models of the simulated hardware, as a config's noise keys
+// describe a robot: odometry noise and calibration errors as simulated, the laser's and the
+// sonar's range noise as the simulator draws them; the sonar's misfit noise stays atlasd's.
 SonarLocalMapOptions SimulatedMapOptions(RangeSensors sensors, int capacity,
                                          const WheelOdometryNoiseOptions& wheel,
                                          const sim::SonarOptions& sonar);
-
-// The sonar-only atlas the simulator's figures were measured with (docs/results.md, "Sonar-only
-// atlases on the simulator"): BaselineAtlasOptions (core/atlas/atlas.h; the laser atlas beside
-// it is that) with SonarMapMatchOptions (map_match.h: a direction of a map-match's t resting on
-// one line pair is vouched for by the prior only when the prior's gate along it is within
-// +-0.5 m, and the other pairs must fix it to 0.25 m), as atlasd's sonar atlas has them.
-// atlasd's sonar atlas (SonarAtlasOptions of AtlasOptions' defaults) has 8 hypotheses, a
-// probation of 20 scans, q's sigmas 1 m, 1 m, 0.35 rad and two candidates: measuring the
-// simulator's atlases with those is still to do.
-AtlasOptions SonarEvalAtlasOptions();
 
 // NEES (3 dof) of `estimate` against `truth` (heading difference wrapped). The covariance gets
 // a floor of (1 mm)^2, (1 mm)^2, (1 mrad)^2, the size of the ground truth's own error (linear

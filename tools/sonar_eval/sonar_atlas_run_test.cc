@@ -1,6 +1,6 @@
-// Condition 2 in a simulated sonar-only atlas run (paper, Sections II-A and IV): round a
-// corridor loop with an alcove every 4 m, the atlas must refuse the ambiguous map-matches and
-// add no false loop closure.
+// atlas-sonar-eval's atlases are atlasd's; and Condition 2 in a simulated sonar-only atlas run
+// (paper, Sections II-A and IV): round a corridor loop with an alcove every 4 m, the atlas must
+// refuse the ambiguous map-matches and add no false loop closure.
 
 #include "tools/sonar_eval/sonar_atlas_run.h"
 
@@ -11,15 +11,56 @@
 #include <memory>
 #include <numbers>
 
+#include "atlas_paths.h"
 #include "core/sonar/sonar_local_map.h"
 #include "core/sonar/sonar_map_bootstrapper.h"
+#include "formats/config/config_loader.h"
+#include "formats/config/mapper_config.h"
 #include "sim/route.h"
 #include "sim/simulation.h"
 #include "sim/sonar_model.h"
 #include "tools/sonar_eval/alcove_loop_world.h"
+#include "tools/sonar_eval/corridor_run.h"
 
 namespace atlas::sonar_eval {
 namespace {
+
+// atlas-sonar-eval atlas maps as atlasd does with config/atlasd.toml: its sonar atlas is the one
+// of the sonar ring alone, its laser atlas the one of the laser alone, field by field; its maps
+// have the shipped capacity and differ from atlasd's only in the noise models.
+TEST(SonarEvalDefaults, TheAtlasesAreThoseOfTheShippedFile) {
+  const ConfigResult r =
+      LoadConfigFile(ATLAS_SOURCE_DIR "/config/atlasd.toml", ValidateMapperOptions);
+  for (const ConfigError& e : r.errors) ADD_FAILURE() << e.ToString();
+  ASSERT_TRUE(r.ok());
+  const MapperSettings laser = ToMapperSettings(r.options);
+  ASSERT_EQ(laser.sensors, RangeSensors::kLaser);
+  EXPECT_TRUE(LaserEvalAtlasOptions() == AtlasOptionsOf(laser));
+
+  MapperSettings sonar = laser;
+  sonar.sensors = RangeSensors::kSonar;
+  for (const int transducers : {24, 16}) {
+    const sim::SonarOptions ring = SonarOptionsFor(transducers);
+    sonar.sonar_ring = ring.ring;
+    for (const bool w : {true, false}) {
+      sonar.sonar_bootstrap = w;
+      ASSERT_EQ(ValidateMapperSettings(sonar), "");
+      EXPECT_TRUE(SonarEvalAtlasOptions(ring.ring, w) == AtlasOptionsOf(sonar)) << transducers;
+    }
+    // --probation replaces the probation, whatever w asks for.
+    EXPECT_EQ(SonarEvalAtlasOptions(ring.ring, true, 3).lifecycle.probation_scans, 3);
+
+    EXPECT_EQ(EvalMapCapacity(), LocalMapOptionsOf(sonar).capacity);
+    const SonarLocalMapOptions maps = SimulatedMapOptions(RangeSensors::kSonar, EvalMapCapacity(),
+                                                          WheelOdometryNoiseOptions{}, ring);
+    ASSERT_EQ(maps.Validate(), "");
+    EXPECT_EQ(maps.ring.size(), ring.ring.size());
+    LocalMapOptions atlasd = LocalMapOptionsOf(sonar);
+    atlasd.extraction = maps.line_map.extraction;
+    atlasd.odometry = maps.line_map.odometry;
+    EXPECT_TRUE(maps.line_map == atlasd);
+  }
+}
 
 TEST(AlcoveLoopWorld, AlcovesRepeatAtThePeriodAndTheRouteGoesRound) {
   AlcoveLoopOptions o;
@@ -93,14 +134,8 @@ TEST(PoseNees, FloorKeepsASingularCovarianceFinite) {
   EXPECT_NEAR(PoseNees(p, Pose2{0.1, 0.0, 0.0}), 0.01 / (0.01 + 1e-6), 1e-9);
 }
 
-// The seeded run: 0.3 km (3.2 laps) with a 24-transducer ring, sonar only, with w as atlasd
-// runs it (SonarMapBootstrapper, probation kSonarBootstrapProbation): 4 frames, one true
-// closure, and two matches refused because a direction of t rests on one line pair. (Until
-// the delayed vantage states, core/sonar/delayed_vantages.h, this was seed 2 over 0.3 km, then
-// seed 6 over 0.12 km, then, without w, seed 23 over 0.3 km, then seed 17 with w and a line
-// extent that bridges 1.5 m; with the model misfit noise at atlasd's 0.02 m
-// seed 17 made 2 frames and no match, so seed 22; with w starting from the dead-reckoned seed,
-// seed 22 makes no match, so seed 61.)
+// The seeded run: 0.3 km (3.2 laps) with a 24-transducer ring, sonar only, with atlas-sonar-eval's
+// atlas (atlasd's, with w): at least 4 frames, a true closure, and matches refused as ambiguous.
 TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
   const AlcoveLoopOptions loop;
   const sim::World world = AlcoveLoopWorld(loop);
@@ -114,11 +149,10 @@ TEST(SonarAtlasCondition2, AmbiguousMatchesAreRefusedAndNoFalseClosureIsAdded) {
   SimRecording run;
   const sim::SimulationSummary sum = sim::Simulate(world, so, run);
   ASSERT_EQ(sum.error, "");
-  const SonarLocalMapOptions mo =
-      SimulatedMapOptions(RangeSensors::kSonar, 10, so.odometry_options, so.sonar_options);
+  const SonarLocalMapOptions mo = SimulatedMapOptions(RangeSensors::kSonar, EvalMapCapacity(),
+                                                      so.odometry_options, so.sonar_options);
   ASSERT_EQ(mo.Validate(), "");
-  AtlasOptions ao = SonarEvalAtlasOptions();
-  ao.lifecycle.probation_scans = std::max(ao.lifecycle.probation_scans, kSonarBootstrapProbation);
+  const AtlasOptions ao = SonarEvalAtlasOptions(so.sonar_options.ring, true);
   Atlas atlas(
       ao, [mo]() { return std::make_unique<SonarLocalMap>(mo); },
       std::make_shared<SonarMapBootstrapper>());

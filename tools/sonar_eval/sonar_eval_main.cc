@@ -10,22 +10,10 @@
 namespace {
 
 constexpr char kUsage[] =
-    "Modes:\n  atlas-sonar-eval mc   [--runs N=20] [--minutes M=3] [--ring 16|24 (24)] [--seed "
-    "S=1]\n"
-    "                             [--capacity C=20]\n"
-    "  atlas-sonar-eval fig9 [--png F=sonar_fig9.png] [--ring 16|24 (24)] [--seed S=1]\n"
-    "                             [--lines K=4] [--phantoms 0|1 (0)] [--minutes M=3]\n"
-    "  atlas-sonar-eval atlas [--world building|alcoves (building)] [--ring 16|24 (24)]\n"
-    "                             [--seed S=1] [--runs N=1] [--km K=0.4] [--capacity C=10]\n"
-    "                             [--laser 0|1 (1)] [--trace FILE] [--sonar-w 0|1 (1)]\n"
-    "                             [--probation N]\n"
-    "                             building: [--rooms R=6]; alcoves: [--period P=4]\n"
-    "                             [--loop-length L=36] [--loop-width W=14]\n"
-    "  atlas-sonar-eval assoc [--world alcoves|building (alcoves)] [--ring 16|24 (24)]\n"
-    "                             [--seed S=1] [--km K=0.15] [--capacity C=40] [--show N=10]\n"
-    "\n"
-    "The sonar maps use core/sonar's options and the sonar atlas core/atlas's with\n"
-    "SonarMapMatchOptions (sonar_atlas_run.h), w on unless --sonar-w 0.\n"
+    "Evaluation of sonar-only line mapping on the simulator. 'atlas-sonar-eval MODE --help'\n"
+    "lists a mode's options with their defaults. The maps are atlasd's with the simulated\n"
+    "hardware's noise models, and the atlases atlasd's for each sensor alone\n"
+    "(sonar_atlas_run.h).\n"
     "\n"
     "mc:   simulated 20 m corridor, robot driving back and forth; on each seeded run a sonar-only\n"
     "      and a laser-only local map (same odometry). Prints the robot NEES (3 dof) against its\n"
@@ -42,12 +30,8 @@ constexpr char kUsage[] =
     "      the robot NEES of the dominant pose in its frame averaged over the runs against its\n"
     "      95 % band, and relative-pose errors (5 s, 30 s) next to dead reckoning. --trace FILE:\n"
     "      one row per step and live hypothesis (its pose error, and its map's lines against the\n"
-    "      true walls).\n"
-    "      --sonar-w 1 (default, as atlasd's localmap.sonar_bootstrap): the sonar atlas with w\n"
-    "      (eq. 12; SonarMapBootstrapper); 0: its juveniles keep their seeded pose and trial map.\n"
-    "      --probation N: the sonar atlas's lifecycle.probation_scans (default: "
-    "SonarEvalAtlasOptions',\n"
-    "      with w at least kSonarBootstrapProbation, as atlasd).\n"
+    "      true walls). --sonar-w 0: the sonar atlas without w (eq. 12; SonarMapBootstrapper):\n"
+    "      its juveniles keep their seeded pose and trial map.\n"
     "assoc: one sonar-only local map (no atlas) through the world: every return the map applied\n"
     "      to a feature is checked against the wall the simulator echoed it from (in-cone and\n"
     "      edge-of-cone pairings: the true wall's line, another line, or no wall: multipath);\n"
@@ -60,20 +44,7 @@ constexpr char kUsage[] =
 }  // namespace
 
 int main(int argc, char** argv) {
-  using atlas::cli::ToolMode;
   namespace se = atlas::sonar_eval;
-  return atlas::cli::RunToolMode(
-      argc, argv, "atlas-sonar-eval", kUsage,
-      {ToolMode{"mc", {"--runs", "--minutes", "--ring", "--seed", "--capacity"}, se::RunMcMode},
-       ToolMode{
-           "atlas",
-           {"--world", "--ring", "--seed", "--runs", "--km", "--rooms", "--capacity", "--laser",
-            "--trace", "--period", "--loop-length", "--loop-width", "--sonar-w", "--probation"},
-           se::RunAtlasMode},
-       ToolMode{"assoc",
-                {"--world", "--ring", "--seed", "--km", "--capacity", "--show"},
-                se::RunAssocMode},
-       ToolMode{"fig9",
-                {"--png", "--ring", "--seed", "--lines", "--phantoms", "--minutes"},
-                se::RunFig9Mode}});
+  return atlas::cli::RunToolMode(argc, argv, "atlas-sonar-eval", kUsage,
+                                 {se::McMode(), se::AtlasMode(), se::AssocMode(), se::Fig9Mode()});
 }
