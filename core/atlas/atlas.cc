@@ -211,9 +211,9 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
                              const SonarReading* sonar, bool first) {
   bootstrap_failed_.assign(hypotheses_.size(), 0);
   w_searches_ = 0;
-  // With a sliced matcher, w and map-matching share one search per step: when a match waits,
-  // w yields at odd steps (MatchMaps yields whenever w searched).
-  const bool w_yields = matcher_ && match_wanted_ && step_ % 2 == 1;
+  // While a map-matching search is pending over steps, it and w take turns: w yields at odd
+  // steps, map-matching whenever w searched.
+  const bool w_yields = pending_match_ && step_ % 2 == 1;
   // One observation for every hypothesis: the maps share its lines.
   const ScanObservation observation = scan ? ScanObservation(*scan) : ScanObservation();
   for (size_t i = 0; i < hypotheses_.size(); ++i) {
@@ -574,13 +574,11 @@ bool Atlas::ContinuePendingMatch() {
 void Atlas::MatchMaps(int d) {
   if (d < 0 || options_.match_candidates_per_step == 0) return;
   // A matcher's search may span steps: one at a time, its slice is this step's search, unless
-  // w searched this step (see UpdateHypotheses).
+  // w searched this step (see UpdateHypotheses). A new search's first slice always runs.
   if (matcher_ && pending_match_) {
-    match_wanted_ = true;
     if (w_searches_ == 0) ContinuePendingMatch();
     return;
   }
-  match_wanted_ = false;
   const FrameId dom_frame = hypotheses_[d].frame;
   const LocalMap& dom_map = *graph_.Frame(dom_frame).map;
   if (dom_map.Complexity() < options_.min_match_lines) return;
@@ -612,13 +610,6 @@ void Atlas::MatchMaps(int d) {
       advance = tried;
       continue;
     }
-    if (matcher_) {
-      match_wanted_ = true;
-      if (w_searches_ > 0) {  // this pair at a later step
-        advance = tried;
-        break;
-      }
-    }
     RememberTried(dom_frame, e.frame);
     ++stats_.candidates_matched;
     if (matcher_) {
@@ -627,7 +618,8 @@ void Atlas::MatchMaps(int d) {
       pending_a_ = dom_frame;
       pending_b_ = e.frame;
       ContinuePendingMatch();
-      break;
+      if (pending_match_) break;  // goes on at the next steps
+      continue;
     }
     MatchPair(dom_frame, e.frame, &e.pose);
   }

@@ -20,8 +20,9 @@
 //  6. Map-matching (III-D, map_match.h): at most `match_candidates_per_step` bounded searches
 //     (cross-matches or uncached self-matches) per step; the projection only gates. With a
 //     matcher (SetMapMatcher), one search at a time, carried over steps in slices
-//     (map_matcher.h): a step continues the pending search, or begins the next candidate's;
-//     map-matching and w (step 1) then share one search slice per step, taking turns.
+//     (map_matcher.h): a step continues the pending search, or begins candidates' searches
+//     (those that end in their first slice count as above) until one stays pending; while one
+//     is pending, map-matching and w (step 1) take turns, one slice per step.
 //  7. Edge refinement (III-F, edge_refinement.h): at most `max_refinements_per_step`, Genesis
 //     edges only unless `refine_map_match_edges`; observations outside the gate are rejected.
 //
@@ -295,8 +296,7 @@ class Atlas {
   // not part of the byte image (a loaded atlas starts without one).
   std::unique_ptr<MapMatchSearch> pending_match_;
   FrameId pending_a_ = kNoFrame, pending_b_ = kNoFrame;
-  bool match_wanted_ = false;  // the last MatchMaps had a search pending or to begin
-  int w_searches_ = 0;         // w searches begun or continued this step
+  int w_searches_ = 0;  // w searches begun or continued this step
   AtlasGraph graph_;
   FrameComponents components_;
   uint64_t resume_cursor_ = 0;

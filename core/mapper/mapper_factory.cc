@@ -52,8 +52,6 @@ AtlasOptions AtlasOptionsOf(const MapperSettings& s) {
     // Grids are map-matched by GridMapMatcher, once they hold a few scans; no lines, no points.
     o.points.enabled = false;
     o.min_match_lines = std::max(o.match.min_support, 5);
-    // Their w is searched in slices over steps: one juvenile's at a time.
-    o.max_bootstraps_per_step = 1;
   }
   return o;
 }

@@ -29,8 +29,7 @@ namespace atlas {
 
 struct MapperSettings {
   // The atlas (paper, Sections I-A and III), for maps of laser lines; with the sonar alone the
-  // factory makes it SonarAtlasOptions(atlas), and with grid frames it turns the points off
-  // and begins or continues one (sliced) w search per step.
+  // factory makes it SonarAtlasOptions(atlas), and with grid frames it turns the points off.
   // The juveniles' probation is at least lifecycle.bootstrap_scans + 1 scans, and with the
   // sonar w at least kSonarBootstrapProbation (core/sonar/sonar_map_bootstrapper.h).
   AtlasOptions atlas;
