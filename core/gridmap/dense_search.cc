@@ -47,6 +47,7 @@ DenseSearch::DenseSearch(std::shared_ptr<PrecomputationGridStack> grids, std::ve
 bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
   const int64_t per_node = std::max<int64_t>(1, static_cast<int64_t>(points_.size()));
   work = std::max<int64_t>(work, per_node);
+  const int64_t given = work;
   switch (phase_) {
     case Phase::kPrecompute:
       work -= grids_->Build(work);
@@ -67,8 +68,10 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
       }
       const int64_t left = search_.max_nodes - bnb_->result().nodes;
       const int64_t nodes = std::min(left, std::max<int64_t>(1, work / per_node));
+      const int64_t before = bnb_->result().nodes;
       const SearchStatus status = left > 0 ? bnb_->Run(nodes) : SearchStatus::kRunning;
       result_.nodes = bnb_->result().nodes;
+      work -= (result_.nodes - before) * per_node;
       if (status == SearchStatus::kRunning) {
         if (result_.nodes < search_.max_nodes) return false;
         result_.outcome = DenseOutcome::kWorkBound;
@@ -88,7 +91,9 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
         return true;
       }
       phase_ = Phase::kRefine;
-      return false;
+      // The refinement costs about a scan alignment: in this call only when half of it is left.
+      if (work < given / 2) return false;
+      [[fallthrough]];
     }
     case Phase::kRefine: {
       ScanAligner aligner(map_.grid.alignment);

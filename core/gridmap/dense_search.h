@@ -62,7 +62,8 @@ std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max);
 // Points searched for in a grid (the outcomes above), in slices of bounded work so that one
 // search can be spread over several steps: Continue(grid, work) does at most about `work` cell
 // visits (precomputed cells filled, points scored at a node, points discretised), and returns
-// true once result() is final. The refinement runs in a call of its own. The result does not
+// true once result() is final. The refinement runs in the call that ends the search when
+// half of that call's work is left, else in the next. The result does not
 // depend on the slicing. `grids` must be built (or be building) from the grid passed to
 // Continue; `prior`: the window's centre and, by its covariance, size.
 class DenseSearch {
