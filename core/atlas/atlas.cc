@@ -256,27 +256,10 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
             h.w_begun_at = h.z.size();
           }
           if (!h.w_search->Continue(map, frame_map, h.z)) {
-            h.q = HypothesisQuality(map.RobotPose().cov,
-                                    h.window.Explanation(options_.quality.empty_explanation),
-                                    options_.quality);
-            continue;  // w goes on at the next step; Z keeps growing meanwhile
-          }
-          PoseBootstrap r = h.w_search->TakeResult();
-          h.w_search.reset();
-          if (r.outcome == BootstrapOutcome::kSolved) {
-            if (r.map) {
-              h.trial_map = std::move(r.map);  // M_i^new of eq. 12
-            } else {
-              // The pose at Z's last step as it was at Begin, carried to now by the odometry.
-              map.ResetRobotPose(r.pose);
-              for (size_t k = h.w_begun_at; k < h.z.size(); ++k) map.Predict(h.z[k].odometry_delta);
-            }
-            h.bootstrapped = true;
-          } else if (r.outcome == BootstrapOutcome::kUndetermined &&
-                     h.steps < options_.lifecycle.probation_scans) {
-            accumulate = true;
+            accumulate = true;  // w goes on at the next step; Z keeps growing meanwhile
           } else {
-            bootstrap_failed_[i] = 1;
+            accumulate = UseBootstrap(static_cast<int>(i), map, h.w_search->TakeResult());
+            h.w_search.reset();
           }
         } else {
           h.bootstrapped = true;
@@ -291,6 +274,25 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
                             h.window.Explanation(options_.quality.empty_explanation),
                             options_.quality);
   }
+}
+
+bool Atlas::UseBootstrap(int i, LocalMap& map, PoseBootstrap r) {
+  Hypothesis& h = hypotheses_[i];
+  if (r.outcome == BootstrapOutcome::kSolved) {
+    if (r.map) {
+      h.trial_map = std::move(r.map);  // M_i^new of eq. 12
+    } else {
+      // The pose at Z's last step as it was at Begin, carried to now by the odometry.
+      map.ResetRobotPose(r.pose);
+      for (size_t k = h.w_begun_at; k < h.z.size(); ++k) map.Predict(h.z[k].odometry_delta);
+    }
+    h.bootstrapped = true;
+    return false;
+  }
+  if (r.outcome == BootstrapOutcome::kUndetermined && h.steps < options_.lifecycle.probation_scans)
+    return true;
+  bootstrap_failed_[i] = 1;
+  return false;
 }
 
 void Atlas::JudgeJuveniles() {

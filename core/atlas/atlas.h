@@ -248,6 +248,9 @@ class Atlas {
                                 const LaserScan* scan, const SonarReading* sonar);
   void UpdateHypotheses(const Pose2& odometry_delta, const Mat3* increment_cov,
                         const LaserScan* scan, const SonarReading* sonar, bool first);
+  // Applies w's result to hypothesis i (its trial map `map`); true when Z is kept for another
+  // try (undetermined before the end of probation).
+  bool UseBootstrap(int i, LocalMap& map, PoseBootstrap r);
   void JudgeJuveniles();
   void HandleFailures();
   void GenesisAtCapacity();

@@ -3,20 +3,19 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "core/grid/branch_and_bound.h"
 #include "core/grid/scan_alignment.h"
 
 namespace atlas {
 
-std::shared_ptr<PrecomputationGridStack> PrecomputedGrids::Of(
-    const GridLocalMap& map, PrecomputationGridStack::Building building) {
+std::shared_ptr<PrecomputationGridStack> PrecomputedGrids::Of(const GridLocalMap& map) {
   for (const Cached& c : cache_) {
     if (c.revision == map.Revision()) return c.grids;
   }
   Cached fresh{map.Revision(),
-               std::make_shared<PrecomputationGridStack>(map.Grid(), depth_, building)};
+               std::make_shared<PrecomputationGridStack>(
+                   map.Grid(), depth_, PrecomputationGridStack::Building::kInSlices)};
   if (cache_.size() < kCached) {
     cache_.push_back(std::move(fresh));
     return cache_.back().grids;
@@ -115,16 +114,6 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
       return true;
   }
   return true;
-}
-
-DenseResult SearchAndRefine(std::shared_ptr<PrecomputationGridStack> grids,
-                            const ProbabilityGrid& grid, const std::vector<Vec2>& points,
-                            const UncertainPose& prior, const GridSearchOptions& search,
-                            const GridLocalMapOptions& map) {
-  DenseSearch s(std::move(grids), points, prior, search, map);
-  while (!s.Continue(grid, std::numeric_limits<int64_t>::max() / 4)) {
-  }
-  return s.result();
 }
 
 }  // namespace atlas

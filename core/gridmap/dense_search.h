@@ -41,9 +41,8 @@ struct DenseResult {
 class PrecomputedGrids {
  public:
   explicit PrecomputedGrids(int depth) : depth_(depth) {}
-  std::shared_ptr<PrecomputationGridStack> Of(
-      const GridLocalMap& map,
-      PrecomputationGridStack::Building building = PrecomputationGridStack::Building::kAtOnce);
+  // Built in slices (PrecomputationGridStack::Building::kInSlices) when not cached.
+  std::shared_ptr<PrecomputationGridStack> Of(const GridLocalMap& map);
 
  private:
   static constexpr size_t kCached = 16;  // a 512 x 512 grid's stack of 6 levels: about 1.8 MB
@@ -86,11 +85,5 @@ class DenseSearch {
   Phase phase_ = Phase::kPrecompute;
   DenseResult result_;
 };
-
-// The whole search at once.
-DenseResult SearchAndRefine(std::shared_ptr<PrecomputationGridStack> grids,
-                            const ProbabilityGrid& grid, const std::vector<Vec2>& points,
-                            const UncertainPose& prior, const GridSearchOptions& search,
-                            const GridLocalMapOptions& map);
 
 }  // namespace atlas

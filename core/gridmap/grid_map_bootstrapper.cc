@@ -79,9 +79,9 @@ std::unique_ptr<BootstrapSearch> GridMapBootstrapper::Begin(const LocalMap& map,
   if (static_cast<int>(points.size()) < options_.grid.alignment.min_points)
     return std::make_unique<FailedBootstrap>();
   return std::make_unique<GridBootstrapSearch>(
-      options_, DenseSearch(grids_.Of(*frame, PrecomputationGridStack::Building::kInSlices),
-                            std::move(points), UncertainPose{map.RobotPose().mean, seed.cov},
-                            options_.bootstrap, options_));
+      options_,
+      DenseSearch(grids_.Of(*frame), std::move(points),
+                  UncertainPose{map.RobotPose().mean, seed.cov}, options_.bootstrap, options_));
 }
 
 PoseBootstrap GridMapBootstrapper::Solve(const LocalMap& map, const LocalMap& frame_map,

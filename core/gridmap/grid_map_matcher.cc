@@ -152,9 +152,8 @@ std::unique_ptr<MapMatchSearch> GridMapMatcher::Begin(const LocalMap& a_map, con
   std::vector<Vec2> points = EvenSubsample(a->LastScanPoints(), options_.match.max_points);
   if (static_cast<int>(points.size()) < options_.grid.alignment.min_points)
     return std::make_unique<NoSearch>();
-  return std::make_unique<GridMatchSearch>(
-      options_, grids_.Of(*b, PrecomputationGridStack::Building::kInSlices), std::move(points),
-      a->RobotPose(), *prior);
+  return std::make_unique<GridMatchSearch>(options_, grids_.Of(*b), std::move(points),
+                                           a->RobotPose(), *prior);
 }
 
 MapMatch GridMapMatcher::Match(const LocalMap& a, const LocalMap& b,
