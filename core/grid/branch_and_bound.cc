@@ -47,7 +47,8 @@ void SetMargin(const PrecomputationGridStack& grids, BranchAndBoundResult* r) {
 
 BranchAndBoundSearch::BranchAndBoundSearch(const PrecomputationGridStack& grids,
                                            const std::vector<Vec2>& points, const Pose2& center,
-                                           const BranchAndBoundOptions& options)
+                                           const BranchAndBoundOptions& options,
+                                           const Placement* outside_of)
     : grids_(grids),
       options_(options),
       center_(center),
@@ -56,6 +57,11 @@ BranchAndBoundSearch::BranchAndBoundSearch(const PrecomputationGridStack& grids,
   assert(grids.complete());
   DiscretizeScans(grids.limits(), points, center, window_, &scans_);
   min_sum_ = MinimumSum(grids, options.min_score, scans_.points);
+  if (outside_of != nullptr) {
+    outside_ = true;
+    peak_ = MakePeak(*outside_of, options_.peak_distance, options_.peak_angle,
+                     grids.limits().resolution, window_);
+  }
   stack_.resize(grids.depth());
   if (scans_.points == 0) {
     phase_ = Phase::kDone;
@@ -98,6 +104,23 @@ void BranchAndBoundSearch::PushChildren(const Node* node) {
 
 void BranchAndBoundSearch::StartRunnerUp() {
   phase_ = Phase::kRunnerUp;
+  if (options_.rival_margin > 0.0) {
+    // The smallest sum s with best.score - MeanProbability(s) < rival_margin (monotone in s).
+    const auto rival = [&](int64_t sum) {
+      return result_.best.score - grids_.MeanProbability(sum, scans_.points) <
+             options_.rival_margin;
+    };
+    int64_t lo = 0, hi = result_.best.sum;
+    while (lo < hi) {
+      const int64_t mid = lo + (hi - lo) / 2;
+      if (rival(mid)) {
+        hi = mid;
+      } else {
+        lo = mid + 1;
+      }
+    }
+    rival_floor_ = lo - 1;
+  }
   peak_ = MakePeak(result_.best.placement, options_.peak_distance, options_.peak_angle,
                    grids_.limits().resolution, window_);
   stack_[0].next = 0;  // the top level's nodes keep their scores and order
@@ -108,7 +131,7 @@ SearchStatus BranchAndBoundSearch::Run(int64_t max_nodes) {
   int64_t budget = std::max<int64_t>(1, max_nodes);
   while (phase_ != Phase::kDone) {
     if (depth_ == 0) {
-      if (phase_ == Phase::kBest && result_.best.found) {
+      if (phase_ == Phase::kBest && result_.best.found && !outside_) {
         StartRunnerUp();
       } else {
         phase_ = Phase::kDone;
@@ -138,15 +161,21 @@ SearchStatus BranchAndBoundSearch::Run(int64_t max_nodes) {
     const Node node = f.nodes[f.next++];
     const bool best_phase = phase_ == Phase::kBest;
     const MatchPlacement& incumbent = best_phase ? result_.best : result_.runner_up;
-    const int64_t threshold = incumbent.found ? incumbent.sum : (best_phase ? min_sum_ - 1 : -1);
+    const int64_t threshold =
+        incumbent.found ? incumbent.sum : (best_phase ? min_sum_ - 1 : rival_floor_);
     if (node.score <= threshold) {
       --depth_;  // the rest of the frame scores no more
       continue;
     }
-    if (!best_phase && peak_.ContainsBlock(node.placement, 1 << node.level)) continue;
+    if ((!best_phase || outside_) && peak_.ContainsBlock(node.placement, 1 << node.level)) continue;
     if (node.level == 0) {
       SetPlacement(grids_, center_, window_, scans_.points, node.placement, node.score,
                    best_phase ? &result_.best : &result_.runner_up);
+      if (options_.rival_margin > 0.0 && (!best_phase || outside_)) {
+        phase_ = Phase::kDone;  // a decision: one rival (or one placement outside) answers it
+        SetMargin(grids_, &result_);
+        return SearchStatus::kDone;
+      }
       continue;
     }
     PushChildren(&node);

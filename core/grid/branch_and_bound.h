@@ -13,7 +13,15 @@
 // Condition 2's margin: a second pass finds the best placement outside the best one's peak
 // (within peak_distance per axis and peak_angle of it), cutting nodes wholly inside the peak.
 // A repetitive place (a corridor's doors, a row of pillars) then has a runner-up close to the
-// best.
+// best. With options.rival_margin > 0 the pass is a decision: it cuts every node that cannot
+// score within rival_margin of the best and stops at the first placement that does (that is
+// result().runner_up, and margin < rival_margin), so a unique best costs few nodes. The
+// answer (margin below rival_margin or not) is that of the full pass.
+//
+// Outside a peak: given a placement `outside_of` (of this search's window), only placements
+// outside its peak are searched and there is no runner-up pass; the best of them is result().best
+// (with rival_margin > 0: the first found scoring at least min_score).
+// This is Condition 2 beyond a window: is there another placement as good as one found?
 //
 // Sliceable: Run(max_nodes) scores at most max_nodes nodes and returns; later calls resume.
 // The result does not depend on how the work was sliced. Memory: the binned points of every
@@ -53,7 +61,8 @@ class BranchAndBoundSearch {
   // `grids` must be complete() and outlive the search; `points` are in the frame of the pose
   // searched for, and `center` is the window's centre (points' frame in the grid's frame).
   BranchAndBoundSearch(const PrecomputationGridStack& grids, const std::vector<Vec2>& points,
-                       const Pose2& center, const BranchAndBoundOptions& options);
+                       const Pose2& center, const BranchAndBoundOptions& options,
+                       const Placement* outside_of = nullptr);
 
   // Scores at most `max_nodes` nodes (at least one); kDone when the search has finished.
   SearchStatus Run(int64_t max_nodes);
@@ -88,10 +97,12 @@ class BranchAndBoundSearch {
   SearchWindow window_;
   DiscreteScans scans_;
   int64_t min_sum_ = 0;
+  int64_t rival_floor_ = -1;  // the runner-up pass cuts nodes scoring no more
   Phase phase_ = Phase::kBest;
   std::vector<Frame> stack_;  // stack_[0] holds the top level's nodes
   int depth_ = 0;             // frames in use
   Peak peak_;
+  bool outside_ = false;  // placements inside peak_ are not searched, no runner-up pass
   BranchAndBoundResult result_;
 };
 

@@ -133,6 +133,40 @@ TEST(BranchAndBound, SlicedSearchEqualsOneShot) {
   }
 }
 
+// The runner-up pass as a decision (rival_margin) answers as the full pass for every margin:
+// a rival within the margin exists exactly when the full pass's margin is below it.
+TEST(BranchAndBound, RivalDecisionAnswersAsTheFullRunnerUpPass) {
+  int64_t full_nodes = 0, decision_nodes = 0;
+  int rivals = 0, unique = 0;
+  for (uint64_t seed = 1; seed <= 40; ++seed) {
+    const RandomCase c = MakeRandomCase(seed);
+    BranchAndBoundOptions o = SmallWindow(1 + static_cast<int>(seed % 5));
+    const PrecomputationGridStack grids(c.grid, o.depth);
+    const BranchAndBoundResult full = SearchAtOnce(grids, c.points, c.center, o);
+    ASSERT_TRUE(full.best.found);
+    for (double margin : {0.01, 0.05, 0.1, 0.2}) {
+      o.rival_margin = margin;
+      const BranchAndBoundResult d = SearchAtOnce(grids, c.points, c.center, o);
+      EXPECT_EQ(d.best.sum, full.best.sum) << seed;
+      EXPECT_EQ(d.margin < margin, full.margin < margin) << seed << " " << margin;
+      if (full.margin < margin) {
+        ++rivals;
+        ASSERT_TRUE(d.runner_up.found);
+        EXPECT_LE(d.runner_up.sum, full.runner_up.sum);  // a rival, not necessarily the best
+      } else {
+        ++unique;
+        EXPECT_FALSE(d.runner_up.found);
+      }
+      EXPECT_LE(d.nodes, full.nodes);
+      full_nodes += full.nodes;
+      decision_nodes += d.nodes;
+    }
+  }
+  EXPECT_GT(rivals, 10);  // both answers are exercised
+  EXPECT_GT(unique, 10);
+  EXPECT_LT(decision_nodes, full_nodes);
+}
+
 TEST(BranchAndBound, FindsAScanInARoomOverAWideWindowWithAClearMargin) {
   const GridOptions o;
   const std::vector<sim::Wall> walls = RoomWalls();

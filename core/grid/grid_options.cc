@@ -66,6 +66,8 @@ std::string BranchAndBoundOptions::Validate() const {
     return "grid search: peak_distance must be 0 or more";
   if (!(peak_angle >= 0.0) || !std::isfinite(peak_angle))
     return "grid search: peak_angle must be 0 or more";
+  if (!(rival_margin >= 0.0 && rival_margin <= 1.0))
+    return "grid search: rival_margin must be in [0, 1]";
   return "";
 }
 

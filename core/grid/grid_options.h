@@ -69,6 +69,9 @@ struct BranchAndBoundOptions {
   // it are not candidates for the runner-up (Condition 2's margin).
   double peak_distance = 0.3;  // metres
   double peak_angle = 0.1;     // radians
+  // Above 0, Condition 2 as a decision (branch_and_bound.h): the runner-up pass looks only for
+  // a placement within this of the best's score and stops at the first it finds.
+  double rival_margin = 0.0;
   std::string Validate() const;
 };
 

@@ -43,6 +43,11 @@ DenseSearch::DenseSearch(std::shared_ptr<PrecomputationGridStack> grids, std::ve
       search_(search),
       map_(map) {}
 
+double DenseSearch::PriorThreeSigma() const {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(prior_.cov.topLeftCorner<2, 2>());
+  return 3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
+}
+
 bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
   const int64_t per_node = std::max<int64_t>(1, static_cast<int64_t>(points_.size()));
   work = std::max<int64_t>(work, per_node);
@@ -55,13 +60,13 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
       [[fallthrough]];
     case Phase::kSearch: {
       if (!bnb_) {
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(prior_.cov.topLeftCorner<2, 2>());
         BranchAndBoundOptions o = map_.grid.search;
-        o.linear_window = std::clamp(3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1))),
-                                     search_.min_linear_window, search_.max_linear_window);
+        o.linear_window =
+            std::clamp(PriorThreeSigma(), search_.min_linear_window, search_.max_linear_window);
         o.angular_window = std::clamp(3.0 * std::sqrt(std::max(0.0, prior_.cov(2, 2))),
                                       search_.min_angular_window, search_.max_angular_window);
         o.min_score = search_.min_score;
+        o.rival_margin = search_.min_margin;
         bnb_ = std::make_unique<BranchAndBoundSearch>(*grids_, points_, prior_.mean, o);
         work -= static_cast<int64_t>(bnb_->window().headings()) * per_node;
       }
@@ -88,6 +93,44 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
         result_.outcome = DenseOutcome::kRepetitive;
         phase_ = Phase::kDone;
         return true;
+      }
+      phase_ = Phase::kBeyond;
+      [[fallthrough]];
+    }
+    case Phase::kBeyond: {
+      const double wide = std::min(PriorThreeSigma(), search_.max_repetition_window);
+      if (wide > search_.max_linear_window) {
+        const MatchPlacement& best = bnb_->result().best;
+        if (!beyond_) {
+          BranchAndBoundOptions o = map_.grid.search;
+          o.linear_window = wide;
+          o.angular_window = 0.0;
+          o.min_score = std::max(0.0, best.score - search_.min_margin);
+          o.rival_margin = search_.min_margin;
+          const Placement at{0, best.placement.x, best.placement.y};
+          beyond_ = std::make_unique<BranchAndBoundSearch>(
+              *grids_, points_, Pose2{prior_.mean.x, prior_.mean.y, best.pose.theta}, o, &at);
+          work -= per_node;
+        }
+        const int64_t left = search_.max_nodes - beyond_->result().nodes;
+        const int64_t before = beyond_->result().nodes;
+        const SearchStatus status =
+            left > 0 ? beyond_->Run(std::min(left, std::max<int64_t>(1, work / per_node)))
+                     : SearchStatus::kRunning;
+        work -= (beyond_->result().nodes - before) * per_node;
+        result_.nodes = bnb_->result().nodes + beyond_->result().nodes;
+        if (status == SearchStatus::kRunning) {
+          if (beyond_->result().nodes < search_.max_nodes) return false;
+          result_.outcome = DenseOutcome::kWorkBound;
+          phase_ = Phase::kDone;
+          return true;
+        }
+        if (beyond_->result().best.found) {
+          result_.margin = std::min(result_.margin, best.score - beyond_->result().best.score);
+          result_.outcome = DenseOutcome::kRepetitive;
+          phase_ = Phase::kDone;
+          return true;
+        }
       }
       phase_ = Phase::kRefine;
       // The refinement costs about a scan alignment: in this call only when half of it is left.

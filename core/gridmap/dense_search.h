@@ -10,7 +10,11 @@
 //  - kWorkBound: the search exceeded max_nodes (it cannot show that the best is unique);
 //  - kLowScore: the best placement scores below min_score (the points do not lie in the grid);
 //  - kRepetitive: the runner-up outside the best's peak comes within min_margin of it
-//    (Condition 2: a placement the window cannot tell apart);
+//    (Condition 2: a placement the window cannot tell apart); or, when the prior's 3 sigma
+//    reaches beyond the window, a placement at the best's heading within that 3 sigma (at most
+//    max_repetition_window) but outside the window's reach does (a corridor's period longer
+//    than the window: the frame repeats where the prior still allows the robot to be);
+//  - kWorkBound also when that second search exceeds max_nodes;
 //  - kUnconstrained: the refinement leaves a direction unfixed (a corridor's length), or fails;
 //  - kFound.
 
@@ -75,13 +79,15 @@ class DenseSearch {
   const DenseResult& result() const { return result_; }
 
  private:
-  enum class Phase { kPrecompute, kSearch, kRefine, kDone };
+  enum class Phase { kPrecompute, kSearch, kBeyond, kRefine, kDone };
+  double PriorThreeSigma() const;  // along the prior's widest axis, metres
   std::shared_ptr<PrecomputationGridStack> grids_;
   std::vector<Vec2> points_;
   UncertainPose prior_;
   GridSearchOptions search_;
   GridLocalMapOptions map_;
   std::unique_ptr<BranchAndBoundSearch> bnb_;
+  std::unique_ptr<BranchAndBoundSearch> beyond_;  // the repetition search (kRepetitive above)
   Phase phase_ = Phase::kPrecompute;
   DenseResult result_;
 };

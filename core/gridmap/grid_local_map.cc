@@ -32,6 +32,8 @@ std::string GridSearchOptions::Validate() const {
     return "max_points, max_nodes and work_per_step must be >= 1";
   if (!(min_score >= 0.0 && min_score <= 1.0) || !(min_margin >= 0.0))
     return "min_score in [0, 1], min_margin >= 0";
+  if (!(max_repetition_window >= 0.0 && max_repetition_window <= 50.0))
+    return "max_repetition_window: must be 0 to 50 m";
   return "";
 }
 

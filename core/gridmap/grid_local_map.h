@@ -63,6 +63,10 @@ struct GridSearchOptions {
   int64_t work_per_step = int64_t{1} << 40;
   double min_score = 0.4;    // mean cell probability of the best placement
   double min_margin = 0.05;  // best minus runner-up outside its peak (Condition 2)
+  // When the prior's 3 sigma exceeds max_linear_window, the best placement's heading is searched
+  // for a rival this far either side of the prior (metres; at most the prior's 3 sigma). It
+  // bounds that search's work; at most max_linear_window switches it off.
+  double max_repetition_window = 8.0;
   // Floors of the placement's standard deviations (at least GridLocalMapOptions::min_sigma_*).
   double min_sigma_xy = 0.0;     // metres
   double min_sigma_theta = 0.0;  // radians

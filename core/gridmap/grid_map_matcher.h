@@ -8,8 +8,9 @@
 // in A (relative to A's grid plus that grid's own error near it) and the match's in B plus
 // B's grid's own error there (Condition 1).
 // Condition 2 (paper, II-A; docs/design.md, "Dense frames"), checked in this order:
-//  - the best placement must lead the runner-up outside its peak by min_margin (kAmbiguous,
-//    kRepetitive otherwise);
+//  - the best placement must lead the runner-up outside its peak by min_margin, in the window
+//    and, where the prior's 3 sigma reaches beyond it, at the best's heading over that 3 sigma
+//    (dense_search.h; kAmbiguous, kRepetitive otherwise);
 //  - t must lie inside the prior's gate (chi-square 3 dof 99.9 % with both covariances;
 //    kOutsidePrior otherwise);
 //  - free space: at t, neither frame's walls may stand where the other frame has seen through.
@@ -21,9 +22,8 @@
 // The placement found gets at least match.min_sigma_* (the frames' grids are less consistent
 // than GridCovarianceNear says; docs/design.md, "Dense frames").
 //
-// Not done yet: frames without a prior (after a restart) are
-// not matched (kTooFewLines), B's correlation with itself is not looked at. The precomputed
-// grids of the last few frames searched in are kept (PrecomputedGrids).
+// Not done yet: frames without a prior (after a restart) are not matched (kTooFewLines). The
+// precomputed grids of the last few frames searched in are kept (PrecomputedGrids).
 
 #include <memory>
 #include <utility>

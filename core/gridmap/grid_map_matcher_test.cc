@@ -43,10 +43,11 @@ GridLocalMapOptions LongFrames() {
 // full-circle laser, the last scan (the one map-matching searches for) from a 180-degree laser
 // looking along the drive.
 GridLocalMap FrameAlong(const std::vector<sim::Wall>& walls, double x0, double x1, double y,
-                        uint64_t seed, const GridLocalMapOptions& o = LongFrames()) {
+                        uint64_t seed, const GridLocalMapOptions& o = LongFrames(),
+                        double max_range = 30.0) {
   GridLocalMap map(o);
-  FakeWallScanner around(walls, FullCircleLaser(), seed);
-  FakeWallScanner ahead(walls, FrontLaser(), seed + 1);
+  FakeWallScanner around(walls, FullCircleLaser(361, max_range), seed);
+  FakeWallScanner ahead(walls, FrontLaser(181, max_range), seed + 1);
   const double step = 0.2;
   const int steps = static_cast<int>(std::lround((x1 - x0) / step));
   Pose2 truth{x0, y, 0.0};
@@ -143,6 +144,85 @@ TEST(GridMapMatcher, RefusesAsWallsInBsObservedFreeSpace) {
   EXPECT_GT(ab.Fraction(), 0.1);
 }
 
+// A corridor 3 m wide along x (-30 to 30 m) with a door recess 1.5 m wide and 1 m deep in
+// both walls at each of `doors`.
+std::vector<sim::Wall> CorridorWithDoors(const std::vector<double>& doors) {
+  std::vector<sim::Wall> w;
+  for (double side : {-1.0, 1.0}) {
+    const double y = 1.5 * side, back = 2.5 * side;
+    double x = -30.0;
+    for (double d : doors) {
+      w.push_back({Vec2(x, y), Vec2(d - 0.75, y)});
+      w.push_back({Vec2(d - 0.75, y), Vec2(d - 0.75, back)});
+      w.push_back({Vec2(d - 0.75, back), Vec2(d + 0.75, back)});
+      w.push_back({Vec2(d + 0.75, back), Vec2(d + 0.75, y)});
+      x = d + 0.75;
+    }
+    w.push_back({Vec2(x, y), Vec2(30, y)});
+  }
+  return w;
+}
+
+// B's frame in A's is the identity, 0.2 m off the prior's mean along the corridor; the prior's
+// sigma along it is `sigma_x` (0.3 m across, 0.05 rad).
+UncertainPose PriorAlongCorridor(double sigma_x) {
+  UncertainPose p{Pose2{0.2, -0.1, 0.03}, Mat3::Zero()};
+  p.cov.diagonal() = Vec3(sigma_x * sigma_x, 0.09, 0.0025);
+  return p;
+}
+
+// Doors every 4 m, a laser of 8 m: A's last scan fits B as well 4 m further on. The match's
+// window (3 m either side at most) does not reach that far; the prior's 3 sigma does when its
+// sigma along the corridor is 1.5 m, and then the placement cannot be told apart.
+TEST(GridMapMatcher, RefusesARepetitionThePriorAllowsBeyondTheWindow) {
+  const std::vector<sim::Wall> walls = CorridorWithDoors({-16, -12, -8, -4, 0, 4, 8, 12, 16});
+  const GridLocalMap a = FrameAlong(walls, -3.0, 3.0, 0.0, 1, LongFrames(), 8.0);
+  const GridLocalMap b = FrameAlong(walls, -8.0, 8.0, 0.3, 11, LongFrames(), 8.0);
+  ASSERT_EQ(a.Options().match.max_linear_window, 3.0);
+  ASSERT_EQ(a.Options().match.max_repetition_window, 8.0);
+
+  const UncertainPose narrow = PriorAlongCorridor(0.3);  // 3 sigma inside the window
+  const MapMatch known = GridMapMatcher(a.Options()).Match(a, b, &narrow);
+  ASSERT_EQ(known.result, MapMatchResult::kAccepted) << MapMatchReasonName(known.reason);
+  EXPECT_NEAR(known.b_in_a.mean.x, 0.0, 0.1);
+
+  const UncertainPose wide = PriorAlongCorridor(1.5);  // 3 sigma 4.5 m: the next door
+  const MapMatch lost = GridMapMatcher(a.Options()).Match(a, b, &wide);
+  EXPECT_EQ(lost.result, MapMatchResult::kAmbiguous);
+  EXPECT_EQ(lost.reason, MapMatchReason::kRepetitive) << MapMatchReasonName(lost.reason);
+
+  // The same search without the look beyond the window accepts the placement in the window.
+  GridLocalMapOptions off = a.Options();
+  off.match.max_repetition_window = off.match.max_linear_window;
+  const MapMatch blind = GridMapMatcher(off).Match(a, b, &wide);
+  ASSERT_EQ(blind.result, MapMatchResult::kAccepted) << MapMatchReasonName(blind.reason);
+  EXPECT_NEAR(blind.b_in_a.mean.x, 0.0, 0.1);
+
+  // Sliced, the look beyond the window ends the same way.
+  GridLocalMapOptions small = a.Options();
+  small.match.work_per_step = 20000;
+  const GridMapMatcher sliced_matcher(small);
+  const std::unique_ptr<MapMatchSearch> search = sliced_matcher.Begin(a, b, &wide);
+  while (!search->Continue(a, b)) {
+  }
+  EXPECT_EQ(search->Result().reason, MapMatchReason::kRepetitive)
+      << MapMatchReasonName(search->Result().reason);
+  EXPECT_EQ(search->Result().hypotheses, lost.hypotheses);
+}
+
+// Doors at irregular spacing: with the same wide prior no other placement fits, and the match
+// is accepted.
+TEST(GridMapMatcher, AcceptsWithAWidePriorWhenNothingRepeats) {
+  const std::vector<sim::Wall> walls = CorridorWithDoors({-13, -6, 4.5, 9.8});
+  const GridLocalMap a = FrameAlong(walls, -3.0, 3.0, 0.0, 1, LongFrames(), 8.0);
+  const GridLocalMap b = FrameAlong(walls, -8.0, 8.0, 0.3, 11, LongFrames(), 8.0);
+  const UncertainPose wide = PriorAlongCorridor(1.5);
+  const MapMatch m = GridMapMatcher(a.Options()).Match(a, b, &wide);
+  ASSERT_EQ(m.result, MapMatchResult::kAccepted) << MapMatchReasonName(m.reason);
+  EXPECT_NEAR(m.b_in_a.mean.x, 0.0, 0.1);
+  EXPECT_NEAR(m.b_in_a.mean.y, 0.0, 0.1);
+}
+
 TEST(GridMapMatcher, FreeSpaceConflictOptionIsValidated) {
   GridLocalMapOptions o;
   EXPECT_EQ(o.Validate(), "");
@@ -151,6 +231,10 @@ TEST(GridMapMatcher, FreeSpaceConflictOptionIsValidated) {
   o.max_free_space_conflict = 1.5;
   EXPECT_NE(o.Validate(), "");
   o.max_free_space_conflict = 1.0;  // 1: the test never refuses
+  EXPECT_EQ(o.Validate(), "");
+  o.match.max_repetition_window = -1.0;
+  EXPECT_NE(o.Validate(), "");
+  o.match.max_repetition_window = 0.0;  // at most the window: no look beyond it
   EXPECT_EQ(o.Validate(), "");
 }
 
