@@ -258,9 +258,12 @@ std::string MapsTsvRows(const AtlasGraph& graph) {
 
 std::string PointsTsvRows(const AtlasGraph& graph) {
   std::string text;
-  for (FrameId f = 0; f < graph.FrameCount(); ++f)
-    for (const Vec2& c : graph.Frame(f).points.Centres())
-      AppendF(&text, "%d\t%.2f\t%.2f\n", f, c.x(), c.y());
+  for (FrameId f = 0; f < graph.FrameCount(); ++f) {
+    const MapFrame& frame = graph.Frame(f);
+    std::vector<Vec2> points = frame.points.Centres();
+    if (points.empty() && frame.map != nullptr) points = frame.map->Points(kMaxMapPointsPerFrame);
+    for (const Vec2& c : points) AppendF(&text, "%d\t%.2f\t%.2f\n", f, c.x(), c.y());
+  }
   return text;
 }
 

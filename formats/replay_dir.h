@@ -106,8 +106,11 @@ std::string FormatGlobalTrajectory(const std::vector<FramePoseRow>& trajectory,
 
 // The maps.tsv rows of every frame's lines: "frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa".
 std::string MapsTsvRows(const AtlasGraph& graph);
-// The points.tsv rows of every frame's points (core/atlas/frame_points.h): "frame x y", the
-// cell centres in the frame's coordinates.
+// The points.tsv rows of every frame's points: "frame x y", cell centres in the frame's
+// coordinates. A frame's points are the laser points it keeps for map-matching
+// (core/atlas/frame_points.h), or, when it keeps none, its map's own (LocalMap::Points: a grid
+// frame's occupied cells), at most kMaxMapPointsPerFrame of them, evenly subsampled.
+inline constexpr int kMaxMapPointsPerFrame = 2048;  // frame_points.capacity's default
 std::string PointsTsvRows(const AtlasGraph& graph);
 
 }  // namespace atlas::formats
