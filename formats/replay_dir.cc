@@ -157,8 +157,10 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
     return empty("trajectory.tsv", "atlas-replay writes one per stepped scan");
   if (wanted.timing && out->timing.empty())
     return empty("timing.tsv", "atlas-replay writes one per step");
-  if (wanted.maps && out->lines.empty())
-    return empty("maps.tsv", "no frame holds a line: nothing to draw");
+  if (wanted.maps && out->lines.empty() && out->points.empty())
+    return empty("maps.tsv",
+                 "and points.tsv has none either: no frame holds a line or a point, "
+                 "nothing to draw");
   if (wanted.step_cpu && out->step_cpu_ns.empty())
     return empty("step_cpu.tsv", "atlas-replay writes one per step");
   if (!out->trajectory.empty()) {

@@ -63,7 +63,7 @@ struct ReplayFilesWanted {
   bool graph = true;
   bool timing = false;
   bool frames = false;
-  bool maps = false;
+  bool maps = false;  // maps.tsv, and rows in it or in points.tsv (a map to draw)
   bool step_cpu = false;
 };
 
@@ -78,10 +78,11 @@ std::string ParsePointRows(std::string_view text, const std::string& source,
 
 // Reads `dir`'s files; returns "" or what is wrong ("<dir>/graph.tsv: cannot open (...)").
 // Beyond each row's syntax it checks that the files agree: a wanted trajectory.tsv, timing.tsv,
-// maps.tsv or step_cpu.tsv without rows, a global.tsv or global_refined.tsv without rows next
-// to a trajectory with rows, an empty graph.tsv for more than one frame, and (when frames.tsv or
-// timing.tsv says how many frames the run made) an edge or trajectory row naming a frame beyond
-// them are errors ("<dir>/graph.tsv:12: edge 0-99 names frame 99, but the run has 4 frames").
+// maps.tsv (unless points.tsv has rows) or step_cpu.tsv without rows, a global.tsv or
+// global_refined.tsv without rows next to a trajectory with rows, an empty graph.tsv for more
+// than one frame, and (when frames.tsv or timing.tsv says how many frames the run made) an edge
+// or trajectory row naming a frame beyond them are errors ("<dir>/graph.tsv:12: edge 0-99 names
+// frame 99, but the run has 4 frames").
 std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wanted,
                              ReplayOutput* out);
 
