@@ -157,8 +157,10 @@ std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wa
     return empty("trajectory.tsv", "atlas-replay writes one per stepped scan");
   if (wanted.timing && out->timing.empty())
     return empty("timing.tsv", "atlas-replay writes one per step");
-  if (wanted.maps && out->lines.empty())
-    return empty("maps.tsv", "no frame holds a line: nothing to draw");
+  if (wanted.maps && out->lines.empty() && out->points.empty())
+    return empty("maps.tsv",
+                 "and points.tsv has none either: no frame holds a line or a point, "
+                 "nothing to draw");
   if (wanted.step_cpu && out->step_cpu_ns.empty())
     return empty("step_cpu.tsv", "atlas-replay writes one per step");
   if (!out->trajectory.empty()) {
@@ -258,9 +260,12 @@ std::string MapsTsvRows(const AtlasGraph& graph) {
 
 std::string PointsTsvRows(const AtlasGraph& graph) {
   std::string text;
-  for (FrameId f = 0; f < graph.FrameCount(); ++f)
-    for (const Vec2& c : graph.Frame(f).points.Centres())
-      AppendF(&text, "%d\t%.2f\t%.2f\n", f, c.x(), c.y());
+  for (FrameId f = 0; f < graph.FrameCount(); ++f) {
+    const MapFrame& frame = graph.Frame(f);
+    std::vector<Vec2> points = frame.points.Centres();
+    if (points.empty() && frame.map != nullptr) points = frame.map->Points(kMaxMapPointsPerFrame);
+    for (const Vec2& c : points) AppendF(&text, "%d\t%.2f\t%.2f\n", f, c.x(), c.y());
+  }
   return text;
 }
 

@@ -63,7 +63,7 @@ struct ReplayFilesWanted {
   bool graph = true;
   bool timing = false;
   bool frames = false;
-  bool maps = false;
+  bool maps = false;  // maps.tsv, and rows in it or in points.tsv (a map to draw)
   bool step_cpu = false;
 };
 
@@ -78,10 +78,11 @@ std::string ParsePointRows(std::string_view text, const std::string& source,
 
 // Reads `dir`'s files; returns "" or what is wrong ("<dir>/graph.tsv: cannot open (...)").
 // Beyond each row's syntax it checks that the files agree: a wanted trajectory.tsv, timing.tsv,
-// maps.tsv or step_cpu.tsv without rows, a global.tsv or global_refined.tsv without rows next
-// to a trajectory with rows, an empty graph.tsv for more than one frame, and (when frames.tsv or
-// timing.tsv says how many frames the run made) an edge or trajectory row naming a frame beyond
-// them are errors ("<dir>/graph.tsv:12: edge 0-99 names frame 99, but the run has 4 frames").
+// maps.tsv (unless points.tsv has rows) or step_cpu.tsv without rows, a global.tsv or
+// global_refined.tsv without rows next to a trajectory with rows, an empty graph.tsv for more
+// than one frame, and (when frames.tsv or timing.tsv says how many frames the run made) an edge
+// or trajectory row naming a frame beyond them are errors ("<dir>/graph.tsv:12: edge 0-99 names
+// frame 99, but the run has 4 frames").
 std::string ReadReplayOutput(const std::string& dir, const ReplayFilesWanted& wanted,
                              ReplayOutput* out);
 
@@ -106,8 +107,11 @@ std::string FormatGlobalTrajectory(const std::vector<FramePoseRow>& trajectory,
 
 // The maps.tsv rows of every frame's lines: "frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa".
 std::string MapsTsvRows(const AtlasGraph& graph);
-// The points.tsv rows of every frame's points (core/atlas/frame_points.h): "frame x y", the
-// cell centres in the frame's coordinates.
+// The points.tsv rows of every frame's points: "frame x y", cell centres in the frame's
+// coordinates. A frame's points are the laser points it keeps for map-matching
+// (core/atlas/frame_points.h), or, when it keeps none, its map's own (LocalMap::Points: a grid
+// frame's occupied cells), at most kMaxMapPointsPerFrame of them, evenly subsampled.
+inline constexpr int kMaxMapPointsPerFrame = 2048;  // frame_points.capacity's default
 std::string PointsTsvRows(const AtlasGraph& graph);
 
 }  // namespace atlas::formats

@@ -79,6 +79,10 @@ TEST(ReplayDir, ReadReplayOutputChecksTheFilesAgree) {
   maps.maps = true;
   EXPECT_NE(ReadReplayOutput(dir.string(), maps, &run).find("maps.tsv: no rows"),
             std::string::npos);
+  // Points are a map to draw without lines (grid frames).
+  write("points.tsv", "# h\n0 1.25 -4.05\n");
+  EXPECT_EQ(ReadReplayOutput(dir.string(), maps, &run), "");
+  EXPECT_EQ(run.points.size(), 1u);
   std::filesystem::remove_all(dir);
 }
 

@@ -375,7 +375,9 @@ ReplayResult RunReplay(const std::vector<SensorEvent>& events, const ReplayOptio
     result.error = e;
     return result;
   }
-  text = "# atlas-replay points: frame x y (cell centres of the laser points each frame keeps)\n";
+  text =
+      "# atlas-replay points: frame x y (cell centres of the laser points each frame keeps, or "
+      "of a grid frame's occupied cells)\n";
   text += formats::PointsTsvRows(graph);
   if (std::string e = WriteOutputFile(out_dir, "points.tsv", text); !e.empty()) {
     result.error = e;

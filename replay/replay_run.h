@@ -14,7 +14,8 @@
 //                   its origin is the robot pose at, and the frame it was started from)
 //   maps.tsv        frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa   (every frame's lines, end)
 //   points.tsv      frame x y   (the cells of laser points each frame keeps for map-matching,
-//                   core/atlas/frame_points.h; none for the sonar atlas)
+//                   core/atlas/frame_points.h; a grid frame's occupied cells; none for the
+//                   sonar atlas)
 //   step_cpu.tsv    step cpu_ns   (the stepping thread's CPU time of each step)
 //   summary.json    the figures of ReplaySummary
 // With a reference trajectory (corrected logs: their corrected poses; simulated runs: truth):

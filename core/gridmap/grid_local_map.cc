@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/atlas/byte_image.h"
+#include "core/gridmap/dense_search.h"
 #include "core/localmap/line_ekf_map.h"
 
 namespace atlas {
@@ -194,6 +195,10 @@ void GridLocalMap::ResetRobotPose(const UncertainPose& pose) {
 
 int GridLocalMap::Complexity() const {
   return full_ ? options_.max_scans : static_cast<int>(inserted_.size());
+}
+
+std::vector<Vec2> GridLocalMap::Points(int max_points) const {
+  return EvenSubsample(OccupiedCellCenters(grid_, kOccupiedProbability), max_points);
 }
 
 bool GridLocalMap::Reaches(const Vec2& point, double reach) const {

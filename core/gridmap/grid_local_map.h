@@ -27,7 +27,9 @@
 //   Complexity() counts the scans inserted (Capacity() when full), so that Genesis at capacity
 //   (III-C) starts a new frame when the robot leaves what the grid explains.
 // - Lines() is empty: nothing in this map needs straight walls. Reaches() tells traversal
-//   whether a seed lies within reach of the poses the grid was made from.
+//   whether a seed lies within reach of the poses the grid was made from. Points() are the
+//   centres of the occupied cells (probability >= kOccupiedProbability), evenly subsampled
+//   over the cells in row order when there are more than asked for.
 //
 // Not thread-safe; copyable (Clone) and serialisable (versioned binary image).
 
@@ -45,6 +47,9 @@
 #include "core/localmap/localmap_options.h"
 
 namespace atlas {
+
+// A cell of probability at least this is occupied (Points(); grid_map_matcher.h).
+inline constexpr double kOccupiedProbability = 0.6;
 
 // A search for points in a frame's grid (dense_search.h): w of eq. 12
 // (grid_map_bootstrapper.h) and map-matching (grid_map_matcher.h) each have one.
@@ -142,6 +147,7 @@ class GridLocalMap final : public LocalMap {
   int Capacity() const override { return options_.max_scans; }
   std::vector<MapLine> Lines() const override { return {}; }
   bool Reaches(const Vec2& point, double reach) const override;
+  std::vector<Vec2> Points(int max_points) const override;
   std::string Serialize() const override;
   bool Deserialize(const std::string& bytes) override;
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 #include "core/testing/fake_wall_scanner.h"
@@ -136,6 +137,35 @@ TEST(GridLocalMap, AJuvenilesUpdateLeavesTheGridAlone) {
   EXPECT_EQ(map.Grid().known_cells(), cells);
   EXPECT_EQ(map.Complexity(), 1);
   EXPECT_TRUE(map.LastUpdateMatched()) << ToString(map.LastAlignment().outcome);
+}
+
+// Points() are the occupied cells' centres: on the walls the scans saw, and at most as many as
+// asked for, spread over all of them.
+TEST(GridLocalMap, PointsAreTheOccupiedCellsOnTheWalls) {
+  const std::vector<sim::Wall> walls = RoomWalls();
+  FakeWallScanner scanner(walls, FrontLaser(), 5);
+  GridLocalMap map;
+  map.Update(scanner.Scan(Pose2{}), true);
+  const std::vector<Vec2> all = map.Points(100000);
+  ASSERT_GT(all.size(), 150u);  // the east wall alone is 5 m of 5 cm cells
+  double min_y = 0, max_y = 0;
+  for (const Vec2& p : all) {
+    EXPECT_LT(DistanceToWalls(p, walls), 0.06) << p.transpose();
+    EXPECT_GT(p.x(), -0.1) << p.transpose();  // the laser looks along +x
+    if (std::abs(p.x() - 5.0) < 0.06) {
+      min_y = std::min(min_y, p.y());
+      max_y = std::max(max_y, p.y());
+    }
+  }
+  EXPECT_LT(min_y, -3.5);  // the east wall from the south-east corner
+  EXPECT_GT(max_y, 0.8);   // to the alcove
+  const std::vector<Vec2> some = map.Points(40);
+  ASSERT_EQ(some.size(), 40u);
+  for (const Vec2& p : some)
+    EXPECT_NE(std::find(all.begin(), all.end(), p), all.end()) << p.transpose();
+  EXPECT_EQ(some.front(), all.front());
+  EXPECT_GT((some.back() - some.front()).norm(), 5.0);  // spread over the walls, not one run
+  EXPECT_TRUE(GridLocalMap().Points(100).empty());
 }
 
 TEST(GridLocalMap, SerializesAndRefusesOtherBytes) {

@@ -38,7 +38,7 @@ namespace atlas {
 // Occupied: probability >= kFreeSpaceOccupied. Free: the cell and its 8 neighbours known, each
 // below 0.5 (a wall one cell off its place is not in free space). Cells farther than
 // kFreeSpaceRadius from the robot are not counted.
-inline constexpr double kFreeSpaceOccupied = 0.6;
+inline constexpr double kFreeSpaceOccupied = kOccupiedProbability;
 inline constexpr double kFreeSpaceRadius = 8.0;  // metres
 
 struct FreeSpaceConflict {

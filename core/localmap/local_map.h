@@ -91,6 +91,13 @@ class LocalMap {
 
   // Read access to the features with their marginal covariances.
   virtual std::vector<MapLine> Lines() const = 0;
+  // What the map holds as points (map-frame), at most `max_points`, for pictures of the map
+  // (the export's points.tsv, formats/replay_dir.h). Default: none (a map of lines is drawn by
+  // its Lines()).
+  virtual std::vector<Vec2> Points(int max_points) const {
+    (void)max_points;
+    return {};
+  }
 
   // Whether `point` (map-frame) lies within `reach` metres of what the map holds, so that a
   // robot there could see it (traversal, Section III-E). Default: of one of Lines()' segments.

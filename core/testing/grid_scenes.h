@@ -2,8 +2,10 @@
 // Scenes for the grid tests and benchmarks: wall layouts (the simulator's walls) scanned by
 // FakeWallScanner, and the grids and point sets made from them.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/grid/grid_options.h"
@@ -39,6 +41,18 @@ inline std::vector<sim::Wall> RoomWalls(double scale = 1.0) {
     wall.b *= scale;
   }
   return w;
+}
+
+// The distance from `p` to the nearest of `walls`.
+inline double DistanceToWalls(const Vec2& p, const std::vector<sim::Wall>& walls) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const sim::Wall& w : walls) {
+    const Vec2 d = w.b - w.a;
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - w.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    nearest = std::min(nearest, (w.a + t * d - p).norm());
+  }
+  return nearest;
 }
 
 // Twelve poses spread over RoomWalls(scale)'s floor, as a robot crossing it would scan it.

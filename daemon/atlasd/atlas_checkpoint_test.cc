@@ -7,9 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "core/mapper/mapper_factory.h"
 #include "core/testing/atlas_test_world.h"
 #include "core/testing/fake_local_map.h"
+#include "core/testing/grid_scenes.h"
 #include "daemon/atlasd/atlas_export.h"
+#include "formats/replay_dir.h"
+#include "formats/text_rows.h"
 
 namespace atlas {
 namespace {
@@ -97,6 +101,41 @@ TEST_F(CheckpointTest, ExportWritesOneGraphRowPerEdgeAndOneMapRowPerLine) {
   int cells = 0;
   for (FrameId f = 0; f < a->Graph().FrameCount(); ++f) cells += a->Graph().Frame(f).points.Size();
   EXPECT_EQ(rows("points.tsv"), cells);
+}
+
+// Grid frames keep no laser points and have no lines: points.tsv holds each frame's occupied
+// cells, in the frame's coordinates, where the walls the robot scanned are.
+TEST_F(CheckpointTest, ExportWritesAGridFramesOccupiedCellsAsItsPoints) {
+  MapperSettings s;
+  s.grid_frames = true;
+  std::unique_ptr<Atlas> a = MakeAtlas(s);
+  const std::vector<sim::Wall> walls = RoomWalls();
+  FakeWallScanner scanner(walls, FrontLaser(), 2);
+  // Frame 0's origin is the first pose, the room's centre: frame 0 is the room's coordinates.
+  Pose2 robot;
+  a->Step(Pose2{}, scanner.Scan(robot));
+  const Pose2 u{0.2, 0.0, 0.3};  // a circle of 0.7 m radius, looking all around
+  for (int k = 0; k < 20; ++k) {
+    robot = Compose(robot, u);
+    a->Step(u, scanner.Scan(robot));
+  }
+  ASSERT_EQ(a->Graph().FrameCount(), 1);
+  ASSERT_EQ(WriteAtlasFiles(*a, dir_.string()), "");
+  const formats::TextFile file = formats::ReadTextFile((dir_ / "points.tsv").string());
+  ASSERT_EQ(file.error, "");
+  std::vector<formats::FramePointRow> points;
+  ASSERT_EQ(formats::ParsePointRows(file.text, "points.tsv", &points), "");
+  ASSERT_GT(points.size(), 500u);
+  EXPECT_LE(points.size(), static_cast<size_t>(formats::kMaxMapPointsPerFrame));
+  int south = 0, pillar = 0;
+  for (const formats::FramePointRow& r : points) {
+    EXPECT_EQ(r.frame, 0);
+    EXPECT_LT(DistanceToWalls(r.p, walls), 0.1) << r.p.transpose();
+    south += std::abs(r.p.y() + 4.0) < 0.1;
+    pillar += r.p.x() > 1.9 && r.p.x() < 2.5 && r.p.y() > -2.6 && r.p.y() < -2.0;
+  }
+  EXPECT_GT(south, 100);  // 10 m of wall in 5 cm cells, most of it seen
+  EXPECT_GT(pillar, 10);
 }
 
 // --export-atlas only reads: a missing store is not created, a corrupt one is not moved aside.

@@ -29,7 +29,9 @@ std::string WriteAtlasFiles(const Atlas& atlas, const std::string& dir) {
   text = "# atlasd maps: frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa\n";
   text += formats::MapsTsvRows(graph);
   if (std::string e = WriteText(dir, "maps.tsv", text); !e.empty()) return e;
-  text = "# atlasd points: frame x y (cell centres of the laser points each frame keeps)\n";
+  text =
+      "# atlasd points: frame x y (cell centres of the laser points each frame keeps, or of a "
+      "grid frame's occupied cells)\n";
   text += formats::PointsTsvRows(graph);
   return WriteText(dir, "points.tsv", text);
 }

@@ -2,10 +2,11 @@
 // `atlasd --export-atlas DIR`: the atlas saved in the state directory, written as the atlas
 // files of atlas-replay's output (docs/formats.md, "Replay output"): graph.tsv (every
 // edge), maps.tsv (every frame's lines) and points.tsv (the laser points each frame keeps for
-// map-matching), so that atlas-render --atlas draws what the daemon built. trajectory.tsv comes
-// from the poses atlasd published (scripts/demo.sh records them). Reads the store only
-// (AtlasStore::OpenReadOnly: creates, changes and moves no file); refuses (non-zero exit,
-// message) a store that is missing, unreadable, corrupt, or one it cannot resume from.
+// map-matching, or a grid frame's occupied cells), so that atlas-render --atlas draws what the
+// daemon built. trajectory.tsv comes from the poses atlasd published (scripts/demo.sh records
+// them). Reads the store only (AtlasStore::OpenReadOnly: creates, changes and moves no file);
+// refuses (non-zero exit, message) a store that is missing, unreadable, corrupt, or one it cannot
+// resume from.
 
 #include <string>
 

@@ -79,6 +79,10 @@ std::string LayoutAtlas(const formats::ReplayOutput& run, const AtlasGraph& grap
       box.Extend(p->mean.TransformPoint(l->endpoint_b));
     }
   }
+  for (const formats::FramePointRow& r : run.points) {
+    if (r.frame < 0 || r.frame >= n || !layout->frame_pose[static_cast<size_t>(r.frame)]) continue;
+    box.Extend(layout->frame_pose[static_cast<size_t>(r.frame)]->mean.TransformPoint(r.p));
+  }
   if (options.trajectory && options.source == 0) {
     for (const eval::TimedPose& s : options.refined ? run.refined : run.global)
       box.Extend(Vec2(s.pose.x, s.pose.y));
@@ -140,14 +144,17 @@ void DrawAtlasProjection(Canvas& canvas, const formats::ReplayOutput& run, const
   canvas.Segments(tree, Stroke{kTreeColor, 1.5});
   canvas.Segments(match, Stroke{kMatchColor, 1.2, true});
   canvas.Segments(other, Stroke{kOtherEdgeColor, 1.0, true});
-  // The laser points every placed frame keeps for map-matching (points.tsv), under its lines.
+  // The points of every placed frame (points.tsv): the laser points it keeps for map-matching,
+  // under its lines; without lines (grid frames: their occupied cells) they are the map.
+  const bool points_are_map = run.lines.empty();
   std::vector<Vec2> points;
   points.reserve(run.points.size());
   for (const formats::FramePointRow& r : run.points) {
     if (r.frame < 0 || r.frame >= n || !pose_of(r.frame)) continue;
     points.push_back(pose_of(r.frame)->mean.TransformPoint(r.p));
   }
-  canvas.Points(points, kPointColor, std::clamp(0.05 * px_per_m, 0.6, 1.5));
+  canvas.Points(points, points_are_map ? kLineColor.WithAlpha(0.6) : kPointColor,
+                std::clamp(0.05 * px_per_m, 0.6, 1.5));
   // Lines of every placed frame.
   std::vector<std::pair<Vec2, Vec2>> segments;
   segments.reserve(run.lines.size());
@@ -177,24 +184,27 @@ void DrawAtlasProjection(Canvas& canvas, const formats::ReplayOutput& run, const
   if (title.empty()) {
     int match_edges = 0;
     for (const AtlasEdge& e : graph.Edges()) match_edges += e.origin == EdgeKind::kMapMatch;
+    const std::string content = points_are_map ? Fmt("%zu occupied cells", run.points.size())
+                                               : Fmt("%zu lines", run.lines.size());
     title =
         options.refined
             ? Fmt("atlas, global least-squares arrangement: %d frames, %d edges (%d by "
-                  "map-matching), %zu lines",
-                  n, graph.EdgeCount(), match_edges, run.lines.size())
-            : Fmt("atlas, Dijkstra projection from frame %d: %d/%d frames, %d edges, %zu "
-                  "lines%s",
-                  options.source, layout.reached, n, graph.EdgeCount(), run.lines.size(),
+                  "map-matching), %s",
+                  n, graph.EdgeCount(), match_edges, content.c_str())
+            : Fmt("atlas, Dijkstra projection from frame %d: %d/%d frames, %d edges, %s%s",
+                  options.source, layout.reached, n, graph.EdgeCount(), content.c_str(),
                   options.ellipses ? Fmt(", %.0f-sigma ellipses", options.n_sigma).c_str() : "");
   }
   canvas.TextPx(Vec2(kMarginPx, 22), title, 16, Color{0, 0, 0}, true);
-  std::vector<LegendEntry> legend{{"map lines", kLineColor},
-                                  {"projection tree edges", kTreeColor},
-                                  {"map-match edges off the tree", kMatchColor},
-                                  {"other edges", kOtherEdgeColor},
-                                  {"source frame", kSourceColor, true}};
+  std::vector<LegendEntry> legend{
+      points_are_map ? LegendEntry{"map: the frames' occupied cells", kLineColor, true}
+                     : LegendEntry{"map lines", kLineColor},
+      {"projection tree edges", kTreeColor},
+      {"map-match edges off the tree", kMatchColor},
+      {"other edges", kOtherEdgeColor},
+      {"source frame", kSourceColor, true}};
   if (options.ellipses && !options.refined) legend.push_back({"frame uncertainty", kEllipseColor});
-  if (!points.empty())
+  if (!points.empty() && !points_are_map)
     legend.push_back({"laser points the frames keep (map-matching)", kPointColor, true});
   // Only when there is one to draw (an exported store has no trajectory: atlasd publishes the
   // poses, it does not save them).

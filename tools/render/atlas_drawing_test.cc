@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+
+#include "core/eval/atlas_relations.h"
 
 namespace atlas::draw {
 namespace {
@@ -86,6 +89,70 @@ TEST(AtlasDrawing, ProjectionAndTimelinePicturesAreWritten) {
   ASSERT_EQ(canvas->Finish(), "");
   EXPECT_GT(std::filesystem::file_size(timeline), 1000u);
   canvas.reset();
+  std::filesystem::remove_all(dir);
+}
+
+// An atlas of grid frames: maps.tsv without rows, the map in points.tsv. Read as atlas-render
+// reads an atlas, it is placed and drawn from its points.
+TEST(AtlasDrawing, AnAtlasWithPointsAndNoLinesIsDrawnFromItsPoints) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("atlas_drawing_points_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto write = [&](const char* name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+  };
+  write("trajectory.tsv", "# h\n1.0 0 0 0 0\n2.0 1 0 0 0\n");
+  write("graph.tsv", "# h\n0 1 10 0 1.5707963 0.01 0 0 0.01 0 0.001 genesis\n");
+  write("maps.tsv", "# h\n");
+  std::string points = "# h\n";
+  for (int f = 0; f < 2; ++f)  // a wall 2 m in front of each frame's origin, 4 m long
+    for (int i = 0; i <= 80; ++i)
+      points += std::to_string(f) + " 2 " + std::to_string(-2 + 0.05 * i) + "\n";
+  write("points.tsv", points);
+  formats::ReplayFilesWanted wanted;  // atlas-render's for the atlas pictures
+  wanted.maps = true;
+  formats::ReplayOutput run;
+  ASSERT_EQ(formats::ReadReplayOutput(dir.string(), wanted, &run), "");
+  EXPECT_TRUE(run.lines.empty());
+  ASSERT_EQ(run.points.size(), 162u);
+  AtlasGraph graph;
+  ASSERT_EQ(eval::BuildGraphFromEdges(run.frame_count, run.graph.edges, &graph), "");
+
+  AtlasDrawOptions o;
+  o.width_px = 600;
+  AtlasLayout layout;
+  int height = 0;
+  ViewTransform view;
+  ASSERT_EQ(LayoutAtlas(run, graph, o, nullptr, &layout, &height, &view), "");
+  // Frame 1 at (10, 0) turned a quarter: its wall runs along y = 2 from x = 8 to 12; the view
+  // holds both walls and the origins, with 1 m to spare.
+  EXPECT_NEAR(layout.min.x(), -1.0, 1e-6);  // frame 0's origin
+  EXPECT_NEAR(layout.max.x(), 13.0, 1e-6);
+  EXPECT_NEAR(layout.min.y(), -3.0, 1e-6);
+  EXPECT_NEAR(layout.max.y(), 3.0, 1e-6);
+  const std::string path = (dir / "p.png").string();
+  std::string error;
+  auto canvas = Canvas::Create(ImageFormat::kPng, path, o.width_px, height, view, &error);
+  ASSERT_NE(canvas, nullptr) << error;
+  DrawAtlasProjection(*canvas, run, graph, layout, o);
+  ASSERT_EQ(canvas->Finish(), "");
+  canvas.reset();
+  EXPECT_GT(std::filesystem::file_size(path), 1000u);
+  // Dark where the walls are, white between them.
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  const auto grey = [&](const Vec2& world) {  // ARGB32: B G R A
+    const Vec2 px = view.ToImage(world);
+    const unsigned char* p =
+        data + static_cast<int>(px.y()) * stride + 4 * static_cast<int>(px.x());
+    return (p[0] + p[1] + p[2]) / 3;
+  };
+  EXPECT_LT(grey(Vec2(2.0, -1.0)), 160);  // frame 0's wall
+  EXPECT_LT(grey(Vec2(9.0, 2.0)), 160);   // frame 1's wall
+  EXPECT_GT(grey(Vec2(6.0, -2.0)), 240);  // nothing
+  cairo_surface_destroy(s);
   std::filesystem::remove_all(dir);
 }
 

@@ -22,7 +22,9 @@ true trajectory, the odometry trajectory (started at the true start pose), laser
 thinned-out set of scans placed at the true poses, start and end, a legend and a scale bar.
 With neither --png nor --svg, writes DIR/run.png.
 Or draws an atlas-replay output directory (--atlas DIR: graph.tsv, maps.tsv, points.tsv,
-trajectory.tsv, global.tsv, timing.tsv; docs/formats.md) as one of the pictures below.)";
+trajectory.tsv, global.tsv, timing.tsv; docs/formats.md) as one of the pictures below. An atlas
+of grid frames (localmap.kind = "grid") has no lines: its map is drawn from points.tsv, the
+frames' occupied cells.)";
 
 constexpr const char* kFooter =
     R"(Input files are checked as they are read: a malformed line (also in run.clf: a line that is
@@ -176,9 +178,10 @@ int main(int argc, char** argv) {
   cli::AddInteger(app, "--projection", "F", 0, std::numeric_limits<atlas::FrameId>::max(),
                   &atlas_req.draw.source,
                   "the Dijkstra projection from frame F (default 0): every reached frame's\n"
-                  "lines (and laser points, if points.tsv is there) at its projected\n"
-                  "pose, its origin and 3-sigma position ellipse, the projection tree\n"
-                  "(paper, Fig. 2 and 10). Default file DIR/projection-F.png")
+                  "lines and points (points.tsv, if there: the laser points it keeps, or\n"
+                  "a grid frame's occupied cells) at its projected pose, its origin and\n"
+                  "3-sigma position ellipse, the projection tree (paper, Fig. 2 and 10).\n"
+                  "Default file DIR/projection-F.png")
       .Group(atlas_group);
   bool whole = false, timeline = false, timeline_frames = false;
   cli::AddFlag(app, "--whole", &whole,

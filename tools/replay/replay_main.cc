@@ -42,7 +42,8 @@ Writes into --out DIR (docs/formats.md, "Replay output"):
   global.tsv       timestamp x y theta   (Dijkstra projection from frame 0, end of run)
   frames.tsv       frame step timestamp parent   (each frame's Genesis)
   maps.tsv         frame line rho alpha x1 y1 x2 y2 c_rr c_ra c_aa   (every frame's lines)
-  points.tsv       frame x y   (the laser points each frame keeps for map-matching, 10 cm cells)
+  points.tsv       frame x y   (the laser points each frame keeps for map-matching, 10 cm cells;
+                   grid frames: their occupied cells, 5 cm)
   summary.json     the summary printed on stdout
   reference.tsv, closures.tsv   with --corrected: the reference pose at each scan, and every
                    map-match edge against the reference (false loop closures)
