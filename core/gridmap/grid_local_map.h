@@ -63,8 +63,8 @@ struct GridSearchOptions {
   // A search spread over steps (map-matching, w) does at most about this many cell visits per
   // step (DenseSearch::Continue): precomputed cells, and points scored at each node. The
   // default does not slice: sliced at 700000 (about 2 ms) the steps keep the 10 ms budget, but
-  // the simulator's corridors and offices get false loop closures that whole searches do not
-  // (docs/design.md, "Constant time").
+  // the returns are less accurate and loop closures are sometimes false (docs/design.md,
+  // "Constant time").
   int64_t work_per_step = int64_t{1} << 40;
   double min_score = 0.4;    // mean cell probability of the best placement
   double min_margin = 0.05;  // best minus runner-up outside its peak (Condition 2)
