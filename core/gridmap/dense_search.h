@@ -12,8 +12,8 @@
 //  - kRepetitive: the runner-up outside the best's peak comes within min_margin of it
 //    (Condition 2: a placement the window cannot tell apart); or, when the prior's 3 sigma
 //    reaches beyond the window, a placement at the best's heading within that 3 sigma (at most
-//    max_repetition_window) but outside the window's reach does (a corridor's period longer
-//    than the window: the frame repeats where the prior still allows the robot to be);
+//    max_repetition_window) and outside the best's peak does (a corridor's period longer than
+//    the window: the frame repeats where the prior still allows the robot to be);
 //  - kWorkBound also when that second search exceeds max_nodes;
 //  - kUnconstrained: the refinement leaves a direction unfixed (a corridor's length), or fails;
 //  - kFound.
