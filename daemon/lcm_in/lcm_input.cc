@@ -1,5 +1,6 @@
 #include "daemon/lcm_in/lcm_input.h"
 
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <span>
@@ -168,8 +169,19 @@ void LcmInput::Run() {
   }
 }
 
+namespace {
+
+Time ArrivalOf(const lcm::ReceiveBuffer& buffer) {
+  const int64_t realtime_now_us = std::chrono::duration_cast<std::chrono::microseconds>(
+                                      std::chrono::system_clock::now().time_since_epoch())
+                                      .count();
+  return ArrivalOnMonotonicClock(buffer.recv_utime, realtime_now_us, Now());
+}
+
+}  // namespace
+
 void LcmInput::OnLaser(const lcm::ReceiveBuffer* buffer, const std::string&) {
-  const Time arrival = Now();
+  const Time arrival = ArrivalOf(*buffer);
   const std::span<const uint8_t> bytes(static_cast<const uint8_t*>(buffer->data),
                                        buffer->data_size);
   Decoded<LaserScan> d = DecodeLaserMessage(options_.laser_type, bytes, options_.laser, arrival);
@@ -180,7 +192,7 @@ void LcmInput::OnLaser(const lcm::ReceiveBuffer* buffer, const std::string&) {
 }
 
 void LcmInput::OnOdometry(const lcm::ReceiveBuffer* buffer, const std::string&) {
-  const Time arrival = Now();
+  const Time arrival = ArrivalOf(*buffer);
   const std::span<const uint8_t> bytes(static_cast<const uint8_t*>(buffer->data),
                                        buffer->data_size);
   Decoded<OdometrySample> d = DecodeOdometryMessage(options_.odometry_type, bytes, arrival);

@@ -1,7 +1,8 @@
 #pragma once
 // The subscriber of atlasd's LCM input mode (input.source = "lcm", docs/lcm.md "LCM input"):
 // one thread handles one LCM instance subscribed to the laser and odometry channels, decodes
-// each message with lcm_input_decode.h, stamps it with its arrival on the monotonic clock, and
+// each message with lcm_input_decode.h, stamps it with its arrival on the monotonic clock (LCM's
+// receive time, ArrivalOnMonotonicClock), and
 // pushes it into a bounded queue (SpscQueue: the oldest is dropped and counted when full), as
 // the device readers do (drivers/device), so that the loop drains it the same way.
 //

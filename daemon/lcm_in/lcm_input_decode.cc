@@ -157,4 +157,12 @@ Decoded<OdometrySample> DecodeOdometryMessage(OdometryMessageType type,
   return FromAtlasOdometry(m, arrival);
 }
 
+Time ArrivalOnMonotonicClock(int64_t recv_utime, int64_t realtime_now_us, Time monotonic_now) {
+  const int64_t age_us = realtime_now_us - recv_utime;
+  if (recv_utime <= 0 || age_us < 0 ||
+      age_us > std::chrono::duration_cast<std::chrono::microseconds>(kMaxReceiveAge).count())
+    return monotonic_now;
+  return monotonic_now - std::chrono::microseconds(age_us);
+}
+
 }  // namespace atlas

@@ -173,5 +173,20 @@ TEST(LcmInputDecodeTest, MessagesNoScanOrPoseCanHoldAreErrors) {
   EXPECT_EQ(FromAtlasLaserScan(scan, kArrival).error, "");
 }
 
+// LCM's receive time moves onto the monotonic clock by the clocks' offset; a time the clocks
+// cannot place (after now, over a second old, unset) is now.
+TEST(LcmInputDecodeTest, ReceiveTimeMovesOntoTheMonotonicClock) {
+  const Time now = FromSeconds(500.0);
+  const int64_t realtime_now_us = 1'700'000'000'000'000;
+  EXPECT_EQ(ArrivalOnMonotonicClock(realtime_now_us - 3000, realtime_now_us, now),
+            now - std::chrono::milliseconds(3));
+  EXPECT_EQ(ArrivalOnMonotonicClock(realtime_now_us, realtime_now_us, now), now);
+  EXPECT_EQ(ArrivalOnMonotonicClock(realtime_now_us - 999'999, realtime_now_us, now),
+            now - std::chrono::microseconds(999'999));
+  EXPECT_EQ(ArrivalOnMonotonicClock(realtime_now_us + 5, realtime_now_us, now), now);
+  EXPECT_EQ(ArrivalOnMonotonicClock(realtime_now_us - 1'000'001, realtime_now_us, now), now);
+  EXPECT_EQ(ArrivalOnMonotonicClock(0, realtime_now_us, now), now);
+}
+
 }  // namespace
 }  // namespace atlas
