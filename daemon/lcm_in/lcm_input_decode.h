@@ -65,10 +65,11 @@ Decoded<OdometrySample> DecodeOdometryMessage(OdometryMessageType type,
                                               std::span<const uint8_t> bytes, Time arrival);
 
 // When LCM received a message, on the monotonic clock: `recv_utime` is LCM's receive time in
-// microseconds of the realtime clock (with udpm the kernel's socket timestamp where it gives
-// one), moved by the two clocks' offset now (`realtime_now_us`, `monotonic_now`, read
-// together). A receive time after now or more than kMaxReceiveAge before it (a realtime clock
-// step, a provider that leaves it 0) gives `monotonic_now`.
+// microseconds of the realtime clock (with udpm when the packet came: a message handled 200 ms
+// after it was sent carries a receive time 200 ms old), moved by the two clocks' offset now
+// (`realtime_now_us`, `monotonic_now`, read together). A receive time after now or more than
+// kMaxReceiveAge before it (a realtime clock step, a provider that leaves it 0) gives
+// `monotonic_now`.
 inline constexpr Duration kMaxReceiveAge = std::chrono::seconds(1);
 Time ArrivalOnMonotonicClock(int64_t recv_utime, int64_t realtime_now_us, Time monotonic_now);
 
