@@ -34,6 +34,16 @@ std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max) {
   return out;
 }
 
+namespace {
+
+// Of the prior's position (x, y), metres.
+double ThreeSigmaOfWidestAxis(const Mat3& cov) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov.topLeftCorner<2, 2>());
+  return 3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
+}
+
+}  // namespace
+
 DenseSearch::DenseSearch(std::shared_ptr<PrecomputationGridStack> grids, std::vector<Vec2> points,
                          const UncertainPose& prior, const GridSearchOptions& search,
                          const GridLocalMapOptions& map)
@@ -41,11 +51,25 @@ DenseSearch::DenseSearch(std::shared_ptr<PrecomputationGridStack> grids, std::ve
       points_(std::move(points)),
       prior_(prior),
       search_(search),
-      map_(map) {}
+      map_(map),
+      prior_three_sigma_(ThreeSigmaOfWidestAxis(prior.cov)) {}
 
-double DenseSearch::PriorThreeSigma() const {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(prior_.cov.topLeftCorner<2, 2>());
-  return 3.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
+DenseSearch::SliceEnd DenseSearch::RunSlice(BranchAndBoundSearch& search, int64_t per_node,
+                                            int64_t* work) const {
+  const int64_t left = search_.max_nodes - search.result().nodes;
+  const int64_t before = search.result().nodes;
+  const SearchStatus status =
+      left > 0 ? search.Run(std::min(left, std::max<int64_t>(1, *work / per_node)))
+               : SearchStatus::kRunning;
+  *work -= (search.result().nodes - before) * per_node;
+  if (status == SearchStatus::kDone) return SliceEnd::kDone;
+  return search.result().nodes < search_.max_nodes ? SliceEnd::kMore : SliceEnd::kWorkBound;
+}
+
+bool DenseSearch::EndWorkBound() {
+  result_.outcome = DenseOutcome::kWorkBound;
+  phase_ = Phase::kDone;
+  return true;
 }
 
 bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
@@ -62,7 +86,7 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
       if (!bnb_) {
         BranchAndBoundOptions o = map_.grid.search;
         o.linear_window =
-            std::clamp(PriorThreeSigma(), search_.min_linear_window, search_.max_linear_window);
+            std::clamp(prior_three_sigma_, search_.min_linear_window, search_.max_linear_window);
         o.angular_window = std::clamp(3.0 * std::sqrt(std::max(0.0, prior_.cov(2, 2))),
                                       search_.min_angular_window, search_.max_angular_window);
         o.min_score = search_.min_score;
@@ -70,18 +94,10 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
         bnb_ = std::make_unique<BranchAndBoundSearch>(*grids_, points_, prior_.mean, o);
         work -= static_cast<int64_t>(bnb_->window().headings()) * per_node;
       }
-      const int64_t left = search_.max_nodes - bnb_->result().nodes;
-      const int64_t nodes = std::min(left, std::max<int64_t>(1, work / per_node));
-      const int64_t before = bnb_->result().nodes;
-      const SearchStatus status = left > 0 ? bnb_->Run(nodes) : SearchStatus::kRunning;
+      const SliceEnd end = RunSlice(*bnb_, per_node, &work);
       result_.nodes = bnb_->result().nodes;
-      work -= (result_.nodes - before) * per_node;
-      if (status == SearchStatus::kRunning) {
-        if (result_.nodes < search_.max_nodes) return false;
-        result_.outcome = DenseOutcome::kWorkBound;
-        phase_ = Phase::kDone;
-        return true;
-      }
+      if (end == SliceEnd::kMore) return false;
+      if (end == SliceEnd::kWorkBound) return EndWorkBound();
       const BranchAndBoundResult& r = bnb_->result();
       result_.score = r.best.score;
       result_.margin = r.margin;
@@ -98,7 +114,7 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
       [[fallthrough]];
     }
     case Phase::kBeyond: {
-      const double wide = std::min(PriorThreeSigma(), search_.max_repetition_window);
+      const double wide = std::min(prior_three_sigma_, search_.max_repetition_window);
       if (wide > search_.max_linear_window) {
         const MatchPlacement& best = bnb_->result().best;
         if (!beyond_) {
@@ -112,19 +128,10 @@ bool DenseSearch::Continue(const ProbabilityGrid& grid, int64_t work) {
               *grids_, points_, Pose2{prior_.mean.x, prior_.mean.y, best.pose.theta}, o, &at);
           work -= per_node;
         }
-        const int64_t left = search_.max_nodes - beyond_->result().nodes;
-        const int64_t before = beyond_->result().nodes;
-        const SearchStatus status =
-            left > 0 ? beyond_->Run(std::min(left, std::max<int64_t>(1, work / per_node)))
-                     : SearchStatus::kRunning;
-        work -= (beyond_->result().nodes - before) * per_node;
+        const SliceEnd end = RunSlice(*beyond_, per_node, &work);
         result_.nodes = bnb_->result().nodes + beyond_->result().nodes;
-        if (status == SearchStatus::kRunning) {
-          if (beyond_->result().nodes < search_.max_nodes) return false;
-          result_.outcome = DenseOutcome::kWorkBound;
-          phase_ = Phase::kDone;
-          return true;
-        }
+        if (end == SliceEnd::kMore) return false;
+        if (end == SliceEnd::kWorkBound) return EndWorkBound();
         if (beyond_->result().best.found) {
           result_.margin = std::min(result_.margin, best.score - beyond_->result().best.score);
           result_.outcome = DenseOutcome::kRepetitive;

@@ -80,12 +80,17 @@ class DenseSearch {
 
  private:
   enum class Phase { kPrecompute, kSearch, kBeyond, kRefine, kDone };
-  double PriorThreeSigma() const;  // along the prior's widest axis, metres
+  enum class SliceEnd { kDone, kMore, kWorkBound };
+  // Runs `search` for what `work` (cell visits) allows, at most max_nodes nodes in all; takes
+  // what it used from `work`.
+  SliceEnd RunSlice(BranchAndBoundSearch& search, int64_t per_node, int64_t* work) const;
+  bool EndWorkBound();  // the outcome kWorkBound; true (the search has ended)
   std::shared_ptr<PrecomputationGridStack> grids_;
   std::vector<Vec2> points_;
   UncertainPose prior_;
   GridSearchOptions search_;
   GridLocalMapOptions map_;
+  double prior_three_sigma_;  // along the prior's widest axis, metres
   std::unique_ptr<BranchAndBoundSearch> bnb_;
   std::unique_ptr<BranchAndBoundSearch> beyond_;  // the repetition search (kRepetitive above)
   Phase phase_ = Phase::kPrecompute;
