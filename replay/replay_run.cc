@@ -150,6 +150,8 @@ std::string ReplayOptions::Validate() const {
   if (std::string e = loop.Validate(); !e.empty()) return "step loop: " + e;
   if (std::string e = closures.Validate(); !e.empty()) return "closure check: " + e;
   if (max_scans < 0) return "max_scans must be >= 0";
+  if (!(laser_max_range >= 0.0) || !std::isfinite(laser_max_range))
+    return "laser_max_range must be >= 0 (0: each scan's own maximum)";
   return "";
 }
 
@@ -212,7 +214,10 @@ ReplayResult RunReplay(const std::vector<SensorEvent>& events, const ReplayOptio
     if (scan != nullptr && use_scans) {
       if (sum.scans == 0) first_scan = scan->stamp;
       last_scan = scan->stamp;
-      loop.AddScan(LaserScan(*scan));
+      LaserScan added(*scan);
+      if (options.laser_max_range > 0.0)
+        LimitLaserRange(&added, static_cast<float>(options.laser_max_range));
+      loop.AddScan(std::move(added));
       ++sum.scans;
     } else if (sonar != nullptr && use_sonar) {
       loop.AddSonar(SonarReading(*sonar));

@@ -107,7 +107,10 @@ using Refiner = std::function<std::vector<std::optional<Pose2>>(const AtlasGraph
 struct ReplayOptions {
   MapperSettings mapper;
   StepLoopOptions loop;
-  int64_t max_scans = 0;    // 0: all
+  int64_t max_scans = 0;  // 0: all
+  // A range setting applied to every scan before the loop (LimitLaserRange), metres; 0: each
+  // scan's own maximum (the scanner's, as the log states it).
+  double laser_max_range = 0.0;
   Refiner refine;           // set: write global_refined.tsv
   bool hypotheses = false;  // write hypotheses.tsv
   ClosureCheckOptions closures;

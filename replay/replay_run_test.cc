@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "atlas_paths.h"
 #include "formats/config/config_loader.h"
 #include "formats/config/mapper_config.h"
@@ -25,6 +27,18 @@ TEST(ReplayOptions, DefaultsAreTheShippedFile) {
   EXPECT_EQ(defaults.mapper.sensors, shipped.sensors);
   EXPECT_EQ(defaults.mapper.grid_frames, shipped.grid_frames);
   EXPECT_TRUE(defaults.loop == ToStepLoopOptions(r.options));
+  // The scanner's range setting (laser.max_range_m) is the device's: a replay keeps the log's.
+  EXPECT_EQ(defaults.laser_max_range, 0.0);
+}
+
+TEST(ReplayOptions, LaserRangeSettingIsValidated) {
+  ReplayOptions o;
+  o.laser_max_range = 8.0;
+  EXPECT_EQ(o.Validate(), "");
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    o.laser_max_range = bad;
+    EXPECT_NE(o.Validate().find("laser_max_range"), std::string::npos) << bad;
+  }
 }
 
 }  // namespace

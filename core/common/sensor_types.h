@@ -40,6 +40,15 @@ struct LaserScan {
   Pose2 sensor_pose;          // the sensor on the robot
 };
 
+// Applies a range setting to a scan: returns at or beyond `max_range` (metres, > 0) become
+// kNoReturn, and the scan's max_range becomes the smaller of its own and `max_range` (its own
+// when that is not positive). The scanner's maximum is the sensor's, not a mapping limit.
+inline void LimitLaserRange(LaserScan* scan, float max_range) {
+  for (float& r : scan->ranges)
+    if (!(r < max_range)) r = kNoReturn;
+  if (!(scan->max_range > 0.0f) || max_range < scan->max_range) scan->max_range = max_range;
+}
+
 // Sonar returns fired since the previous reading. Ranges in metres; a transducer that saw
 // nothing within its maximum range reports kNoReturn. Geometry (mounting pose, beam width) is
 // configuration, looked up by transducer index.

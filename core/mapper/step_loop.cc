@@ -26,7 +26,6 @@ size_t PushDroppingOldest(std::vector<T>& ring, size_t& head, size_t& size, int6
 std::string StepLoopOptions::Validate() const {
   if (step_budget <= Duration::zero()) return "step budget must be positive";
   if (max_pending_scans < 1) return "max_pending_scans must be at least 1";
-  if (!(max_range_m > 0)) return "max_range_m must be positive";
   if (laser_timeout <= Duration::zero()) return "laser_timeout must be positive";
   if (odometry_capacity < 2) return "odometry_capacity must be at least 2";
   if (laser_time_offset < -std::chrono::seconds(1) || laser_time_offset > std::chrono::seconds(1))
@@ -67,9 +66,7 @@ void StepLoop::AddOdometry(const OdometrySample& added) {
 
 void StepLoop::PrepareScan(LaserScan* scan) const {
   scan->stamp = Truncate(scan->stamp, options_.stamp_resolution);
-  const float max_range = static_cast<float>(options_.max_range_m);
-  for (float& r : scan->ranges)
-    if (!(r < max_range)) r = kNoReturn;
+  if (scan->max_range > 0.0f) LimitLaserRange(scan, scan->max_range);
 }
 
 void StepLoop::AddScan(LaserScan&& scan) {

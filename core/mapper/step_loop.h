@@ -14,11 +14,13 @@
 //   when the scan is newer than every sample), using only the odometry that had arrived when
 //   the scan was added, so that a scan stepped late gives the same result as one stepped at
 //   once (live and replay agree).
-// - Per-scan preprocessing is the loop's (and only the loop's): when a scan is added its stamp is
-//   truncated to `stamp_resolution` (below) and its ranges at or beyond max_range_m become
-//   kNoReturn; when it is stepped, the odometry is looked up at the time it was taken (stamp +
-//   laser_time_offset, below). Odometry samples and sonar readings have their stamps truncated
-//   the same way when added.
+// - Per-scan preprocessing is the loop's: when a scan is added its stamp is truncated to
+//   `stamp_resolution` (below) and its ranges at or beyond its own max_range (the scanner's
+//   maximum as its source states it; none when not positive) become kNoReturn
+//   (LimitLaserRange). A device's range setting is applied by its source (the driver, the LCM
+//   input), so the maps use the ranges the scanner gives. When a scan is stepped, the odometry
+//   is looked up at the time it was taken (stamp + laser_time_offset, below). Odometry samples
+//   and sonar readings have their stamps truncated the same way when added.
 // - Stamp resolution: the stamps of everything added are truncated to a whole multiple of
 //   `stamp_resolution` (zero: kept as given). The live daemon sets the resolution at which its
 //   recording of the raw inputs keeps stamps (the raw LCM channels: whole microseconds), so
@@ -82,7 +84,6 @@ namespace atlas {
 struct StepLoopOptions {
   Duration step_budget = std::chrono::milliseconds(10);
   int max_pending_scans = 2;
-  double max_range_m = 8.0;
   Duration laser_timeout = std::chrono::milliseconds(500);
   Duration dead_reckoning_period = std::chrono::milliseconds(50);
   size_t odometry_capacity = 512;

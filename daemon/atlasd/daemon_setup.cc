@@ -26,6 +26,7 @@ LaserReaderOptions ToLaserReaderOptions(const DaemonOptions& o) {
   l.angle_deg = static_cast<uint16_t>(o.laser.angular_range_deg);
   l.resolution_centideg = static_cast<uint16_t>(std::lround(o.laser.angular_resolution_deg * 100));
   l.unit = o.laser.unit;
+  l.max_range = static_cast<float>(o.laser.max_range_m);
   l.sensor_pose = LaserMount(o);
   l.queue_capacity = static_cast<size_t>(o.laser.queue_capacity);
   l.reconnect.realtime_priority = ReaderPriority(o);

@@ -35,6 +35,14 @@ TEST(DaemonSetup, DriverThreadsFollowTheLoopsRealTimePriority) {
   EXPECT_EQ(ValidateDerivedOptions(o), "");
 }
 
+// laser.max_range_m is the scanner's setting: its reader applies it, not the mapper.
+TEST(DaemonSetup, LaserReaderTakesTheRangeSetting) {
+  DaemonOptions o;
+  o.laser.max_range_m = 6.5;
+  EXPECT_EQ(ToLaserReaderOptions(o).max_range, 6.5f);
+  EXPECT_EQ(ToLaserReaderOptions(o).Validate(), "");
+}
+
 // input.source = "lcm": the subscriber gets lcm.url, the [input] keys and what the laser
 // messages of libbot do not carry (the mount, the maximum range), and no device is checked.
 TEST(DaemonSetup, LcmInputTakesTheInputKeysAndTheLasersMount) {

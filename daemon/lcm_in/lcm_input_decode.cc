@@ -142,7 +142,9 @@ Decoded<LaserScan> DecodeLaserMessage(LaserMessageType type, std::span<const uin
   atlasd::laser_scan_t m;
   if (!ArraysFit(bytes, 8 + 8 + 3 * 4, 1) || !DecodeBytes(bytes, &m))
     return {std::nullopt, NotA("atlasd.laser_scan_t", "laser_type")};
-  return FromAtlasLaserScan(m, arrival);
+  Decoded<LaserScan> d = FromAtlasLaserScan(m, arrival);
+  if (d.sample) LimitLaserRange(&*d.sample, setup.max_range);
+  return d;
 }
 
 Decoded<OdometrySample> DecodeOdometryMessage(OdometryMessageType type,

@@ -8,7 +8,9 @@
 //   with its utime: the publisher's clock may be another host's or an epoch clock.
 // - atlasd.laser_scan_t / atlasd.odometry_t: as FromLaserMessage / FromOdometryMessage
 //   (daemon/lcm_out/lcm_convert.h), the mount and maximum range from the message; a negative
-//   range is no return.
+//   range is no return. DecodeLaserMessage then applies LaserSetup's max_range as the
+//   scanner's range setting (LimitLaserRange): atlasd's laser.max_range_m holds for every
+//   laser source.
 // - bot_core.planar_lidar_t: beam i at rad0 + i * radstep; the mount and maximum range are the
 //   configuration's (LaserSetup); a range not above 0, beyond the maximum, or not finite is no
 //   return (kNoReturn). Intensities are not used.

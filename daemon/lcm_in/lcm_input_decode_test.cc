@@ -62,6 +62,7 @@ TEST(LcmInputDecodeTest, PlanarLidarBytesBecomeAScanStampedAtArrival) {
   EXPECT_EQ(s.ranges[5], 2.5f);
 }
 
+// The message's own maximum holds below the configured one (laser.max_range_m), which caps it.
 TEST(LcmInputDecodeTest, AtlasLaserScanBytesKeepTheirMountAndRanges) {
   LaserScan in;
   in.stamp = FromSeconds(5);
@@ -71,8 +72,9 @@ TEST(LcmInputDecodeTest, AtlasLaserScanBytesKeepTheirMountAndRanges) {
   in.ranges = {1.0f, kNoReturn, 40.0f, -2.0f};
   in.sensor_pose = Pose2{0.3, 0.0, 0.1};
   const auto bytes = Encoded(ToLaserMessage(in));
+  const LaserSetup long_range{kSetup.sensor_pose, 60.0f};
   const Decoded<LaserScan> d =
-      DecodeLaserMessage(LaserMessageType::kLaserScan, bytes, kSetup, kArrival);
+      DecodeLaserMessage(LaserMessageType::kLaserScan, bytes, long_range, kArrival);
   ASSERT_TRUE(d.sample) << d.error;
   EXPECT_EQ(d.sample->stamp, kArrival);
   EXPECT_EQ(d.sample->max_range, 50.0f);
@@ -81,6 +83,12 @@ TEST(LcmInputDecodeTest, AtlasLaserScanBytesKeepTheirMountAndRanges) {
   EXPECT_EQ(d.sample->ranges[2], 40.0f);
   EXPECT_FALSE(IsReturn(d.sample->ranges[1]));
   EXPECT_FALSE(IsReturn(d.sample->ranges[3]));
+  const Decoded<LaserScan> capped =
+      DecodeLaserMessage(LaserMessageType::kLaserScan, bytes, kSetup, kArrival);
+  ASSERT_TRUE(capped.sample) << capped.error;
+  EXPECT_EQ(capped.sample->max_range, 8.0f);
+  EXPECT_EQ(capped.sample->ranges[0], 1.0f);
+  EXPECT_FALSE(IsReturn(capped.sample->ranges[2]));
 }
 
 TEST(LcmInputDecodeTest, BotPoseGivesPositionAndYaw) {

@@ -1,6 +1,7 @@
 #include "drivers/device/laser_reader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace atlas {
@@ -23,6 +24,8 @@ std::string LaserReaderOptions::Validate() const {
   if (reply_timeout <= Duration::zero() || truncation_gap <= Duration::zero())
     return "laser " + device + ": timeouts must be > 0";
   if (queue_capacity == 0) return "laser " + device + ": queue_capacity must be > 0";
+  if (!(max_range >= 0.0f) || !std::isfinite(max_range))
+    return "laser " + device + ": max_range must be >= 0 (0: the scanner's own)";
   return reconnect.Validate();
 }
 
@@ -194,6 +197,7 @@ void LaserReader::HandleTelegram(const sick::TelegramView& t, Time stamp) {
     return;
   }
   health_.CountMessage(stamp);
+  if (options_.max_range > 0.0f) LimitLaserRange(&scan_, options_.max_range);
   if (info.unit != options_.unit) {
     const char* mismatch = info.unit == sick::Unit::kMillimetre ? "scans in mm, laser.unit says cm"
                                                                 : "scans in cm, laser.unit says mm";

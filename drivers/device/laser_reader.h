@@ -39,6 +39,9 @@ struct LaserReaderOptions {
   // its unit and is decoded with it; a scan in another unit is still used, and the device
   // status reports the mismatch (a scanner configured differently than the file says).
   sick::Unit unit = sick::Unit::kMillimetre;
+  // Returns at or beyond this many metres are no return and the scan's max_range is at most
+  // this (atlasd's laser.max_range_m; LimitLaserRange). 0: the scanner's own maximum.
+  float max_range = 0.0f;
   // Rates tried for the status check, in order; the first must be 9600 (power-up rate).
   std::vector<int> probe_rates = {9600, 500000, 38400, 19200};
   Duration reply_timeout = std::chrono::milliseconds(300);  // spec: replies within 60 ms

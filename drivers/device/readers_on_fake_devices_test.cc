@@ -116,7 +116,8 @@ TEST(FakeLmsTest, BaudSwitchIsFollowed) {
 
 // AnswerLmsStartUp (for benchmarks that write the telegrams themselves): the reader's whole
 // start-up, the switch to 500000 included, is answered on a pty the test owns; a telegram then
-// written by hand arrives decoded, stamped after its write.
+// written by hand arrives decoded, stamped after its write, with the range setting applied
+// (a return beyond max_range is no return, and the scan says so).
 TEST(FakeLmsTest, StartUpAnsweredOnAnOwnPty) {
   PseudoTerminal pty;
   std::string err;
@@ -125,6 +126,7 @@ TEST(FakeLmsTest, StartUpAnsweredOnAnOwnPty) {
   lo.device = pty.slave_path();
   lo.baud = 500000;
   lo.resolution_centideg = 100;  // 181 beams
+  lo.max_range = 3.0f;
   LaserReader reader(lo);
   reader.Start();
   ASSERT_TRUE(AnswerLmsStartUp(pty, std::chrono::seconds(5)));
@@ -137,6 +139,7 @@ TEST(FakeLmsTest, StartUpAnsweredOnAnOwnPty) {
   scan.angle_min = -1.5707964f;
   scan.angle_increment = 0.017453292f;
   scan.ranges.assign(181, 2.5f);
+  scan.ranges[10] = 4.0f;
   const std::vector<uint8_t> telegram =
       *sick::EncodeMeasuredValues(scan, sick::Unit::kMillimetre, 0x10);
   const Time written = Now();
@@ -146,6 +149,8 @@ TEST(FakeLmsTest, StartUpAnsweredOnAnOwnPty) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   ASSERT_EQ(out.ranges.size(), 181u);
   EXPECT_NEAR(out.ranges[90], 2.5f, 1e-3f);
+  EXPECT_FALSE(IsReturn(out.ranges[10]));
+  EXPECT_EQ(out.max_range, 3.0f);
   EXPECT_GE(out.stamp, written);
   reader.Stop();
 }

@@ -53,7 +53,7 @@ struct LaserOptions {
   int angular_range_deg = 180;          // 180 or 100
   double angular_resolution_deg = 1.0;  // 1.0, 0.5 or 0.25 (0.25 only with 100 degrees)
   sick::Unit unit = sick::Unit::kMillimetre;
-  double max_range_m = StepLoopDefaults().max_range_m;
+  double max_range_m = 8.0;  // the scanner's range setting (its reader applies it)
   MountPose mount{0.1, 0.0, 0.0};
   int queue_capacity = 8;  // scans between the reader thread and the loop
   // A scan was taken at its arrival stamp + time_offset_s (negative: before it), seconds: the

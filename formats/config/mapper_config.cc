@@ -57,7 +57,6 @@ StepLoopOptions ToStepLoopOptions(const DaemonOptions& o) {
   l.step_budget = std::chrono::duration_cast<Duration>(
       std::chrono::duration<double, std::milli>(o.loop.step_budget_ms));
   l.max_pending_scans = o.loop.max_pending_scans;
-  l.max_range_m = o.laser.max_range_m;
   l.laser_time_offset = FromSeconds(o.laser.time_offset_s).time_since_epoch();
   return l;
 }

@@ -7,7 +7,8 @@
 #
 # Same mapper on both sides (one configuration file for both): map capacity 10, 4 hypotheses,
 # probation 8, sigmas 0.5/0.5/0.2, 24 frames projected, 1 match candidate, range sigma 0.01 m,
-# max range 8 m, and no scan is dropped (loop.max_pending_scans = 64). The odometry track
+# max range 8 m (atlasd's laser.max_range_m, applied by its laser reader; atlas-replay's
+# --laser-max-range), and no scan is dropped (loop.max_pending_scans = 64). The odometry track
 # width stays atlasd's default 0.58 m, the fake base's: the CAN wheel counters must be decoded
 # with the width they were encoded with.
 #
@@ -52,7 +53,7 @@ sed -i 's/^max_range_m = 50.0/max_range_m = 8.0/; s/^republish_raw = true/republ
 "$ATLASD" --check-config "$WORK/atlasd.toml" >/dev/null 2>"$WORK/check.err" || fail "config: $(cat "$WORK/check.err")"
 
 # Replay first (it also gives the scan stamps), while nothing else runs.
-"$ATLAS_REPLAY" --config "$WORK/atlasd.toml" --out "$WORK/replay" --quiet "$DATASET" >"$WORK/replay.json" 2>"$WORK/replay.err" ||
+"$ATLAS_REPLAY" --config "$WORK/atlasd.toml" --laser-max-range 8 --out "$WORK/replay" --quiet "$DATASET" >"$WORK/replay.json" 2>"$WORK/replay.err" ||
   fail "atlas-replay failed: $(tail -n 3 "$WORK/replay.err")"
 
 LCM_DEFAULT_URL="${LCM_DEFAULT_URL}&recv_buf_size=16777216" lcm-logger --quiet --channel ATLAS_POSE \

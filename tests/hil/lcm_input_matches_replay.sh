@@ -6,7 +6,8 @@
 # atlasd.odometry_t (the odometry interpolated at 50 Hz, as a base sends it), which lcm-logplayer
 # plays at SPEED times real time into atlasd in a private network namespace; lcm-logger records
 # ATLAS_POSE, ATLAS_HEALTH and the scans as atlasd received them. atlas-replay replays the same
-# file with the same configuration.
+# file with the same configuration and atlasd's laser range (laser.max_range_m, which the LCM
+# input applies to the scans it receives: --laser-max-range 8).
 #
 # atlasd stamps each message with its arrival time; each live pose is given the log stamp
 # (utime) of the scan it was computed from: the next scan in order that the logger received
@@ -71,7 +72,7 @@ cat "$(dirname "$0")/../../config/noise-simulator.toml" >>"$WORK/atlasd.toml"
 scans=$(sed -E 's/^scans=([0-9]+).*/\1/' "$WORK/convert.out")
 echo "played: $(cat "$WORK/convert.out")"
 
-"$ATLAS_REPLAY" --config "$WORK/atlasd.toml" --out "$WORK/replay" --quiet "$WORK/replay.lcm" \
+"$ATLAS_REPLAY" --config "$WORK/atlasd.toml" --laser-max-range 8 --out "$WORK/replay" --quiet "$WORK/replay.lcm" \
   >"$WORK/replay.json" 2>"$WORK/replay.err" || fail "atlas-replay failed: $(tail -n 3 "$WORK/replay.err")"
 
 LCM_DEFAULT_URL="${LCM_DEFAULT_URL}&recv_buf_size=16777216" lcm-logger --quiet \

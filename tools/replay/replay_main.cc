@@ -119,16 +119,16 @@ int Main(int argc, char** argv) {
   cli::AddInteger(app, "--max-scans", "N", 1, std::numeric_limits<int64_t>::max(),
                   &options.max_scans, "step only the first N scans (default: all)");
   cli::AddText(app, "--config", "FILE", &config_path,
-               "atlasd's configuration file: the mapper ([atlas], [noise.*], laser\n"
-               "max_range_m) and the step loop ([loop]) are taken from it, so that\n"
-               "the replay maps as atlasd would (devices, LCM and state are ignored);\n"
+               "atlasd's configuration file: the mapper ([atlas], [noise.*]) and the\n"
+               "step loop ([loop]) are taken from it, so that the replay maps as\n"
+               "atlasd would (devices, LCM and state are ignored: the scans' ranges\n"
+               "are the log's, not laser.max_range_m's);\n"
                "the options below override it. Without it: the defaults shown below\n"
                "and core/localmap's noise models");
   cli::AddNumber(
       app, "--laser-max-range", "M", 0.01, 1e6, [&](double m) { max_range_m = m; },
-      "the laser's range for mapping: returns beyond M metres are no-return\n"
-      "(default " +
-          cli::HelpNumber(StepLoopOptions{}.max_range_m) + ", or the config's laser.max_range_m)");
+      "a range setting for the scanner: returns at or beyond M metres are no\n"
+      "return (default: each scan's own maximum, as the log states it)");
   cli::AddNumber(
       app, "--laser-time-offset", "S", -1, 1, [&](double s) { laser_time_offset_s = s; },
       "a scan was taken at its stamp + S seconds (-1..1; negative: before\n"
@@ -176,7 +176,7 @@ int Main(int argc, char** argv) {
     options.loop = ToStepLoopOptions(config.options);
     channels = config.options.lcm.channels;
   }
-  if (max_range_m) options.loop.max_range_m = *max_range_m;
+  if (max_range_m) options.laser_max_range = *max_range_m;
   if (laser_time_offset_s)
     options.loop.laser_time_offset = FromSeconds(*laser_time_offset_s).time_since_epoch();
   if (map_capacity > 0) options.mapper.local_map.capacity = map_capacity;
