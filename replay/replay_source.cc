@@ -74,6 +74,8 @@ LcmRawChannels RawChannels(const LcmChannels& channels) {
 int ReplayVerdict(const std::string& log_path, const ReplaySource& source,
                   const ReplayResult& result, const char* tool) {
   int rc = 0;
+  if (const std::string note = source.lcm ? "" : carmen::ClampNote(source.carmen); !note.empty())
+    std::fprintf(stderr, "%s: %s: %s\n", tool, log_path.c_str(), note.c_str());
   if (!source.problems.empty()) {
     // A cut or damaged recording (lcm-logger killed, disk full) is replayed up to the problem,
     // and the exit code says that the replay is not of the whole session.

@@ -39,7 +39,8 @@ LcmRawChannels RawChannels(const LcmChannels& channels);
 
 // The exit code of a finished replay of `source` (the files are written): 1, after a message on
 // stderr for each, when the log was not read whole (an LCM log cut, damaged or with undecodable
-// events) or when nothing was stepped; else 0.
+// events) or when nothing was stepped; else 0. A CARMEN log whose largest range looks like a
+// no-return value read as returns (carmen::ClampNote) gets a note on stderr; the code stays.
 int ReplayVerdict(const std::string& log_path, const ReplaySource& source,
                   const ReplayResult& result, const char* tool);
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace atlas::carmen {
@@ -57,6 +58,17 @@ CarmenLogOptions CarmenLogOptions::ForCorrectedLog() {
   return o;
 }
 
+std::string ClampNote(const CarmenLog& log) {
+  if (log.largest_range_returns < kClampBeams) return "";
+  char b[320];
+  std::snprintf(b, sizeof(b),
+                "%lld beams read %.2f m, the log's largest range, and are used as returns; if "
+                "%.2f m is this log's no-return value (a clamp), read it with --log-max-range %g",
+                static_cast<long long>(log.largest_range_returns), log.largest_range,
+                log.largest_range, static_cast<double>(log.largest_range));
+  return b;
+}
+
 std::string CarmenLogOptions::Validate() const {
   if (!(line_period_s > 0.0) || !std::isfinite(line_period_s)) {
     return "line_period_s must be > 0";
@@ -91,8 +103,12 @@ LaserScan CarmenLogBuilder::MakeScan(const LaserRecord& rec, Time stamp) {
     if (r > log_.largest_range) {
       log_.largest_range = r;
       log_.largest_range_count = 0;
+      log_.largest_range_returns = 0;
     }
-    if (r == log_.largest_range) ++log_.largest_range_count;
+    if (r == log_.largest_range) {
+      ++log_.largest_range_count;
+      if (r < scan.max_range) ++log_.largest_range_returns;
+    }
     if (r >= scan.max_range) {
       r = kNoReturn;
       ++log_.no_return_beams;

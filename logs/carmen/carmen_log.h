@@ -89,7 +89,15 @@ struct CarmenLog {
   int64_t no_return_beams = 0;
   float largest_range = 0.0f;  // largest range as written
   int64_t largest_range_count = 0;
+  int64_t largest_range_returns = 0;  // of those, beams kept as returns (below the maximum)
 };
+
+// A log that writes its no-return value below the maximum range it is read with (aces-corrected
+// writes 50 m) reads that value as a return on every such beam. When the log's largest range
+// was kept as a return on at least kClampBeams beams (no real scene gives one range that often),
+// a note in words naming the value and the option that reads it as no return; else "".
+inline constexpr int64_t kClampBeams = 100;
+std::string ClampNote(const CarmenLog& log);
 
 enum class ReadStatus { kOk, kCannotOpen, kReadError, kBadLine, kBadOptions };
 const char* ToString(ReadStatus s);

@@ -169,6 +169,33 @@ TEST(CarmenLogTest, MaxRangeOptionMapsAClampToNoReturn) {
   EXPECT_EQ(scan.max_range, 50.0f);
 }
 
+// A FLASER line of `n` beams reading `value` and one reading 10 m.
+std::string ClampedLine(int n, double value) {
+  std::string line = "FLASER " + std::to_string(n + 1);
+  for (int i = 0; i < n; ++i) line += " " + std::to_string(value);
+  return line + " 10 0 0 0 0 0 0 1 h 0";
+}
+
+TEST(CarmenLogTest, AClampKeptAsReturnsIsNoted) {
+  CarmenLogBuilder b(CarmenLogOptions{}, "mem");
+  ASSERT_TRUE(b.AddLine(1, ClampedLine(static_cast<int>(kClampBeams), 50.0)));
+  const CarmenLog log = b.Finish();
+  EXPECT_EQ(log.largest_range_returns, kClampBeams);
+  const std::string note = ClampNote(log);
+  EXPECT_NE(note.find("100 beams read 50.00 m"), std::string::npos) << note;
+  EXPECT_NE(note.find("--log-max-range 50"), std::string::npos) << note;
+
+  CarmenLogOptions clamp;
+  clamp.max_range_m = 50.0;
+  CarmenLogBuilder read_as_no_return(clamp, "mem");
+  ASSERT_TRUE(read_as_no_return.AddLine(1, ClampedLine(static_cast<int>(kClampBeams), 50.0)));
+  EXPECT_EQ(ClampNote(read_as_no_return.Finish()), "");
+
+  CarmenLogBuilder fewer(CarmenLogOptions{}, "mem");
+  ASSERT_TRUE(fewer.AddLine(1, ClampedLine(static_cast<int>(kClampBeams) - 1, 50.0)));
+  EXPECT_EQ(ClampNote(fewer.Finish()), "");
+}
+
 TEST(CarmenLogTest, CannotOpenIsReported) {
   const CarmenReadResult r = ReadCarmenLog("/nonexistent/dir/x.log.gz", {});
   EXPECT_EQ(r.status, ReadStatus::kCannotOpen);

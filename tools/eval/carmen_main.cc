@@ -68,6 +68,8 @@ void PrintCounts(const std::string& path, const carmen::CarmenLog& log, bool jso
   std::printf("  beams %lld, no-return %lld; largest range %.2f m (%lld beams)\n",
               static_cast<long long>(log.beams), static_cast<long long>(log.no_return_beams),
               log.largest_range, static_cast<long long>(log.largest_range_count));
+  if (const std::string note = carmen::ClampNote(log); !note.empty())
+    std::printf("  note: %s\n", note.c_str());
   for (const std::string& r : log.bad_line_reasons) std::printf("  malformed: %s\n", r.c_str());
 }
 
