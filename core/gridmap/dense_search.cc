@@ -34,6 +34,14 @@ std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max) {
   return out;
 }
 
+std::vector<Vec2> SearchPoints(const std::vector<Vec2>& points, const GridSearchOptions& options) {
+  std::vector<Vec2> near;
+  near.reserve(points.size());
+  for (const Vec2& p : points)
+    if (p.norm() <= options.max_point_range) near.push_back(p);
+  return EvenSubsample(near, options.max_points);
+}
+
 namespace {
 
 // Of the prior's position (x, y), metres.

@@ -61,6 +61,9 @@ class PrecomputedGrids {
 
 // At most `max` of `points`, evenly spread over the sequence.
 std::vector<Vec2> EvenSubsample(const std::vector<Vec2>& points, int max);
+// The points a search looks for: those of `points` (robot frame) within
+// options.max_point_range of the robot, evenly subsampled to options.max_points.
+std::vector<Vec2> SearchPoints(const std::vector<Vec2>& points, const GridSearchOptions& options);
 
 // Points searched for in a grid (the outcomes above), in slices of bounded work so that one
 // search can be spread over several steps: Continue(grid, work) does at most about `work` cell

@@ -31,6 +31,7 @@ std::string GridSearchOptions::Validate() const {
     return "angular window: need 0 < min <= max";
   if (max_points < 1 || max_nodes < 1 || work_per_step < 1)
     return "max_points, max_nodes and work_per_step must be >= 1";
+  if (!(max_point_range > 0.0)) return "max_point_range: must be positive";
   if (!(min_score >= 0.0 && min_score <= 1.0) || !(min_margin >= 0.0))
     return "min_score in [0, 1], min_margin >= 0";
   if (!(max_repetition_window >= 0.0 && max_repetition_window <= 50.0))

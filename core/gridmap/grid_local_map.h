@@ -58,7 +58,11 @@ struct GridSearchOptions {
   double max_linear_window = 2.0;   // metres either side, at most
   double min_angular_window = 0.1;  // radians either side, at least
   double max_angular_window = 0.35;
-  int max_points = 600;        // points searched for (evenly subsampled)
+  int max_points = 600;  // points searched for (evenly subsampled)
+  // Only the points within this many metres of the robot are searched for (SearchPoints): the
+  // search's heading step is a cell at the farthest point, so far points multiply its work, and
+  // their heading error is the largest (docs/design.md, "Dense frames").
+  double max_point_range = 8.0;
   int64_t max_nodes = 400000;  // branch-and-bound work bound
   // A search spread over steps (map-matching, w) does at most about this many cell visits per
   // step (DenseSearch::Continue): precomputed cells, and points scored at each node. The

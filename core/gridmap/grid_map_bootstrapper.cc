@@ -25,9 +25,9 @@ PoseBootstrap ToBootstrap(const DenseResult& r) {
   return out;
 }
 
-// Z's returns in the current (last) robot frame, at most max_points of them.
+// Z's returns in the current (last) robot frame that w searches for (SearchPoints).
 std::vector<Vec2> ZPoints(const GridLocalMap& frame, const std::vector<JuvenileScan>& z,
-                          int max_points) {
+                          const GridSearchOptions& search) {
   std::vector<Vec2> all;
   Pose2 k_in_current;
   for (int k = static_cast<int>(z.size()) - 1; k >= 0; --k) {
@@ -35,7 +35,7 @@ std::vector<Vec2> ZPoints(const GridLocalMap& frame, const std::vector<JuvenileS
     for (const Vec2& q : frame.AlignmentPoints(z[k].observation.scan())) all.push_back(t.Apply(q));
     if (k > 0) k_in_current = Compose(k_in_current, Inverse(z[k].odometry_delta));
   }
-  return EvenSubsample(all, max_points);
+  return SearchPoints(all, search);
 }
 
 class GridBootstrapSearch final : public BootstrapSearch {
@@ -75,7 +75,7 @@ std::unique_ptr<BootstrapSearch> GridMapBootstrapper::Begin(const LocalMap& map,
   const auto* frame = dynamic_cast<const GridLocalMap*>(&frame_map);
   if (z.empty() || frame == nullptr || frame->Grid().known_cells() == 0)
     return std::make_unique<FailedBootstrap>();
-  std::vector<Vec2> points = ZPoints(*frame, z, options_.bootstrap.max_points);
+  std::vector<Vec2> points = ZPoints(*frame, z, options_.bootstrap);
   if (static_cast<int>(points.size()) < options_.grid.alignment.min_points)
     return std::make_unique<FailedBootstrap>();
   return std::make_unique<GridBootstrapSearch>(

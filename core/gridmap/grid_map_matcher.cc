@@ -149,7 +149,7 @@ std::unique_ptr<MapMatchSearch> GridMapMatcher::Begin(const LocalMap& a_map, con
   const auto* b = dynamic_cast<const GridLocalMap*>(&b_map);
   if (a == nullptr || b == nullptr || prior == nullptr || b->Grid().known_cells() == 0)
     return std::make_unique<NoSearch>();
-  std::vector<Vec2> points = EvenSubsample(a->LastScanPoints(), options_.match.max_points);
+  std::vector<Vec2> points = SearchPoints(a->LastScanPoints(), options_.match);
   if (static_cast<int>(points.size()) < options_.grid.alignment.min_points)
     return std::make_unique<NoSearch>();
   return std::make_unique<GridMatchSearch>(options_, grids_.Of(*b), std::move(points),

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/gridmap/dense_search.h"
 #include "core/testing/fake_wall_scanner.h"
 #include "core/testing/grid_scenes.h"
 
@@ -221,6 +222,28 @@ TEST(GridMapMatcher, AcceptsWithAWidePriorWhenNothingRepeats) {
   ASSERT_EQ(m.result, MapMatchResult::kAccepted) << MapMatchReasonName(m.reason);
   EXPECT_NEAR(m.b_in_a.mean.x, 0.0, 0.1);
   EXPECT_NEAR(m.b_in_a.mean.y, 0.0, 0.1);
+}
+
+// Far points are not searched for: they set the heading step (a cell at the farthest point).
+TEST(SearchPoints, KeepsThePointsNearTheRobotEvenlySubsampled) {
+  std::vector<Vec2> points;
+  for (int i = 0; i < 10; ++i) points.push_back(Vec2(i, 0.0));  // 0 .. 9 m
+  points.push_back(Vec2(3.0, 4.0));                             // 5 m: kept
+  points.push_back(Vec2(3.0, 4.1));                             // beyond
+  GridSearchOptions o;
+  o.max_point_range = 5.0;
+  o.max_points = 100;
+  const std::vector<Vec2> near = SearchPoints(points, o);
+  ASSERT_EQ(near.size(), 7u);  // 0 .. 5 m on the axis, and (3, 4)
+  for (const Vec2& p : near) EXPECT_LE(p.norm(), 5.0);
+  EXPECT_EQ(near.back(), Vec2(3.0, 4.0));
+  o.max_points = 3;
+  const std::vector<Vec2> few = SearchPoints(points, o);
+  ASSERT_EQ(few.size(), 3u);
+  EXPECT_EQ(few[0], near[0]);
+  for (const Vec2& p : few) EXPECT_LE(p.norm(), 5.0);
+  o.max_point_range = 0.0;
+  EXPECT_NE(o.Validate(), "");
 }
 
 TEST(GridMapMatcher, FreeSpaceConflictOptionIsValidated) {
