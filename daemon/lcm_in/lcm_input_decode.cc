@@ -94,7 +94,7 @@ Decoded<LaserScan> FromPlanarLidar(const bot_core::planar_lidar_t& m, const Lase
   s.sensor_pose = setup.sensor_pose;
   s.ranges = m.ranges;
   for (float& r : s.ranges)
-    if (!std::isfinite(r) || r <= 0.0f || r > setup.max_range) r = kNoReturn;
+    if (!std::isfinite(r) || r <= 0.0f) r = kNoReturn;
   d.sample = std::move(s);
   return d;
 }
@@ -133,17 +133,19 @@ Decoded<OdometrySample> FromBotPose(const bot_core::pose_t& m, Time arrival) {
 Decoded<LaserScan> DecodeLaserMessage(LaserMessageType type, std::span<const uint8_t> bytes,
                                       const LaserSetup& setup, Time arrival) {
   // Offsets of the first array length: 8 bytes of fingerprint, then the fields before it.
+  Decoded<LaserScan> d;
   if (type == LaserMessageType::kPlanarLidar) {
     bot_core::planar_lidar_t m;
     if (!ArraysFit(bytes, 8 + 8, 2) || !DecodeBytes(bytes, &m))
       return {std::nullopt, NotA("bot_core.planar_lidar_t", "laser_type")};
-    return FromPlanarLidar(m, setup, arrival);
+    d = FromPlanarLidar(m, setup, arrival);
+  } else {
+    atlasd::laser_scan_t m;
+    if (!ArraysFit(bytes, 8 + 8 + 3 * 4, 1) || !DecodeBytes(bytes, &m))
+      return {std::nullopt, NotA("atlasd.laser_scan_t", "laser_type")};
+    d = FromAtlasLaserScan(m, arrival);
   }
-  atlasd::laser_scan_t m;
-  if (!ArraysFit(bytes, 8 + 8 + 3 * 4, 1) || !DecodeBytes(bytes, &m))
-    return {std::nullopt, NotA("atlasd.laser_scan_t", "laser_type")};
-  Decoded<LaserScan> d = FromAtlasLaserScan(m, arrival);
-  if (d.sample) LimitLaserRange(&*d.sample, setup.max_range);
+  if (d.sample) LimitLaserRange(&*d.sample, setup.max_range);  // the scanner's range setting
   return d;
 }
 

@@ -8,12 +8,13 @@
 //   with its utime: the publisher's clock may be another host's or an epoch clock.
 // - atlasd.laser_scan_t / atlasd.odometry_t: as FromLaserMessage / FromOdometryMessage
 //   (daemon/lcm_out/lcm_convert.h), the mount and maximum range from the message; a negative
-//   range is no return. DecodeLaserMessage then applies LaserSetup's max_range as the
-//   scanner's range setting (LimitLaserRange): atlasd's laser.max_range_m holds for every
-//   laser source.
+//   range is no return.
 // - bot_core.planar_lidar_t: beam i at rad0 + i * radstep; the mount and maximum range are the
-//   configuration's (LaserSetup); a range not above 0, beyond the maximum, or not finite is no
-//   return (kNoReturn). Intensities are not used.
+//   configuration's (LaserSetup); a range not above 0 or not finite is no return (kNoReturn).
+//   Intensities are not used.
+// - DecodeLaserMessage applies LaserSetup's max_range to either type as the scanner's range
+//   setting (LimitLaserRange: a range at or beyond it is no return, and the scan's maximum is at
+//   most it), so atlasd's laser.max_range_m holds for every laser source.
 // - bot_core.pose_t: x, y of pos; theta the yaw of the quaternion orientation (w, x, y, z),
 //   which need not be normalised. z, velocities and accelerations are not used.
 // A message that does not decode as the configured type (another type on the channel), or

@@ -30,6 +30,19 @@ struct Box {
   bool empty() const { return !(min.x() <= max.x()); }
 };
 
+// The points of points.tsv whose frame the layout placed, in the layout's coordinates.
+std::vector<Vec2> PlacedPoints(const std::vector<formats::FramePointRow>& rows,
+                               const std::vector<std::optional<UncertainPose>>& frame_pose) {
+  std::vector<Vec2> out;
+  out.reserve(rows.size());
+  for (const formats::FramePointRow& r : rows) {
+    if (r.frame < 0 || r.frame >= static_cast<int>(frame_pose.size())) continue;
+    const std::optional<UncertainPose>& pose = frame_pose[static_cast<size_t>(r.frame)];
+    if (pose) out.push_back(pose->mean.TransformPoint(r.p));
+  }
+  return out;
+}
+
 std::string Fmt(const char* fmt, auto... args) {
   char buf[512];
   std::snprintf(buf, sizeof buf, fmt, args...);
@@ -79,10 +92,7 @@ std::string LayoutAtlas(const formats::ReplayOutput& run, const AtlasGraph& grap
       box.Extend(p->mean.TransformPoint(l->endpoint_b));
     }
   }
-  for (const formats::FramePointRow& r : run.points) {
-    if (r.frame < 0 || r.frame >= n || !layout->frame_pose[static_cast<size_t>(r.frame)]) continue;
-    box.Extend(layout->frame_pose[static_cast<size_t>(r.frame)]->mean.TransformPoint(r.p));
-  }
+  for (const Vec2& p : PlacedPoints(run.points, layout->frame_pose)) box.Extend(p);
   if (options.trajectory && options.source == 0) {
     for (const eval::TimedPose& s : options.refined ? run.refined : run.global)
       box.Extend(Vec2(s.pose.x, s.pose.y));
@@ -147,12 +157,7 @@ void DrawAtlasProjection(Canvas& canvas, const formats::ReplayOutput& run, const
   // The points of every placed frame (points.tsv): the laser points it keeps for map-matching,
   // under its lines; without lines (grid frames: their occupied cells) they are the map.
   const bool points_are_map = run.lines.empty();
-  std::vector<Vec2> points;
-  points.reserve(run.points.size());
-  for (const formats::FramePointRow& r : run.points) {
-    if (r.frame < 0 || r.frame >= n || !pose_of(r.frame)) continue;
-    points.push_back(pose_of(r.frame)->mean.TransformPoint(r.p));
-  }
+  const std::vector<Vec2> points = PlacedPoints(run.points, layout.frame_pose);
   canvas.Points(points, points_are_map ? kLineColor.WithAlpha(0.6) : kPointColor,
                 std::clamp(0.05 * px_per_m, 0.6, 1.5));
   // Lines of every placed frame.

@@ -94,7 +94,7 @@ int Main(int argc, char** argv) {
   bool quiet = false, corrected = false, sweep = false, refine = false;
   OffsetRange sweep_range;
   // What the command line sets over the --config file's values.
-  std::optional<double> max_range_m, laser_time_offset_s;
+  std::optional<double> laser_time_offset_s;
   int map_capacity = 0, max_hypotheses = 0;  // 0: not given
 
   cli::CommandLine command_line(
@@ -126,7 +126,7 @@ int Main(int argc, char** argv) {
                "the options below override it. Without it: the defaults shown below\n"
                "and core/localmap's noise models");
   cli::AddNumber(
-      app, "--laser-max-range", "M", 0.01, 1e6, [&](double m) { max_range_m = m; },
+      app, "--laser-max-range", "M", 0.01, 1e6, [&](double m) { options.laser_max_range = m; },
       "a range setting for the scanner: returns at or beyond M metres are no\n"
       "return (default: each scan's own maximum, as the log states it)");
   cli::AddNumber(
@@ -176,7 +176,6 @@ int Main(int argc, char** argv) {
     options.loop = ToStepLoopOptions(config.options);
     channels = config.options.lcm.channels;
   }
-  if (max_range_m) options.laser_max_range = *max_range_m;
   if (laser_time_offset_s)
     options.loop.laser_time_offset = FromSeconds(*laser_time_offset_s).time_since_epoch();
   if (map_capacity > 0) options.mapper.local_map.capacity = map_capacity;
