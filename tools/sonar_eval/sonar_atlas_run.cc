@@ -45,7 +45,11 @@ AtlasOptions SonarEvalAtlasOptions(const std::vector<SonarTransducer>& ring, boo
   return o;
 }
 
-AtlasOptions LaserEvalAtlasOptions() { return AtlasOptionsOf(MapperSettings{}); }
+AtlasOptions LaserEvalAtlasOptions() {
+  MapperSettings lines;
+  lines.grid_frames = false;
+  return AtlasOptionsOf(lines);
+}
 
 int EvalMapCapacity() { return LocalMapOptionsOf(MapperSettings{}).capacity; }
 

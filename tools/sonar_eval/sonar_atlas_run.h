@@ -39,7 +39,8 @@ MapperSettings SonarEvalMapperSettings(const std::vector<SonarTransducer>& ring,
 // settings (AtlasOptionsOf); `probation` > 0 replaces lifecycle.probation_scans.
 AtlasOptions SonarEvalAtlasOptions(const std::vector<SonarTransducer>& ring, bool sonar_bootstrap,
                                    int probation = 0);
-// The options of its laser atlas: atlasd's for the laser alone, AtlasOptionsOf(MapperSettings{}).
+// The options of its laser atlas: atlasd's for line maps of the laser alone (the paper's
+// Section IV compares line maps), AtlasOptionsOf(MapperSettings) with grid_frames off.
 AtlasOptions LaserEvalAtlasOptions();
 // The map capacity of both atlases' maps unless --capacity gives one: atlasd's.
 int EvalMapCapacity();
