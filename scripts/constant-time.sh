@@ -12,7 +12,8 @@
 # Environment: ATLAS_BIN (directory of atlas-sim, atlas-replay, atlas-render; default
 # <repo>/build/release/bin, built if missing), ROOMS (default 2400), KM (default 25), SEED (1),
 # PNG_PREFIX (default OUT/constant-time: writes PREFIX-time.png and PREFIX-frames.png),
-# KEEP_SIM=1 to reuse OUT/sim if it is there; REPLAY_ARGS (extra atlas-replay arguments, e.g.
+# KEEP_SIM=1 to reuse OUT/sim if it is there; LOG (a log to replay instead of a simulated run:
+# scripts/tour.sh gives its tour of the real logs; TITLE then names it in the pictures); REPLAY_ARGS (extra atlas-replay arguments, e.g.
 # "--config FILE"); REPEAT (default 2): replays of the same run. The
 # atlas is deterministic, so a step's own cost is the same in every replay, while the machine
 # (a shared virtual machine: preemption and steal are counted in a thread's CPU time) adds
@@ -30,7 +31,11 @@ source "$ROOT/scripts/release-bin.sh"
 BIN=$(release_bin atlas-sim atlas-replay atlas-render)
 PNG_PREFIX=${PNG_PREFIX:-$OUT/constant-time}
 mkdir -p "$OUT"
-if [[ ${KEEP_SIM:-0} == 1 && -r $OUT/sim/run.clf ]]; then
+RUN=$OUT/sim
+TITLE=${TITLE:-simulated ${KM} km, >= $ROOMS rooms}
+if [[ -n ${LOG:-} ]]; then
+  RUN=$LOG
+elif [[ ${KEEP_SIM:-0} == 1 && -r $OUT/sim/run.clf ]]; then
   echo "== reusing $OUT/sim" >&2
 else
   echo "== simulating $KM km through a building of >= $ROOMS rooms (seed $SEED)" >&2
@@ -40,17 +45,17 @@ fi
 echo "== replaying" >&2
 read -r -a replay_args <<<"${REPLAY_ARGS:-}"
 /usr/bin/time -v -o "$OUT/time-v.txt" "$BIN/atlas-replay" "${replay_args[@]}" \
-  --out "$OUT/replay" "$OUT/sim" \
+  --out "$OUT/replay" "$RUN" \
   | tee "$OUT/replay.txt"
 REPEAT=${REPEAT:-2}
 for ((r = 2; r <= REPEAT; ++r)); do
   echo "== replaying again ($r of $REPEAT), for the per-step minimum" >&2
-  "$BIN/atlas-replay" "${replay_args[@]}" --quiet --out "$OUT/replay-$r" "$OUT/sim" >/dev/null
+  "$BIN/atlas-replay" "${replay_args[@]}" --quiet --out "$OUT/replay-$r" "$RUN" >/dev/null
 done
 
-python3 - "$OUT" <<'PY'
+python3 - "$OUT" "$RUN" <<'PY'
 import json, math, os, sys
-out = sys.argv[1]
+out, run = sys.argv[1], sys.argv[2]
 s = json.load(open(os.path.join(out, "replay", "summary.json")))
 rows = [l.split() for l in open(os.path.join(out, "replay", "timing.tsv")) if not l.startswith("#")]
 wall = [int(r[5]) for r in rows]
@@ -66,19 +71,26 @@ frames = int(rows[-1][2]) if rows else 0
 time_v = open(os.path.join(out, "time-v.txt")).read()
 max_rss_time = next((int(l.split(":")[1]) for l in time_v.splitlines()
                      if "Maximum resident set size" in l), 0)
-length, prev = 0.0, None
-for l in open(os.path.join(out, "sim", "truth.tsv")):
-    if l.startswith("#"):
-        continue
-    f = l.split()
-    x, y = float(f[1]), float(f[2])
-    if prev is not None:
-        length += math.hypot(x - prev[0], y - prev[1])
-    prev = (x, y)
-print("constant time on the simulator (%s)" % out)
-print("  run length              %.2f km (truth), %.0f s of data" % (length / 1000, s["data_seconds"]))
-print("  steps                   %d; frames %d (target >= 500: %s)" % (
-    n, frames, "met" if frames >= 500 else "MISSED"))
+truth = os.path.join(run, "truth.tsv")
+if os.path.isdir(run) and os.path.exists(truth):
+    length, prev = 0.0, None
+    for l in open(truth):
+        if l.startswith("#"):
+            continue
+        f = l.split()
+        x, y = float(f[1]), float(f[2])
+        if prev is not None:
+            length += math.hypot(x - prev[0], y - prev[1])
+        prev = (x, y)
+    print("constant time on the simulator (%s)" % out)
+    print("  run length              %.2f km (truth), %.0f s of data" % (
+        length / 1000, s["data_seconds"]))
+    print("  steps                   %d; frames %d (target >= 500: %s)" % (
+        n, frames, "met" if frames >= 500 else "MISSED"))
+else:
+    print("constant time on %s (%s)" % (run, out))
+    print("  run                     %.0f s of data" % s["data_seconds"])
+    print("  steps                   %d; frames %d" % (n, frames))
 for label, v in (("wall", wall), ("CPU", cpu)):
     if not v:
         continue
@@ -126,6 +138,6 @@ if "atlas_image_bytes" in s:
 PY
 
 "$BIN/atlas-render" --atlas "$OUT/replay" --timeline --cpu --png "$PNG_PREFIX-time.png" \
-  --title "simulated ${KM} km, >= $ROOMS rooms: step time and dominant map-frame over time"
+  --title "$TITLE: step time and dominant map-frame over time"
 "$BIN/atlas-render" --atlas "$OUT/replay" --timeline-frames --cpu --png "$PNG_PREFIX-frames.png" \
-  --title "simulated ${KM} km, >= $ROOMS rooms: step time against the number of map-frames"
+  --title "$TITLE: step time against the number of map-frames"

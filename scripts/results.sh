@@ -3,13 +3,15 @@
 # block of the page (between `<!-- results:PART -->` and `<!-- /results:PART -->`); the blocks of
 # parts not run keep their figures. The page's text outside the blocks is not touched.
 #
-# Usage: scripts/results.sh [--corrected] [--seeds] [--constant-time] [--sonar] [--all] [--out DIR]
+# Usage: scripts/results.sh [--corrected] [--seeds] [--constant-time] [--tour] [--sonar] [--all]
+#                           [--out DIR]
 #   always:          mit-csail (accuracy against the relations, Dijkstra-composed and refined;
 #                    the laser time offset sweep) and speed (five replays); about a minute
 #   --corrected      the six corrected logs, seed 1 (scripts/eval-corrected.sh; minutes)
 #   --seeds          the six corrected logs over seeds 1-10 (scripts/eval-corrected-seeds.sh;
 #                    tens of minutes on two cores)
 #   --constant-time  the 25 km simulated run (scripts/constant-time.sh; several minutes)
+#   --tour           the six corrected logs and mit-csail as one run (scripts/tour.sh; a minute)
 #   --sonar          sonar-only maps and atlases on the simulator (scripts/eval-sonar.sh; about
 #                    25 minutes on two cores)
 #   --all            every part
@@ -22,14 +24,15 @@ source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
 script_usage "${BASH_SOURCE[0]}" any "$@"
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=/tmp/atlas-results
-CORRECTED=0 SEEDS=0 CONSTANT=0 SONAR=0
+CORRECTED=0 SEEDS=0 CONSTANT=0 TOUR=0 SONAR=0
 while [[ $# -gt 0 ]]; do
   case $1 in
     --corrected) CORRECTED=1 ;;
     --seeds) SEEDS=1 ;;
     --constant-time) CONSTANT=1 ;;
+    --tour) TOUR=1 ;;
     --sonar) SONAR=1 ;;
-    --all) CORRECTED=1 SEEDS=1 CONSTANT=1 SONAR=1 ;;
+    --all) CORRECTED=1 SEEDS=1 CONSTANT=1 TOUR=1 SONAR=1 ;;
     --out)
       [[ $# -ge 2 ]] || { echo "results.sh: --out needs a directory" >&2; exit 2; }
       OUT=$2
@@ -163,6 +166,20 @@ if [[ $CONSTANT == 1 ]]; then
   # The page's two pictures of the run, beside it.
   cp "$OUT/constant-time/constant-time-time.png" "$(dirname "$PAGE")/atlas-constant-time.png"
   cp "$OUT/constant-time/constant-time-frames.png" "$(dirname "$PAGE")/atlas-constant-time-frames.png"
+fi
+
+if [[ $TOUR == 1 ]]; then
+  echo "== constant time: a tour of the real logs" >&2
+  {
+    echo '```sh'
+    echo 'scripts/tour.sh OUT'
+    echo '```'
+    echo
+    echo '```'
+    scripts/tour.sh "$OUT/tour" | grep -v '^atlas-render: wrote'
+    echo '```'
+  } >"$FRAGMENTS/tour.md"
+  cp "$OUT/tour/constant-time-time.png" "$(dirname "$PAGE")/atlas-tour-time.png"
 fi
 
 if [[ $SONAR == 1 ]]; then

@@ -48,32 +48,34 @@ void Pose(std::string* out, const Pose2& p) {
   Fixed(out, p.theta, 5);
 }
 
-void Stamps(std::string* out, Time stamp) {
+void Stamps(std::string* out, Time stamp, const char* hostname = kSimHostname) {
   const double t = ToSeconds(stamp);
   Fixed(out, t, 6);
-  out->append(kSimHostname);
+  out->append(hostname);
   out->push_back(' ');
   Fixed(out, t, 6, '\n');
 }
 
 }  // namespace
 
-void AppendOdomLine(std::string* out, const OdometrySample& odometry, double tv, double rv) {
+void AppendOdomLine(std::string* out, const OdometrySample& odometry, double tv, double rv,
+                    const char* hostname) {
   out->append("ODOM ");
   Pose(out, odometry.pose);
   Fixed(out, tv, 4);
   Fixed(out, rv, 4);
   Fixed(out, 0.0, 1);
-  Stamps(out, odometry.stamp);
+  Stamps(out, odometry.stamp, hostname);
 }
 
-void AppendFlaserLine(std::string* out, const LaserScan& scan, const Pose2& odometry) {
+void AppendFlaserLine(std::string* out, const LaserScan& scan, const Pose2& odometry,
+                      const char* hostname) {
   out->append("FLASER ");
   Int(out, static_cast<long>(scan.ranges.size()));
   for (float r : scan.ranges) Fixed(out, IsReturn(r) ? r : kCarmenNoReturn, 3);
   Pose(out, Compose(odometry, scan.sensor_pose));
   Pose(out, odometry);
-  Stamps(out, scan.stamp);
+  Stamps(out, scan.stamp, hostname);
 }
 
 void AppendSonarLine(std::string* out, const SonarReading& reading, const Pose2& odometry) {

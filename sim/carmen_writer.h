@@ -20,8 +20,11 @@ namespace atlas::sim {
 inline constexpr double kCarmenNoReturn = 81.91;
 inline constexpr const char* kSimHostname = "atlas-sim";
 
-void AppendOdomLine(std::string* out, const OdometrySample& odometry, double tv, double rv);
-void AppendFlaserLine(std::string* out, const LaserScan& scan, const Pose2& odometry);
+// `hostname`: the lines' hostname field (a word without spaces).
+void AppendOdomLine(std::string* out, const OdometrySample& odometry, double tv, double rv,
+                    const char* hostname = kSimHostname);
+void AppendFlaserLine(std::string* out, const LaserScan& scan, const Pose2& odometry,
+                      const char* hostname = kSimHostname);
 void AppendSonarLine(std::string* out, const SonarReading& reading, const Pose2& odometry);
 // "timestamp x y theta" (tab separated), the ground-truth TSV row.
 void AppendTruthRow(std::string* out, const TruthSample& truth);

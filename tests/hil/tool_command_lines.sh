@@ -62,6 +62,10 @@ grep -q "^atlas-carmen: no LOG given" "$WORK/eq.err" || fail "$(cat "$WORK/eq.er
 check atlas-carmen --left-scale-error 0.6
 grep -q "^atlas-carmen: --left-scale-error must be a number in \[-0.5, 0.5\], got '0.6'" \
   "$WORK/eq.err" || fail "$(cat "$WORK/eq.err")"
+expect_exit 2 "^atlas-carmen: --append needs --dump-carmen and --out FILE" \
+  "${path[atlas-carmen]}" --append --dump-carmen x.log
+expect_exit 2 "^atlas-carmen: .*are different modes" "${path[atlas-carmen]}" --dump-carmen \
+  --dump-odometry x.log
 check atlas-sim --rooms 3
 grep -q "^atlas-sim: --out DIR is required" "$WORK/eq.err" || fail "$(cat "$WORK/eq.err")"
 check atlas-sim --odometry-noise awful

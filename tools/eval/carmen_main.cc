@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 #include "tools/cli/carmen_log_options.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/odometry_noise_options.h"
+#include "tools/eval/carmen_tour.h"
 #include "tools/eval/trajectory_files.h"
 
 namespace atlas::eval {
@@ -28,9 +30,77 @@ ODOM; other messages are counted and ignored). Modes (default --count): one mode
 different modes are a usage error; --dump-reference implies --corrected.)";
 
 constexpr const char* kFooter =
-    R"(Exit status: 0 done, 1 a log could not be read, is truncated or corrupt, or has no CARMEN
+    R"(A tour (several logs as one run, scripts/tour.sh): --dump-carmen --append --out FILE, once per
+log with that log's reading options; each log goes on 1 s after the last line of FILE, its
+odometry moved to start where FILE's ended.
+
+Exit status: 0 done, 1 a log could not be read, is truncated or corrupt, or has no CARMEN
 line (message on stderr), 2 bad command line.
 )";
+
+constexpr const char* kHostname = "atlas-carmen";
+
+// `text` into `path` (stdout when empty), after what it holds when `append`; false after a
+// message on stderr.
+bool WriteOutput(const std::string& path, const std::string& text, bool append = false) {
+  std::FILE* f = path.empty() ? stdout : std::fopen(path.c_str(), append ? "a" : "w");
+  if (f == nullptr) {
+    std::perror(("atlas-carmen: " + path).c_str());
+    return false;
+  }
+  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (!path.empty()) ok = std::fclose(f) == 0 && ok;
+  if (!ok)
+    std::fprintf(stderr, "atlas-carmen: cannot write %s\n", path.empty() ? "stdout" : path.c_str());
+  return ok;
+}
+
+// The last odometry sample of the CARMEN log at `path` (plain, as --dump-carmen writes it).
+std::optional<OdometrySample> LastOdometry(const std::string& path, std::string* error) {
+  carmen::CarmenReadResult r = carmen::ReadCarmenLog(path, carmen::CarmenLogOptions{});
+  if (!r.ok()) {
+    *error = r.error;
+    return std::nullopt;
+  }
+  for (auto e = r.log.events.rbegin(); e != r.log.events.rend(); ++e) {
+    if (const auto* o = std::get_if<OdometrySample>(&e->event)) return *o;
+  }
+  *error = path + ": no odometry to go on from (use --append only with a file --dump-carmen wrote)";
+  return std::nullopt;
+}
+
+// --dump-carmen: `events` as CARMEN lines into `output` (stdout when empty), after what
+// `output` holds when `append`.
+int DumpCarmen(std::vector<carmen::CarmenEvent> events, const std::string& path,
+               const std::string& output, bool append) {
+  std::string continued;
+  std::error_code no_file;
+  const uintmax_t size = std::filesystem::file_size(output, no_file);
+  if (append && !no_file && size > 0) {
+    std::string error;
+    const std::optional<OdometrySample> end = LastOdometry(output, &error);
+    if (!end) {
+      std::fprintf(stderr, "atlas-carmen: %s\n", error.c_str());
+      return 1;
+    }
+    events = ContinueRun(std::move(events), *end, std::chrono::seconds(1));
+    continued =
+        " (going on from " + output + " at " + std::to_string(ToSeconds(end->stamp)) + " s)";
+  }
+  const CarmenLinesResult lines = CarmenLines(events, kHostname);
+  if (!WriteOutput(output, lines.text, append)) return 1;
+  std::fprintf(stderr, "atlas-carmen: %s: %lld ODOM and %lld FLASER lines%s\n", path.c_str(),
+               static_cast<long long>(lines.odometry_lines),
+               static_cast<long long>(lines.laser_lines), continued.c_str());
+  if (lines.scans_without_odometry > 0 || lines.scans_not_flaser > 0) {
+    std::fprintf(stderr,
+                 "atlas-carmen: %s: left out %lld scans without odometry around them and %lld "
+                 "whose angles a FLASER line cannot state\n",
+                 path.c_str(), static_cast<long long>(lines.scans_without_odometry),
+                 static_cast<long long>(lines.scans_not_flaser));
+  }
+  return 0;
+}
 
 void PrintCounts(const std::string& path, const carmen::CarmenLog& log, bool json) {
   if (json) {
@@ -73,19 +143,8 @@ void PrintCounts(const std::string& path, const carmen::CarmenLog& log, bool jso
   for (const std::string& r : log.bad_line_reasons) std::printf("  malformed: %s\n", r.c_str());
 }
 
-bool WriteOutput(const std::string& path, const std::string& text) {
-  std::FILE* f = path.empty() ? stdout : std::fopen(path.c_str(), "w");
-  if (f == nullptr) {
-    std::perror(("atlas-carmen: " + path).c_str());
-    return false;
-  }
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (!path.empty() && std::fclose(f) != 0) return false;
-  return ok;
-}
-
 int Main(int argc, char** argv) {
-  enum class Mode { kCount, kDumpOdometry, kDumpReference } mode = Mode::kCount;
+  enum class Mode { kCount, kDumpOdometry, kDumpReference, kDumpCarmen } mode = Mode::kCount;
   carmen::CarmenLogOptions options;
   WheelOdometryNoiseOptions noise;
   uint64_t seed = 1;
@@ -97,7 +156,8 @@ int Main(int argc, char** argv) {
   CLI::App& app = command_line.app();
   cli::AddPositional(app, "LOG", &logs, "CARMEN logs");
   const std::string modes = "Modes";
-  bool count = false, dump_odometry = false, dump_reference = false;
+  bool count = false, dump_odometry = false, dump_reference = false, dump_carmen = false;
+  bool append = false;
   cli::AddFlag(app, "--count", &count,
                "print the lines per message type and the events per type of each LOG")
       .Group(modes);
@@ -108,18 +168,31 @@ int Main(int argc, char** argv) {
   cli::AddFlag(app, "--dump-reference", &dump_reference,
                "write the reference trajectory (pose at each scan) of one corrected LOG")
       .Group(modes);
+  cli::AddFlag(app, "--dump-carmen", &dump_carmen,
+               "write one LOG as read (with --corrected: its synthesised odometry) as\n"
+               "CARMEN ODOM and FLASER lines, to stdout or --out FILE")
+      .Group(modes);
+  cli::AddFlag(app, "--append", &append,
+               "--dump-carmen: append to --out FILE, going on from its last odometry (a tour)")
+      .Group(modes);
   const std::string reading = "Reading the log";
   cli::AddCarmenLogOptions(app, reading, &options, &corrected);
-  const std::string synthesis = "Synthesised odometry (with --corrected and --dump-odometry)";
+  const std::string synthesis =
+      "Synthesised odometry (with --corrected, for --dump-odometry and --dump-carmen)";
   cli::AddSeed(app, "--seed", &seed, "random seed (default 1)").Group(synthesis);
   cli::AddOdometryNoiseOptions(app, synthesis, &noise);
   cli::AddText(app, "-o,--out", "FILE", &output, "output file for the dump modes (default stdout)");
   cli::AddFlag(app, "--json", &json, "--count as JSON lines, one object per LOG");
   if (std::optional<int> done = command_line.Parse(argc, argv)) return *done;
   auto Usage = [&](const std::string& what) { return command_line.Usage(what); };
-  if (count + dump_odometry + dump_reference > 1)
-    return Usage("--count, --dump-odometry and --dump-reference are different modes: give one");
+  if (count + dump_odometry + dump_reference + dump_carmen > 1)
+    return Usage(
+        "--count, --dump-odometry, --dump-reference and --dump-carmen are different modes: give "
+        "one");
   if (dump_odometry) mode = Mode::kDumpOdometry;
+  if (dump_carmen) mode = Mode::kDumpCarmen;
+  if (append && (mode != Mode::kDumpCarmen || output.empty()))
+    return Usage("--append needs --dump-carmen and --out FILE");
   if (dump_reference) {
     mode = Mode::kDumpReference;
     corrected = true;
@@ -155,6 +228,10 @@ int Main(int argc, char** argv) {
     }
     if (mode == Mode::kCount) {
       PrintCounts(path, r.log, json);
+    } else if (mode == Mode::kDumpCarmen) {
+      return DumpCarmen(
+          corrected ? carmen::EventsWithSynthesizedOdometry(r.log, noise, seed) : r.log.events,
+          path, output, append);
     } else if (mode == Mode::kDumpReference) {
       const TimedTrajectory t = ReferenceAtScans(r.log);
       if (t.empty()) {
