@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace atlas {
 namespace {
@@ -33,7 +34,8 @@ std::string ScanMatchOptions::Validate() const {
   if (!Positive(information_scale) || information_scale > 1.0)
     return "scan_match: information_scale must be in (0, 1]";
   if (!Positive(huber_k)) return "scan_match: huber_k must be > 0";
-  if (normal_beams < 1 || normal_beams > 32) return "scan_match: normal_beams must be 1 to 32";
+  if (normal_beams < 1 || normal_beams > kMaxNormalBeams)
+    return "scan_match: normal_beams must be 1 to " + std::to_string(kMaxNormalBeams);
   if (!Positive(normal_radius)) return "scan_match: normal_radius must be > 0";
   if (!Positive(max_normal_rms)) return "scan_match: max_normal_rms must be > 0";
   if (!(min_normal_extent >= 0.0) || min_normal_extent >= normal_radius)
@@ -78,15 +80,28 @@ const char* ToString(ScanMatchOutcome o) {
   return "?";
 }
 
-void ScanPointsInRobotFrame(const LaserScan& scan, double min_range, double max_range,
-                            std::vector<Vec2>* points) {
+const std::vector<Vec2>& BeamDirections::Of(const LaserScan& scan) {
+  if (scan.ranges.size() != directions_.size() || scan.angle_min != angle_min_ ||
+      scan.angle_increment != angle_increment_) {
+    angle_min_ = scan.angle_min;
+    angle_increment_ = scan.angle_increment;
+    directions_.resize(scan.ranges.size());
+    for (size_t i = 0; i < directions_.size(); ++i) {
+      const double phi = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+      directions_[i] = Vec2(std::cos(phi), std::sin(phi));
+    }
+  }
+  return directions_;
+}
+
+void ScanPointsInRobotFrame(const LaserScan& scan, const std::vector<Vec2>& directions,
+                            double min_range, double max_range, std::vector<Vec2>* points) {
   points->clear();
   const RigidTransform sensor(scan.sensor_pose);
   for (size_t i = 0; i < scan.ranges.size(); ++i) {
     const double r = scan.ranges[i];
     if (!(r >= min_range && r <= max_range)) continue;
-    const double phi = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
-    points->push_back(sensor.Apply(Vec2(r * std::cos(phi), r * std::sin(phi))));
+    points->push_back(sensor.Apply(Vec2(r * directions[i].x(), r * directions[i].y())));
   }
 }
 
@@ -100,11 +115,11 @@ void ScanMatcher::SetReference(const LaserScan& scan) {
   ref_angle_min_ = scan.angle_min;
   ref_increment_ = scan.angle_increment;
   has_reference_ = n > 0 && ref_increment_ != 0.0 && std::isfinite(ref_increment_);
+  const std::vector<Vec2>& directions = directions_.Of(scan);
   for (size_t i = 0; i < n; ++i) {
     const double r = scan.ranges[i];
     if (!(r >= options_.min_range && r <= options_.max_range)) continue;
-    const double phi = ref_angle_min_ + static_cast<double>(i) * ref_increment_;
-    ref_[i].p = sensor.Apply(Vec2(r * std::cos(phi), r * std::sin(phi)));
+    ref_[i].p = sensor.Apply(Vec2(r * directions[i].x(), r * directions[i].y()));
     ref_[i].valid = true;
   }
   const int k = options_.normal_beams;
@@ -113,19 +128,19 @@ void ScanMatcher::SetReference(const LaserScan& scan) {
     if (!ref_[i].valid) continue;
     Vec2 mean = Vec2::Zero();
     int count = 0;
+    size_t near[2 * kMaxNormalBeams + 1];
     const size_t lo = i >= static_cast<size_t>(k) ? i - k : 0;
     const size_t hi = std::min(n - 1, i + k);
     for (size_t j = lo; j <= hi; ++j) {
       if (!ref_[j].valid || (ref_[j].p - ref_[i].p).squaredNorm() > r2) continue;
       mean += ref_[j].p;
-      ++count;
+      near[count++] = j;
     }
     if (count < 3) continue;
     mean /= count;
     Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-    for (size_t j = lo; j <= hi; ++j) {
-      if (!ref_[j].valid || (ref_[j].p - ref_[i].p).squaredNorm() > r2) continue;
-      const Vec2 d = ref_[j].p - mean;
+    for (int m = 0; m < count; ++m) {
+      const Vec2 d = ref_[near[m]].p - mean;
       cov += d * d.transpose();
     }
     cov /= count;
@@ -143,6 +158,10 @@ void ScanMatcher::SetReference(const LaserScan& scan) {
     ref_[i].n = n.normalized();
     ref_[i].has_normal = true;
   }
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  with_normal_.assign(n, Vec2(kInfinity, kInfinity));
+  for (size_t i = 0; i < n; ++i)
+    if (ref_[i].has_normal) with_normal_[i] = ref_[i].p;
 }
 
 const ScanMatcher::RefPoint* ScanMatcher::Nearest(const Vec2& w, double max_distance) const {
@@ -153,18 +172,16 @@ const ScanMatcher::RefPoint* ScanMatcher::Nearest(const Vec2& w, double max_dist
   const long centre = std::lround(beam);
   const long lo = std::max(0L, centre - options_.search_beams);
   const long hi = std::min(n - 1, centre + options_.search_beams);
-  const RefPoint* best = nullptr;
+  long best = -1;
   double best_d2 = max_distance * max_distance;
   for (long j = lo; j <= hi; ++j) {
-    const RefPoint& r = ref_[j];
-    if (!r.has_normal) continue;
-    const double d2 = (w - r.p).squaredNorm();
+    const double d2 = (w - with_normal_[j]).squaredNorm();
     if (d2 < best_d2) {
       best_d2 = d2;
-      best = &r;
+      best = j;
     }
   }
-  return best;
+  return best >= 0 ? &ref_[best] : nullptr;
 }
 
 int ScanMatcher::CountPairs(const Pose2& x, const std::vector<Vec2>& points,
@@ -199,7 +216,8 @@ Pose2 ScanMatcher::SearchHeading(const Pose2& u, double half_width) const {
 ScanMatchResult ScanMatcher::Match(const LaserScan& scan, const UncertainPose& prior) {
   ScanMatchResult out;
   out.increment = prior;
-  ScanPointsInRobotFrame(scan, options_.min_range, options_.max_range, &points_);
+  ScanPointsInRobotFrame(scan, directions_.Of(scan), options_.min_range, options_.max_range,
+                         &points_);
   if (options_.min_point_spacing > 0.0 && !points_.empty()) {
     const double d2 = options_.min_point_spacing * options_.min_point_spacing;
     size_t kept = 1;

@@ -45,6 +45,9 @@
 
 namespace atlas {
 
+// The most beams either side a reference point's normal is fitted over.
+inline constexpr int kMaxNormalBeams = 32;
+
 struct ScanMatchOptions {
   bool enabled = true;        // the StepLoop matches consecutive laser scans (scan_match.enabled)
   double min_range = 0.1;     // metres; shorter returns are not used
@@ -108,6 +111,20 @@ struct ScanMatchResult {
   bool recovered = false;  // matched by the recovery pass (weak prior)
 };
 
+// cos and sin of each beam's bearing (angle_min + i * angle_increment, in double) of a scan
+// layout, kept until a scan of another layout: a scanner's scans share one layout, and the
+// matcher turns every scan into points twice (as the current scan, then as the reference).
+class BeamDirections {
+ public:
+  // The directions of `scan`'s beams (one per range); valid until the next call.
+  const std::vector<Vec2>& Of(const LaserScan& scan);
+
+ private:
+  float angle_min_ = 0.0f;
+  float angle_increment_ = 0.0f;
+  std::vector<Vec2> directions_;
+};
+
 // A reference scan prepared for matching (its points and normals); reused for many queries.
 class ScanMatcher {
  public:
@@ -142,16 +159,19 @@ class ScanMatcher {
   ScanMatchOptions options_;
   bool has_reference_ = false;
   std::vector<RefPoint> ref_;  // one per beam of the reference
+  // ref_[i].p where ref_[i].has_normal, else infinite (never nearest): what Nearest scans.
+  std::vector<Vec2> with_normal_;
   // The reference robot frame -> the reference sensor frame.
   RigidTransform ref_sensor_inverse_{Pose2{}};
   double ref_angle_min_ = 0.0;
   double ref_increment_ = 0.0;
   std::vector<Vec2> points_;  // scratch: current scan's points
+  BeamDirections directions_;
 };
 
 // The usable returns of a scan as points in the robot frame, in beam order (no-return and out
-// of [min_range, max_range] beams skipped).
-void ScanPointsInRobotFrame(const LaserScan& scan, double min_range, double max_range,
-                            std::vector<Vec2>* points);
+// of [min_range, max_range] beams skipped); `directions` = BeamDirections::Of(scan).
+void ScanPointsInRobotFrame(const LaserScan& scan, const std::vector<Vec2>& directions,
+                            double min_range, double max_range, std::vector<Vec2>* points);
 
 }  // namespace atlas

@@ -176,6 +176,34 @@ TEST(ScanMatcher, ReturnsThePriorWhenTheScansHaveNothingToMatch) {
   EXPECT_EQ(s.increment.cov, prior.cov);
 }
 
+// The directions are those of each beam's bearing, computed as the points were before they were
+// kept (the matcher's results do not change), and follow a change of layout.
+TEST(BeamDirections, AreEachBeamsBearingAndFollowTheLayout) {
+  LaserScan scan;
+  scan.angle_min = -1.5f;
+  scan.angle_increment = 0.01f;
+  scan.ranges.assign(301, 2.0f);
+  BeamDirections directions;
+  for (int layout = 0; layout < 3; ++layout) {
+    if (layout == 1) scan.angle_increment = 0.02f;
+    if (layout == 2) scan.ranges.assign(101, 2.0f);
+    const std::vector<Vec2>& d = directions.Of(scan);
+    ASSERT_EQ(d.size(), scan.ranges.size());
+    for (size_t i = 0; i < d.size(); ++i) {
+      const double phi = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+      EXPECT_EQ(d[i].x(), std::cos(phi)) << layout << " " << i;
+      EXPECT_EQ(d[i].y(), std::sin(phi)) << layout << " " << i;
+    }
+  }
+  std::vector<Vec2> points;
+  scan.sensor_pose = Pose2{0.1, 0.0, 0.0};
+  scan.ranges[5] = kNoReturn;
+  ScanPointsInRobotFrame(scan, directions.Of(scan), 0.1, 20.0, &points);
+  ASSERT_EQ(points.size(), 100u);
+  EXPECT_NEAR(points[0].x(), 0.1 + 2.0 * std::cos(-1.5), 1e-6);
+  EXPECT_NEAR(points[0].y(), 2.0 * std::sin(-1.5), 1e-6);
+}
+
 TEST(ScanMatcher, ValidateNamesTheBadOption) {
   EXPECT_EQ(ScanMatchOptions{}.Validate(), "");
   ScanMatchOptions o;
