@@ -103,6 +103,56 @@ Vec2 FramePoints::Centre(uint32_t key) const {
   return Vec2((ix + 0.5) * options_.cell, (iy + 0.5) * options_.cell);
 }
 
+FramePoints::NearCells FramePoints::Near() const {
+  NearCells near;
+  if (cells_.empty()) return near;
+  int32_t min_x = kMaxIndex, min_y = kMaxIndex, max_x = -kMaxIndex, max_y = -kMaxIndex;
+  for (uint32_t key : cells_) {
+    const int32_t ix = static_cast<int32_t>(key >> 16) - 32768;
+    const int32_t iy = static_cast<int32_t>(key & 0xffff) - 32768;
+    min_x = std::min(min_x, ix);
+    min_y = std::min(min_y, iy);
+    max_x = std::max(max_x, ix);
+    max_y = std::max(max_y, iy);
+  }
+  const int64_t width = int64_t{max_x} - min_x + 3, height = int64_t{max_y} - min_y + 3;
+  if (width * height > kMaxNearCells) return near;
+  near.x0 = min_x - 1;
+  near.y0 = min_y - 1;
+  near.width = static_cast<int32_t>(width);
+  near.height = static_cast<int32_t>(height);
+  near.bits.assign(static_cast<size_t>((width * height + 63) / 64), 0);
+  for (uint32_t key : cells_) {
+    const int32_t ix = static_cast<int32_t>(key >> 16) - 32768 - near.x0;
+    const int32_t iy = static_cast<int32_t>(key & 0xffff) - 32768 - near.y0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int64_t bit = int64_t{iy + dy} * near.width + (ix + dx);
+        near.bits[static_cast<size_t>(bit >> 6)] |= uint64_t{1} << (bit & 63);
+      }
+  }
+  return near;
+}
+
+int FramePoints::HitsNear(const NearCells& near, const FramePoints& b,
+                          const Pose2& b_in_this) const {
+  if (near.empty()) return ScoreOf(b, b_in_this).hits;
+  const int n = b.Size();
+  const int stride = std::max(1, (n + options_.max_scored - 1) / options_.max_scored);
+  const RigidTransform t(b_in_this);
+  int hits = 0;
+  for (int k = 0; k < n; k += stride) {
+    const Vec2 p = t.Apply(b.Centre(b.cells_[k]));
+    int32_t ix, iy;
+    if (!CellOf(p, options_.cell, &ix, &iy)) continue;
+    const int64_t x = int64_t{ix} - near.x0, y = int64_t{iy} - near.y0;
+    if (x < 0 || y < 0 || x >= near.width || y >= near.height) continue;
+    const int64_t bit = y * near.width + x;
+    hits += static_cast<int>((near.bits[static_cast<size_t>(bit >> 6)] >> (bit & 63)) & 1);
+  }
+  return hits;
+}
+
 std::vector<Vec2> FramePoints::Centres() const {
   std::vector<Vec2> out;
   out.reserve(cells_.size());

@@ -64,6 +64,20 @@ class FramePoints {
   };
   Score ScoreOf(const FramePoints& b, const Pose2& b_in_this) const;
 
+  // The cells in or next to (3 x 3) one of these, as a bitmap over their bounding box: for
+  // scoring many placements against one frame (map-matching's point tests), one look-up per
+  // scored cell instead of up to nine. Empty when the box exceeds kMaxNearCells cells.
+  struct NearCells {
+    int32_t x0 = 0, y0 = 0;  // cell index of the box's first bit
+    int32_t width = 0, height = 0;
+    std::vector<uint64_t> bits;  // row-major, width * height bits
+    bool empty() const { return bits.empty(); }
+  };
+  static constexpr int64_t kMaxNearCells = int64_t{1} << 24;
+  NearCells Near() const;
+  // ScoreOf(b, b_in_this).hits, with `near` = Near() of this set unchanged since.
+  int HitsNear(const NearCells& near, const FramePoints& b, const Pose2& b_in_this) const;
+
   // Cell centres, in insertion order.
   std::vector<Vec2> Centres() const;
 

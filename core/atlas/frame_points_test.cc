@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 namespace atlas {
 namespace {
@@ -108,6 +109,37 @@ TEST(FramePoints, ScoresPlacementsOfAnotherFrame) {
   const FramePoints empty(o);
   EXPECT_EQ(a.ScoreOf(empty, b_in_a).scored, 0);
   EXPECT_EQ(empty.ScoreOf(b, b_in_a).hits, 0);
+}
+
+// HitsNear is ScoreOf's hit count, placement for placement: random walls of points (some far
+// apart, some on the index range's edge), random placements near and far.
+TEST(FramePoints, HitsNearCountAsScoreOf) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    FramePointsOptions o;
+    o.max_scored = trial % 2 == 0 ? 512 : 64;
+    FramePoints a(o), b(o);
+    const double spread = trial % 5 == 0 ? 3000.0 : 15.0;
+    for (int wall = 0; wall < 6; ++wall) {
+      const Vec2 start(spread * u(rng), spread * u(rng));
+      const Vec2 dir(std::cos(3.0 * u(rng)), std::sin(3.0 * u(rng)));
+      for (int k = 0; k < 120; ++k) {
+        a.Add(start + 0.05 * k * dir);
+        b.Add(start + 0.05 * k * dir + Vec2(0.02 * u(rng), 0.02 * u(rng)));
+      }
+    }
+    if (trial == 3) a.Add(Vec2(3276.0, -3276.0));  // near the index range's end
+    const FramePoints::NearCells near = a.Near();
+    EXPECT_EQ(near.empty(), trial % 5 == 0 || trial == 3) << trial;  // too large: ScoreOf
+    for (int k = 0; k < 50; ++k) {
+      const double far = k % 10 == 0 ? 5000.0 : 0.5;
+      const Pose2 t{far * u(rng), far * u(rng), 0.2 * u(rng)};
+      EXPECT_EQ(a.HitsNear(near, b, t), a.ScoreOf(b, t).hits) << trial << " " << k;
+    }
+    EXPECT_GT(a.HitsNear(near, b, Pose2{}), 0);
+  }
+  EXPECT_TRUE(FramePoints().Near().empty());
 }
 
 TEST(FramePoints, ImageRoundTripsAndRejectsGarbage) {

@@ -361,9 +361,11 @@ double GateReachSquared(const UncertainPose& prior, const Vec2& direction,
 
 // Placements of B in A scored by the frames' points (frame_points.h; map_match.h, "Points").
 struct PointPlacements {
+  PointPlacements(const FramePoints* a, const FramePoints* b) : a(a), b(b), near(a->Near()) {}
   const FramePoints* a;
   const FramePoints* b;
-  int Hits(const Pose2& t) const { return a->ScoreOf(*b, t).hits; }
+  FramePoints::NearCells near;  // a's
+  int Hits(const Pose2& t) const { return a->HitsNear(near, *b, t); }
   // Whether every shift of t along `direction` by at least distinct_translation, in steps of
   // a cell, out to the prior's gate (or 3 m without a prior), has at most point_rival_ratio of
   // t's hits.
