@@ -117,15 +117,29 @@ Pose2 ScanAligner::CorrelativeSearch(const ProbabilityGrid& grid, const std::vec
   Placement best;
   int64_t best_sum = -1;
   long best_distance = 0;
+  const int span = 2 * window.linear_cells + 1;
+  row_sums_.resize(static_cast<size_t>(span));
   for (int h = 0; h < window.headings(); ++h) {
     const CellIndex* cells = scans_.Heading(h);
     for (int y = -window.linear_cells; y <= window.linear_cells; ++y) {
-      for (int x = -window.linear_cells; x <= window.linear_cells; ++x) {
-        int64_t sum = 0;
-        for (int i = 0; i < scans_.points; ++i) {
-          const CellIndex c{cells[i].x + x, cells[i].y + y};
-          sum += l.Contains(c) ? std::max<uint16_t>(values[l.IndexOf(c)], 1) : 1;
+      // The sums of one row of placements, a point at a time: a point whose row of cells lies
+      // in the grid adds a run of consecutive values.
+      std::fill(row_sums_.begin(), row_sums_.end(), 0);
+      int64_t* sums = row_sums_.data();
+      for (int i = 0; i < scans_.points; ++i) {
+        const CellIndex first{cells[i].x - window.linear_cells, cells[i].y + y};
+        if (first.y >= 0 && first.y < l.height && first.x >= 0 && first.x + span <= l.width) {
+          const uint16_t* row = values.data() + l.IndexOf(first);
+          for (int k = 0; k < span; ++k) sums[k] += std::max<uint16_t>(row[k], 1);
+        } else {
+          for (int k = 0; k < span; ++k) {
+            const CellIndex c{first.x + k, first.y};
+            sums[k] += l.Contains(c) ? std::max<uint16_t>(values[l.IndexOf(c)], 1) : 1;
+          }
         }
+      }
+      for (int x = -window.linear_cells; x <= window.linear_cells; ++x) {
+        const int64_t sum = sums[x + window.linear_cells];
         const int dh = h - window.angular_steps;
         const long distance = static_cast<long>(x) * x + y * y + dh * dh;
         if (sum > best_sum || (sum == best_sum && distance < best_distance)) {

@@ -28,6 +28,7 @@
 // Typed outcomes, never throws. Work is bounded: (2 linear_window / r + 1)^2 x headings x
 // points lookups, then at most max_iterations passes over the points.
 
+#include <cstdint>
 #include <vector>
 
 #include "core/geometry/se2.h"
@@ -78,7 +79,8 @@ class ScanAligner {
                           const Pose2& initial, AlignmentResult* out);
 
   ScanAlignmentOptions options_;
-  DiscreteScans scans_;  // scratch
+  DiscreteScans scans_;            // scratch
+  std::vector<int64_t> row_sums_;  // scratch: one row of placements' sums
 };
 
 }  // namespace atlas
