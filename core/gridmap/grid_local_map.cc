@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
 
 #include "core/atlas/byte_image.h"
 #include "core/gridmap/dense_search.h"
@@ -227,8 +228,8 @@ std::string GridLocalMap::Serialize() const {
   w.Put<int32_t>(l.offset.y);
   w.Put<int32_t>(l.width);
   w.Put<int32_t>(l.height);
-  for (uint16_t v : grid_.values()) w.Put(v);
-  return w.bytes();
+  w.PutArray(grid_.values().data(), grid_.values().size());
+  return std::move(w.bytes());
 }
 
 bool GridLocalMap::Deserialize(const std::string& bytes) {
@@ -258,10 +259,10 @@ bool GridLocalMap::Deserialize(const std::string& bytes) {
   l.width = width;
   l.height = height;
   std::vector<uint16_t> values(static_cast<size_t>(width) * height);
-  for (uint16_t& v : values) {
-    if (!r.Get(&v) || v > ProbabilityGrid::kMaxValue) return false;
-  }
-  if (!r.AtEnd()) return false;
+  if (!r.GetArray(values.data(), values.size()) || !r.AtEnd()) return false;
+  if (std::any_of(values.begin(), values.end(),
+                  [](uint16_t v) { return v > ProbabilityGrid::kMaxValue; }))
+    return false;
   ProbabilityGrid grid(options_.grid.grid);
   if (width > 0 && height > 0) {
     if (!grid.GrowToCover(l.CenterOf(CellIndex{0, 0}),
