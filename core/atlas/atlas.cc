@@ -69,7 +69,7 @@ Atlas::Atlas(const AtlasOptions& options, MapFactory factory,
 }
 
 LocalMap& Atlas::MapOf(Hypothesis& h) {
-  return h.state == HypothesisState::kJuvenile ? *h.trial_map : *graph_.MutableFrame(h.frame).map;
+  return h.state == HypothesisState::kJuvenile ? *h.trial_map : graph_.MutableMap(h.frame);
 }
 
 UncertainPose Atlas::PoseOf(const Hypothesis& h) const {
@@ -270,8 +270,7 @@ void Atlas::UpdateHypotheses(const Pose2& delta, const Mat3* increment_cov, cons
         }
       }
     }
-    h.q = HypothesisQuality(MapOf(h).RobotPose().cov,
-                            h.window.Explanation(options_.quality.empty_explanation),
+    h.q = HypothesisQuality(PoseOf(h).cov, h.window.Explanation(options_.quality.empty_explanation),
                             options_.quality);
   }
 }
@@ -304,8 +303,7 @@ void Atlas::JudgeJuveniles() {
     const JuvenileVerdict v =
         JudgeJuvenile(h, best_mature, bootstrap_failed_[i] != 0, options_.lifecycle);
     if (v == JuvenileVerdict::kMature) {
-      MapFrame& f = graph_.MutableFrame(h.frame);
-      f.map = std::move(h.trial_map);
+      graph_.ReplaceMap(h.frame, std::move(h.trial_map));
       h.state = HypothesisState::kMature;
       h.failing_steps = 0;
       h.z.clear();

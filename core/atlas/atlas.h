@@ -169,6 +169,20 @@ struct DominantOutput {
   bool switched = false;
 };
 
+// Why Atlas::DeserializeWithFrameMaps did not load an image.
+enum class ImageLoadStatus {
+  kLoaded,
+  kMalformed,          // not an image of this atlas (bytes, version, or a value out of range)
+  kFrameMapMissing,    // `frame`'s map is neither in the image nor given
+  kFrameMapMalformed,  // `frame`'s map as given does not decode with this atlas's factory
+};
+
+struct ImageLoadResult {
+  ImageLoadStatus status = ImageLoadStatus::kMalformed;
+  FrameId frame = kNoFrame;
+  bool ok() const { return status == ImageLoadStatus::kLoaded; }
+};
+
 class Atlas {
  public:
   using MapFactory = std::function<std::unique_ptr<LocalMap>()>;
@@ -233,12 +247,28 @@ class Atlas {
   // Version 4 added Hypothesis::seed; an older image's juvenile takes its current pose as the
   // seed and starts its Z again.
   // Version 5 added each frame's points (FramePoints); older images are read with none.
-  static constexpr uint32_t kImageVersion = 5;
+  // Version 6 lets the frames' maps be kept apart (SerializeWithoutFrameMaps); otherwise as 5.
+  static constexpr uint32_t kImageVersion = 6;
   std::string Serialize() const;
   bool Deserialize(const std::string& bytes);
+  // The image without the frames' maps, for a saver that keeps each frame's map apart
+  // (Graph().Frame(f).map->Serialize(), written again when its map_revision changed): each
+  // frame's map image is empty in it; the hypotheses' trial maps are in it. Its cost does not
+  // grow with the maps: O(frames + edges) plus the frames' points and the hypotheses.
+  std::string SerializeWithoutFrameMaps() const;
+  // Frame f's map image kept apart from the atlas image, or null when there is none.
+  using FrameMapImages = std::function<const std::string*(FrameId f)>;
+  // Deserialize of an image with or without the frames' maps: a frame whose map is not in the
+  // image takes `frame_maps(f)` (may be empty: every map must then be in the image). On failure
+  // the atlas is unchanged and the result says why, naming the frame when its map was missing
+  // or did not decode.
+  ImageLoadResult DeserializeWithFrameMaps(const std::string& bytes,
+                                           const FrameMapImages& frame_maps);
 
  private:
+  // The map hypothesis h updates (the frame's map_revision changes when it is the frame's).
   LocalMap& MapOf(Hypothesis& h);
+  std::string SerializeImage(bool frame_maps) const;
   // Exactly one of `scan`, `sonar` is non-null.
   // `increment_cov`: the increment's covariance, or null for the maps' odometry model.
   // Whether a step's input can be used (StepStats::rejected_input).

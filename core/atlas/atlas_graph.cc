@@ -1,8 +1,17 @@
 #include "core/atlas/atlas_graph.h"
 
+#include <atomic>
 #include <cassert>
 
 namespace atlas {
+namespace {
+
+uint64_t NewMapRevision() {
+  static std::atomic<uint64_t> last{0};
+  return last.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
+}  // namespace
 
 const char* EdgeKindName(EdgeKind kind) {
   switch (kind) {
@@ -21,9 +30,22 @@ FrameId AtlasGraph::AddFrame(std::unique_ptr<LocalMap> map, int64_t step) {
   f.id = FrameCount();
   f.map = std::move(map);
   f.created_step = step;
+  f.map_revision = NewMapRevision();
   f.edges.reserve(max_degree_);
   frames_.push_back(std::move(f));
   return frames_.back().id;
+}
+
+LocalMap& AtlasGraph::MutableMap(FrameId id) {
+  MapFrame& f = frames_[id];
+  f.map_revision = NewMapRevision();
+  return *f.map;
+}
+
+void AtlasGraph::ReplaceMap(FrameId id, std::unique_ptr<LocalMap> map) {
+  MapFrame& f = frames_[id];
+  f.map = std::move(map);
+  f.map_revision = NewMapRevision();
 }
 
 AddEdgeResult AtlasGraph::AddEdge(FrameId a, FrameId b, const UncertainPose& b_in_a, EdgeKind kind,

@@ -50,6 +50,10 @@ struct MapFrame {
   // Bookkeeping the step loop keeps per frame (bounded, O(1) per frame).
   int64_t seed_cooldown_until = -1;  // no juvenile is seeded here before this step
   int retirements = 0;               // how often a mature hypothesis here was retired
+  // Changes whenever the map may have changed (AtlasGraph::AddFrame, MutableMap, ReplaceMap),
+  // to a value no frame of any graph in this process had before: a saver that remembers the
+  // revisions it wrote writes only the maps that changed since. Not part of the atlas image.
+  uint64_t map_revision = 0;
 };
 
 enum class AddEdgeResult { kAdded, kDegreeFull, kSameFrame, kAlreadyAdjacent, kBadFrame };
@@ -70,7 +74,11 @@ class AtlasGraph {
   int max_degree() const { return max_degree_; }
   bool HasFrame(FrameId id) const { return id >= 0 && id < FrameCount(); }
   const MapFrame& Frame(FrameId id) const { return frames_[id]; }
+  // Changing a frame's map goes through MutableMap or ReplaceMap, which change its
+  // map_revision; MutableFrame is for the rest of the frame.
   MapFrame& MutableFrame(FrameId id) { return frames_[id]; }
+  LocalMap& MutableMap(FrameId id);
+  void ReplaceMap(FrameId id, std::unique_ptr<LocalMap> map);
   const std::vector<AtlasEdge>& Edges() const { return edges_; }
   const AtlasEdge& Edge(int index) const { return edges_[index]; }
 

@@ -1,4 +1,5 @@
-// The atlas's byte image: Atlas::Serialize and Atlas::Deserialize (format in byte_image.h).
+// The atlas's byte image: Atlas::Serialize, SerializeWithoutFrameMaps, Deserialize and
+// DeserializeWithFrameMaps (format in byte_image.h).
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdint>
@@ -104,7 +105,15 @@ bool GetUpdate(ByteReader* r, ScanUpdate* u) {
 
 }  // namespace
 
-std::string Atlas::Serialize() const {
+std::string Atlas::Serialize() const { return SerializeImage(true); }
+
+std::string Atlas::SerializeWithoutFrameMaps() const { return SerializeImage(false); }
+
+bool Atlas::Deserialize(const std::string& bytes) {
+  return DeserializeWithFrameMaps(bytes, FrameMapImages()).ok();
+}
+
+std::string Atlas::SerializeImage(bool frame_maps) const {
   ByteWriter w;
   w.Put(kMagic);
   w.Put(kImageVersion);
@@ -118,7 +127,8 @@ std::string Atlas::Serialize() const {
     w.Put(frame.created_step);
     w.Put(frame.seed_cooldown_until);
     w.Put<int32_t>(frame.retirements);
-    w.PutString(frame.map->Serialize());
+    // Kept apart: an empty map image, which no map writes (every one begins with its magic).
+    w.PutString(frame_maps ? frame.map->Serialize() : std::string());
     w.PutString(frame.points.Serialize());
   }
   w.Put<uint32_t>(graph_.EdgeCount());
@@ -176,7 +186,9 @@ std::string Atlas::Serialize() const {
   return std::move(w.bytes());
 }
 
-bool Atlas::Deserialize(const std::string& bytes) {
+ImageLoadResult Atlas::DeserializeWithFrameMaps(const std::string& bytes,
+                                                const FrameMapImages& frame_maps) {
+  const ImageLoadResult malformed;
   ByteReader r(bytes);
   uint32_t magic = 0, version = 0, frames = 0, edges = 0, hyps = 0;
   int64_t step = 0, next_id = 0, last_genesis = 0;
@@ -184,10 +196,10 @@ bool Atlas::Deserialize(const std::string& bytes) {
   if (!r.Get(&magic) || magic != kMagic || !r.Get(&version) || version < 1 ||
       version > kImageVersion || !r.Get(&step) || !r.Get(&next_id) || !r.Get(&last_genesis) ||
       !r.Get(&cursor) || !r.Get(&frames) || frames > (1u << 24))
-    return false;
+    return malformed;
   if (step < 0 || step > kMaxStep || next_id < 0 || next_id > kMaxStep ||
       last_genesis < kNoGenesisStep || last_genesis > step)
-    return false;
+    return malformed;
   AtlasGraph graph(options_.max_degree);
   for (uint32_t i = 0; i < frames; ++i) {
     int64_t created = 0, cooldown = 0;
@@ -195,46 +207,54 @@ bool Atlas::Deserialize(const std::string& bytes) {
     std::string blob;
     if (!r.Get(&created) || !r.Get(&cooldown) || !r.Get(&retirements) ||
         !r.GetString(&blob, kMaxBlob))
-      return false;
+      return malformed;
     // The cooldown was set with the seed_cooldown_steps of its time: bounded, not tied to ours.
     if (created < 0 || created > step || cooldown < -1 || cooldown > kMaxStep || retirements < 0 ||
         retirements == INT32_MAX)
-      return false;
+      return malformed;
+    const FrameId id = graph.FrameCount();
     std::unique_ptr<LocalMap> map = factory_();
-    if (!map->Deserialize(blob)) return false;
+    if (version >= 6 && blob.empty()) {
+      const std::string* kept = frame_maps ? frame_maps(id) : nullptr;
+      if (kept == nullptr) return ImageLoadResult{ImageLoadStatus::kFrameMapMissing, id};
+      if (!map->Deserialize(*kept)) return ImageLoadResult{ImageLoadStatus::kFrameMapMalformed, id};
+    } else if (!map->Deserialize(blob)) {
+      return malformed;
+    }
     FramePoints points(options_.points);
-    if (version >= 5 && (!r.GetString(&blob, kMaxBlob) || !points.Deserialize(blob))) return false;
-    const FrameId id = graph.AddFrame(std::move(map), created);
+    if (version >= 5 && (!r.GetString(&blob, kMaxBlob) || !points.Deserialize(blob)))
+      return malformed;
+    graph.AddFrame(std::move(map), created);
     graph.MutableFrame(id).points = std::move(points);
     graph.MutableFrame(id).seed_cooldown_until = cooldown;
     graph.MutableFrame(id).retirements = retirements;
   }
-  if (!r.Get(&edges) || edges > (1u << 28)) return false;
+  if (!r.Get(&edges) || edges > (1u << 28)) return malformed;
   for (uint32_t i = 0; i < edges; ++i) {
     AtlasEdge e;
     int32_t refinements = 0;
     if (!r.Get(&e.a) || !r.Get(&e.b) || !r.GetUncertain(&e.b_in_a) || !r.Get(&e.kind) ||
         !r.Get(&e.origin) || !r.Get(&e.made_step) || !r.Get(&e.refined_step) ||
         !r.Get(&refinements))
-      return false;
+      return malformed;
     // An edge is made by Genesis or map-matching; only covariance intersection (RefineEdges,
     // at most once per step and edge, after the step that made it) changes its kind.
     if (static_cast<uint8_t>(e.kind) > 2 || e.origin == EdgeKind::kRefined ||
         static_cast<uint8_t>(e.origin) > 2 || (e.kind != e.origin && e.kind != EdgeKind::kRefined))
-      return false;
+      return malformed;
     if (!e.b_in_a.mean.IsFinite() || !ValidCovariance(e.b_in_a.cov) || e.made_step < 0 ||
         e.made_step > step)
-      return false;
+      return malformed;
     const bool refined = e.kind == EdgeKind::kRefined;
     if (refined ? refinements < 1 || refinements > e.refined_step - e.made_step ||
                       e.refined_step <= e.made_step || e.refined_step > step
                 : refinements != 0 || e.refined_step != -1)
-      return false;
+      return malformed;
     if (graph.AddEdge(e.a, e.b, e.b_in_a, e.origin, e.made_step) != AddEdgeResult::kAdded)
-      return false;
+      return malformed;
     if (refined) graph.RestoreRefinements(graph.EdgeCount() - 1, refinements, e.refined_step);
   }
-  if (!r.Get(&hyps) || hyps > static_cast<uint32_t>(options_.max_hypotheses)) return false;
+  if (!r.Get(&hyps) || hyps > static_cast<uint32_t>(options_.max_hypotheses)) return malformed;
   std::vector<Hypothesis> hypotheses;
   for (uint32_t i = 0; i < hyps; ++i) {
     Hypothesis h;
@@ -246,41 +266,42 @@ bool Atlas::Deserialize(const std::string& bytes) {
         !r.Get(&steps) || !r.Get(&h.q) || !r.Get(&failing) || (version >= 2 && !r.Get(&lagging)) ||
         !r.Get(&cap) || !r.Get(&head) || !r.Get(&size) || cap < 1 || cap > 1000 || head < 0 ||
         head >= cap || size < 0 || size > cap)
-      return false;
+      return malformed;
     // Ids are handed out from next_id; a hypothesis is born at a step and counts the steps
     // since (the first frame's also the step it was made in); q is eq. 5, in [0, 1].
     if (h.id < 0 || h.id >= next_id || h.born_step < 0 || h.born_step > step || steps < 0 ||
         steps > step - h.born_step + 1 || steps == INT32_MAX || !std::isfinite(h.q) || h.q < 0.0 ||
         h.q > 1.0 || failing < 0 || failing > steps || lagging < 0 || lagging == INT32_MAX)
-      return false;
+      return malformed;
     std::vector<QualityWindow::Entry> ring(cap);
     for (QualityWindow::Entry& e : ring)
       if (!r.Get(&e.observations) || !r.Get(&e.matched) || !ValidCount(e.observations) ||
           e.matched < 0 || e.matched > e.observations)
-        return false;
+        return malformed;
     h.window.Restore(cap, std::move(ring), head, size);
-    if (!GetUpdate(&r, &h.last_update) || !r.Get(&bootstrapped) || !r.Get(&has_trial)) return false;
+    if (!GetUpdate(&r, &h.last_update) || !r.Get(&bootstrapped) || !r.Get(&has_trial))
+      return malformed;
     h.dominant = dominant != 0;
     h.steps = steps;
     h.failing_steps = failing;
     h.lagging_steps = lagging;
     h.bootstrapped = bootstrapped != 0;
-    if ((h.state == HypothesisState::kJuvenile) != (has_trial != 0)) return false;
+    if ((h.state == HypothesisState::kJuvenile) != (has_trial != 0)) return malformed;
     for (const Hypothesis& o : hypotheses)
-      if (o.id == h.id) return false;
+      if (o.id == h.id) return malformed;
     if (has_trial) {
       std::string blob;
-      if (!r.GetString(&blob, kMaxBlob)) return false;
+      if (!r.GetString(&blob, kMaxBlob)) return malformed;
       h.trial_map = factory_();
-      if (!h.trial_map->Deserialize(blob)) return false;
+      if (!h.trial_map->Deserialize(blob)) return malformed;
       if (version >= 4) {
-        if (!r.GetPose(&h.seed.mean)) return false;
+        if (!r.GetPose(&h.seed.mean)) return malformed;
         for (int row = 0; row < 3; ++row)
           for (int col = row; col < 3; ++col) {
-            if (!r.Get(&h.seed.cov(row, col))) return false;
+            if (!r.Get(&h.seed.cov(row, col))) return malformed;
             h.seed.cov(col, row) = h.seed.cov(row, col);
           }
-        if (!h.seed.mean.IsFinite() || !ValidCovariance(h.seed.cov)) return false;
+        if (!h.seed.mean.IsFinite() || !ValidCovariance(h.seed.cov)) return malformed;
       }
     }
     // Z grows by at most one scan a step, only while the juvenile is not bootstrapped, and is
@@ -289,13 +310,13 @@ bool Atlas::Deserialize(const std::string& bytes) {
     if (!r.Get(&nz) || nz >= static_cast<uint32_t>(options_.lifecycle.probation_scans) ||
         nz > static_cast<uint32_t>(steps) ||
         (nz > 0 && (h.state != HypothesisState::kJuvenile || h.bootstrapped)))
-      return false;
+      return malformed;
     h.z.resize(nz);
     for (JuvenileScan& z : h.z) {
       LaserScan scan;
       if (!r.GetPose(&z.odometry_delta) || !GetScan(&r, &scan) || !GetUpdate(&r, &z.update) ||
           (version >= 3 && !GetSonar(&r, &z.sonar)))
-        return false;
+        return malformed;
       z.observation = ScanObservation(std::move(scan));  // its lines are extracted on demand
     }
     if (has_trial && version < 4) {
@@ -304,16 +325,16 @@ bool Atlas::Deserialize(const std::string& bytes) {
       h.z.clear();
     }
     for (const Hypothesis& o : hypotheses)
-      if (o.frame == h.frame) return false;  // at most one hypothesis per frame
+      if (o.frame == h.frame) return malformed;  // at most one hypothesis per frame
     hypotheses.push_back(std::move(h));
   }
-  if (!r.AtEnd()) return false;
+  if (!r.AtEnd()) return malformed;
   // After any step the atlas has a mature hypothesis (a mature one is retired only when
   // another stays or Genesis makes one); without one, it would output nothing from now on.
   if (graph.FrameCount() > 0 &&
       std::none_of(hypotheses.begin(), hypotheses.end(),
                    [](const Hypothesis& h) { return h.state == HypothesisState::kMature; }))
-    return false;
+    return malformed;
   graph_ = std::move(graph);
   pending_match_.reset();
   components_.Rebuild(graph_);
@@ -328,7 +349,7 @@ bool Atlas::Deserialize(const std::string& bytes) {
   for (CachedSelfMatch& c : self_cache_) c = CachedSelfMatch{};
   for (TriedPair& t : tried_) t = TriedPair{};
   stats_ = StepStats{};
-  return true;
+  return ImageLoadResult{ImageLoadStatus::kLoaded, kNoFrame};
 }
 
 }  // namespace atlas

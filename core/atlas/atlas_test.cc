@@ -698,6 +698,115 @@ ImageLayout LayoutOf(const std::string& image) {
   return l;
 }
 
+// Without the frames' maps the image is the whole image less each frame's map image; with the
+// maps given apart it loads as the whole image does. A missing or undecodable map is named
+// and leaves the atlas as it was; an older (version 5) image brings its own maps.
+TEST(Atlas, FrameMapsKeptApartLoadBackWhole) {
+  TestWorld w;
+  Atlas a(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  for (int i = 0; i < 75; ++i) a.Step(Pose2{i < 60 ? 0.25 : -0.25, 0.0, 0.0}, TestScan());
+  ASSERT_GE(a.Graph().FrameCount(), 3);
+  const std::string whole = a.Serialize();
+  const std::string image = a.SerializeWithoutFrameMaps();
+  std::vector<std::string> maps;
+  size_t map_bytes = 0;
+  for (FrameId f = 0; f < a.Graph().FrameCount(); ++f) {
+    maps.push_back(a.Graph().Frame(f).map->Serialize());
+    map_bytes += maps.back().size();
+  }
+  EXPECT_EQ(image.size() + map_bytes, whole.size());
+  const auto given = [&maps](FrameId f) -> const std::string* {
+    return f >= 0 && f < static_cast<FrameId>(maps.size()) ? &maps[f] : nullptr;
+  };
+  Atlas b(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  ASSERT_TRUE(b.DeserializeWithFrameMaps(image, given).ok());
+  EXPECT_TRUE(b.Serialize() == whole);
+  EXPECT_TRUE(b.SerializeWithoutFrameMaps() == image);
+
+  Atlas c(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  c.Step(Pose2{}, TestScan());
+  const std::string before = c.Serialize();
+  EXPECT_FALSE(c.Deserialize(image));
+  ImageLoadResult r = c.DeserializeWithFrameMaps(image, {});
+  EXPECT_EQ(r.status, ImageLoadStatus::kFrameMapMissing);
+  EXPECT_EQ(r.frame, 0);
+  r = c.DeserializeWithFrameMaps(image, [&](FrameId f) { return f == 2 ? nullptr : given(f); });
+  EXPECT_EQ(r.status, ImageLoadStatus::kFrameMapMissing);
+  EXPECT_EQ(r.frame, 2);
+  const std::string garbage = "not a map";
+  r = c.DeserializeWithFrameMaps(image, [&](FrameId f) { return f == 1 ? &garbage : given(f); });
+  EXPECT_EQ(r.status, ImageLoadStatus::kFrameMapMalformed);
+  EXPECT_EQ(r.frame, 1);
+  EXPECT_EQ(c.DeserializeWithFrameMaps(image.substr(0, image.size() - 1), given).status,
+            ImageLoadStatus::kMalformed);
+  EXPECT_TRUE(c.Serialize() == before);
+
+  // Version 5: every map in the image (the maps given apart are not asked for); a frame whose
+  // map image is empty there is malformed, not missing.
+  const std::string v5 = Poke(whole, 4, uint32_t{5});
+  Atlas d(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  ASSERT_TRUE(d.DeserializeWithFrameMaps(v5, [](FrameId) -> const std::string* {
+                 ADD_FAILURE() << "a version 5 image asked for a map";
+                 return nullptr;
+               }).ok());
+  EXPECT_TRUE(d.Serialize() == whole);
+  EXPECT_EQ(d.DeserializeWithFrameMaps(Poke(image, 4, uint32_t{5}), given).status,
+            ImageLoadStatus::kMalformed);
+}
+
+// A frame's map_revision changes exactly when its map may have: at each step of a mature
+// hypothesis in it, when a juvenile matures into it, when it is made. A frame whose revision
+// did not change has the same map image; a step whose input is refused changes none.
+TEST(Atlas, MapRevisionsFollowEveryChangeOfAFramesMap) {
+  TestWorld w;
+  Atlas a(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  const auto mature_frames = [&a]() {
+    std::set<FrameId> s;
+    for (const Hypothesis& h : a.Hypotheses())
+      if (h.state == HypothesisState::kMature) s.insert(h.frame);
+    return s;
+  };
+  std::vector<uint64_t> revisions;
+  std::vector<std::string> images;
+  int matured = 0, retired = 0, unchanged = 0;
+  for (int i = 0; i < 150; ++i) {
+    std::set<FrameId> expected = mature_frames();
+    const int frames_before = a.Graph().FrameCount();
+    const StepStats& s = a.Step(Pose2{i < 60 || i >= 110 ? 0.25 : -0.25, 0.0, 0.0}, TestScan());
+    matured += s.matured;
+    retired += s.retired;
+    const std::set<FrameId> after = mature_frames();
+    expected.insert(after.begin(), after.end());
+    for (FrameId f = frames_before; f < a.Graph().FrameCount(); ++f) expected.insert(f);
+    for (FrameId f = 0; f < a.Graph().FrameCount(); ++f) {
+      const MapFrame& frame = a.Graph().Frame(f);
+      if (f >= static_cast<FrameId>(revisions.size())) {
+        revisions.push_back(0);
+        images.emplace_back();
+      }
+      const bool changed = frame.map_revision != revisions[f];
+      EXPECT_EQ(changed, expected.count(f) == 1) << "step " << i << " frame " << f;
+      if (!changed) {
+        EXPECT_TRUE(frame.map->Serialize() == images[f]) << "step " << i << " frame " << f;
+        ++unchanged;
+      }
+      revisions[f] = frame.map_revision;
+      images[f] = frame.map->Serialize();
+    }
+  }
+  EXPECT_GT(matured, 0);
+  EXPECT_GT(retired, 0);
+  EXPECT_GT(unchanged, 100);
+  EXPECT_EQ(a.Step(Pose2{NAN, 0.0, 0.0}, TestScan()).rejected_input, 1);
+  for (FrameId f = 0; f < a.Graph().FrameCount(); ++f)
+    EXPECT_EQ(a.Graph().Frame(f).map_revision, revisions[f]);
+  // A loaded atlas's frames are new to a saver.
+  Atlas b(TestWorld::Options(), w.Factory(), std::make_shared<FakeBootstrapper>());
+  ASSERT_TRUE(b.Deserialize(a.Serialize()));
+  for (FrameId f = 0; f < b.Graph().FrameCount(); ++f)
+    EXPECT_GT(b.Graph().Frame(f).map_revision, revisions[f]);
+}
+
 // Out and back along the corridor (as TraversalFallsBackToKnownFrames): refined edges, and
 // with `undetermined_w` a juvenile accumulating Z (w stays undetermined) when the run stops.
 std::string SavedRun(TestWorld* w, bool undetermined_w) {

@@ -1,6 +1,9 @@
 #pragma once
 // Little-endian byte images for Atlas::Serialize (no I/O: strings in memory). A reader never
 // reads past the end: every Get returns false instead, and the caller rejects the image.
+// Values are copied as the host holds them (memcpy), which is little-endian on every host
+// atlasd is built for; PutArray and GetArray copy a block of values at once, the same bytes as
+// Put and Get of each value in turn.
 
 #include <cstdint>
 #include <cstring>
@@ -17,6 +20,11 @@ class ByteWriter {
   void Put(T v) {
     static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
     out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  template <typename T>
+  void PutArray(const T* values, size_t n) {
+    static_assert(std::is_arithmetic_v<T>);
+    out_.append(reinterpret_cast<const char*>(values), n * sizeof(T));
   }
   void PutString(const std::string& s) {
     Put<uint64_t>(s.size());
@@ -49,6 +57,15 @@ class ByteReader {
     if (s_.size() - at_ < sizeof(T)) return false;
     std::memcpy(v, s_.data() + at_, sizeof(T));
     at_ += sizeof(T);
+    return true;
+  }
+  // All n values or none (false: fewer bytes are left).
+  template <typename T>
+  bool GetArray(T* values, size_t n) {
+    static_assert(std::is_arithmetic_v<T>);
+    if ((s_.size() - at_) / sizeof(T) < n) return false;
+    std::memcpy(values, s_.data() + at_, n * sizeof(T));
+    at_ += n * sizeof(T);
     return true;
   }
   bool GetString(std::string* out, uint64_t max_size) {

@@ -182,7 +182,7 @@ FramePoints::Score FramePoints::ScoreOf(const FramePoints& b, const Pose2& b_in_
 std::string FramePoints::Serialize() const {
   ByteWriter w;
   w.Put<uint32_t>(static_cast<uint32_t>(cells_.size()));
-  for (uint32_t key : cells_) w.Put(key);
+  w.PutArray(cells_.data(), cells_.size());
   return std::move(w.bytes());
 }
 

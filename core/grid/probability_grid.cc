@@ -86,6 +86,26 @@ bool ProbabilityGrid::GrowToCover(const Vec2& min, const Vec2& max) {
   return covered();
 }
 
+bool ProbabilityGrid::Restore(const CellIndex& offset, int width, int height,
+                              std::vector<uint16_t> values) {
+  const auto within = [](int lo, int size, int max_size) {
+    return size > 0 && size <= max_size && lo >= -kMaxCellIndex && lo <= kMaxCellIndex - size;
+  };
+  if (!grows_ || !within(offset.x, width, options_.max_cells) ||
+      !within(offset.y, height, options_.max_cells) ||
+      values.size() != static_cast<size_t>(width) * static_cast<size_t>(height))
+    return false;
+  if (std::any_of(values.begin(), values.end(), [](uint16_t v) { return v > kMaxValue; }))
+    return false;
+  known_cells_ =
+      static_cast<int>(values.size() - std::count(values.begin(), values.end(), kUnknown));
+  values_ = std::move(values);
+  limits_.offset = offset;
+  limits_.width = width;
+  limits_.height = height;
+  return true;
+}
+
 void ProbabilityGrid::Reshape(const CellIndex& offset, int width, int height) {
   assert(width <= options_.max_cells && height <= options_.max_cells);
   std::vector<uint16_t> values(static_cast<size_t>(width) * height, kUnknown);

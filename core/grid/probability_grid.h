@@ -60,6 +60,14 @@ class ProbabilityGrid {
   // Returns true when the whole box is covered afterwards.
   bool GrowToCover(const Vec2& min, const Vec2& max);
 
+  // Sets a growing grid's window and values as they were saved (its resolution stays: the
+  // caller checks that it is the saved one), so that a grid read back is the one written,
+  // window included. False, and the grid unchanged, when the grid does not grow, the window is
+  // empty, wider or higher than max_cells or reaches beyond kMaxCellIndex cells from the
+  // lattice's origin, `values` is not width x height or holds a value above kMaxValue.
+  static constexpr int kMaxCellIndex = 1 << 30;
+  bool Restore(const CellIndex& offset, int width, int height, std::vector<uint16_t> values);
+
   const GridLimits& limits() const { return limits_; }
   const ProbabilityGridOptions& options() const { return options_; }
   bool grows() const { return grows_; }

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <vector>
+
 namespace atlas {
 namespace {
 
@@ -64,6 +67,46 @@ TEST(ProbabilityGrid, NeverExceedsItsCap) {
   EXPECT_EQ(grid.limits().width, 64);
   EXPECT_EQ(grid.limits().height, 64);
   EXPECT_LE(grid.values().capacity(), 64u * 64u);
+}
+
+// A saved window and its values restore exactly into a fresh growing grid, which grows on from
+// there; a window beyond the cap or the lattice, values of another size or above kMaxValue, or
+// a grid with fixed bounds are refused and change nothing.
+TEST(ProbabilityGrid, RestoresASavedWindowExactly) {
+  ProbabilityGrid grid(SmallOptions());
+  ASSERT_TRUE(grid.GrowToCover(Vec2(0.0, 0.0), Vec2(0.2, 0.2)));
+  grid.mutable_values()[3] = 1234;
+  grid.mutable_values()[10] = ProbabilityGrid::kMaxValue;
+  grid.AddKnownCells(2);
+  ASSERT_TRUE(grid.GrowToCover(Vec2(-1.5, -0.1), Vec2(0.1, 2.0)));
+  const GridLimits& l = grid.limits();
+
+  ProbabilityGrid restored(SmallOptions());
+  ASSERT_TRUE(restored.Restore(l.offset, l.width, l.height, grid.values()));
+  EXPECT_EQ(restored.limits().offset, l.offset);
+  EXPECT_EQ(restored.limits().width, l.width);
+  EXPECT_EQ(restored.limits().height, l.height);
+  EXPECT_EQ(restored.values(), grid.values());
+  EXPECT_EQ(restored.known_cells(), 2);
+  ASSERT_TRUE(grid.GrowToCover(Vec2(-3.0, -3.0), Vec2(0.0, 0.0)));
+  ASSERT_TRUE(restored.GrowToCover(Vec2(-3.0, -3.0), Vec2(0.0, 0.0)));
+  EXPECT_EQ(restored.limits().offset, grid.limits().offset);
+  EXPECT_EQ(restored.values(), grid.values());
+
+  const std::vector<uint16_t> four(4, 1);
+  ProbabilityGrid fresh(SmallOptions());
+  EXPECT_FALSE(fresh.Restore(CellIndex{0, 0}, 65, 1, std::vector<uint16_t>(65, 1)));
+  EXPECT_FALSE(fresh.Restore(CellIndex{0, 0}, 0, 4, {}));
+  EXPECT_FALSE(fresh.Restore(CellIndex{0, 0}, 2, 3, four));
+  EXPECT_FALSE(fresh.Restore(CellIndex{ProbabilityGrid::kMaxCellIndex - 1, 0}, 2, 2, four));
+  EXPECT_FALSE(fresh.Restore(CellIndex{0, -ProbabilityGrid::kMaxCellIndex - 1}, 2, 2, four));
+  EXPECT_FALSE(fresh.Restore(CellIndex{0, 0}, 2, 2, {1, 1, ProbabilityGrid::kMaxValue + 1, 1}));
+  EXPECT_EQ(fresh.limits().width, 0);
+  EXPECT_EQ(fresh.known_cells(), 0);
+  ProbabilityGrid fixed(SmallOptions(), Vec2(-1.0, -1.0), Vec2(0.95, 0.95));
+  EXPECT_FALSE(fixed.Restore(CellIndex{0, 0}, 2, 2, four));
+  EXPECT_TRUE(fresh.Restore(CellIndex{-7, 5}, 2, 2, four));
+  EXPECT_EQ(fresh.known_cells(), 4);
 }
 
 TEST(ProbabilityGrid, FixedBoundsNeverGrow) {

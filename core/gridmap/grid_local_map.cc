@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
 
 #include "core/atlas/byte_image.h"
 #include "core/gridmap/dense_search.h"
@@ -227,8 +228,8 @@ std::string GridLocalMap::Serialize() const {
   w.Put<int32_t>(l.offset.y);
   w.Put<int32_t>(l.width);
   w.Put<int32_t>(l.height);
-  for (uint16_t v : grid_.values()) w.Put(v);
-  return w.bytes();
+  w.PutArray(grid_.values().data(), grid_.values().size());
+  return std::move(w.bytes());
 }
 
 bool GridLocalMap::Deserialize(const std::string& bytes) {
@@ -248,39 +249,19 @@ bool GridLocalMap::Deserialize(const std::string& bytes) {
   for (Inserted& s : inserted) {
     if (!r.GetPose(&s.pose) || !r.GetMat3(&s.cov) || !s.cov.allFinite()) return false;
   }
-  GridLimits l;
+  double resolution = 0.0;
   int32_t ox = 0, oy = 0, width = 0, height = 0;
-  if (!r.Get(&l.resolution) || l.resolution != options_.grid.grid.resolution || !r.Get(&ox) ||
+  if (!r.Get(&resolution) || resolution != options_.grid.grid.resolution || !r.Get(&ox) ||
       !r.Get(&oy) || !r.Get(&width) || !r.Get(&height) || width < 0 || height < 0 ||
       width > options_.grid.grid.max_cells || height > options_.grid.grid.max_cells)
     return false;
-  l.offset = CellIndex{ox, oy};
-  l.width = width;
-  l.height = height;
   std::vector<uint16_t> values(static_cast<size_t>(width) * height);
-  for (uint16_t& v : values) {
-    if (!r.Get(&v) || v > ProbabilityGrid::kMaxValue) return false;
-  }
-  if (!r.AtEnd()) return false;
+  if (!r.GetArray(values.data(), values.size()) || !r.AtEnd()) return false;
+  // The window as it was written (not regrown around the cells), so that the map reads back
+  // byte for byte and grows on as it would have.
   ProbabilityGrid grid(options_.grid.grid);
-  if (width > 0 && height > 0) {
-    if (!grid.GrowToCover(l.CenterOf(CellIndex{0, 0}),
-                          l.CenterOf(CellIndex{width - 1, height - 1})))
-      return false;
-    const GridLimits& g = grid.limits();
-    int known = 0;
-    for (int j = 0; j < height; ++j) {
-      for (int i = 0; i < width; ++i) {
-        const uint16_t v = values[static_cast<size_t>(j) * width + i];
-        if (v == ProbabilityGrid::kUnknown) continue;
-        const CellIndex c{l.offset.x + i - g.offset.x, l.offset.y + j - g.offset.y};
-        if (!g.Contains(c)) return false;
-        grid.mutable_values()[g.IndexOf(c)] = v;
-        ++known;
-      }
-    }
-    grid.AddKnownCells(known);
-  }
+  if (width > 0 && height > 0 && !grid.Restore(CellIndex{ox, oy}, width, height, std::move(values)))
+    return false;
   id_ = NewMapId();
   x_ = x;
   p_rel_ = Symmetric(p);

@@ -5,7 +5,10 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <string>
 
+#include "core/atlas/byte_image.h"
 #include "core/testing/fake_wall_scanner.h"
 #include "core/testing/grid_scenes.h"
 
@@ -168,10 +171,16 @@ TEST(GridLocalMap, PointsAreTheOccupiedCellsOnTheWalls) {
   EXPECT_TRUE(GridLocalMap().Points(100).empty());
 }
 
-TEST(GridLocalMap, SerializesAndRefusesOtherBytes) {
-  const std::vector<sim::Wall> walls = RoomWalls();
+// 2 m across RoomWalls(), turning 1 rad.
+std::vector<Pose2> TurningDrive() {
   std::vector<Pose2> truth;
   for (int k = 0; k <= 20; ++k) truth.push_back(Pose2{-2.0 + 0.1 * k, 0.0, 0.05 * k});
+  return truth;
+}
+
+TEST(GridLocalMap, SerializesAndRefusesOtherBytes) {
+  const std::vector<sim::Wall> walls = RoomWalls();
+  const std::vector<Pose2> truth = TurningDrive();
   GridLocalMap map;
   Pose2 odometry;
   Drive(&map, walls, truth, 1.0, 0.0, &odometry);
@@ -188,6 +197,35 @@ TEST(GridLocalMap, SerializesAndRefusesOtherBytes) {
   EXPECT_FALSE(copy.Deserialize(image.substr(0, image.size() - 1)));
   EXPECT_FALSE(copy.Deserialize("not a map"));
   EXPECT_EQ(copy.Serialize(), copy.Serialize());
+}
+
+// The image ends with the grid's window (width, height) and its values row by row, written in
+// one block: the same bytes as one ByteWriter::Put per value. A value above kMaxValue is
+// refused.
+TEST(GridLocalMap, ImageHoldsTheValuesAsOnePutEach) {
+  GridLocalMap map;
+  Pose2 odometry;
+  Drive(&map, RoomWalls(), TurningDrive(), 1.0, 0.0, &odometry);
+  const ProbabilityGrid& grid = map.Grid();
+  ASSERT_GT(grid.known_cells(), 1000);
+  const std::string image = map.Serialize();
+  ByteWriter old;
+  old.Put<int32_t>(grid.limits().width);
+  old.Put<int32_t>(grid.limits().height);
+  for (uint16_t v : grid.values()) old.Put(v);
+  ASSERT_GT(image.size(), old.bytes().size());
+  const size_t block = image.size() - old.bytes().size();
+  EXPECT_TRUE(image.compare(block, std::string::npos, old.bytes()) == 0);
+
+  // Read back, the map is the one written, its grid's window included.
+  GridLocalMap copy;
+  ASSERT_TRUE(copy.Deserialize(image));
+  EXPECT_TRUE(copy.Serialize() == image);
+  EXPECT_EQ(copy.Grid().known_cells(), grid.known_cells());
+  std::string bad = image;
+  const uint16_t too_large = ProbabilityGrid::kMaxValue + 1;
+  std::memcpy(bad.data() + bad.size() - sizeof(too_large), &too_large, sizeof(too_large));
+  EXPECT_FALSE(copy.Deserialize(bad));
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ inline AtlasOptions BaselineAtlasOptions() {
 struct TestWorld {
   double radius = 3.0;
   int capacity = 6;
+  int image_padding = 0;  // FakeLocalMapOptions::image_padding
   int observations = 10;
   std::shared_ptr<FakeWorldScript> script = std::make_shared<FakeWorldScript>();
   std::shared_ptr<int> next_tag = std::make_shared<int>(0);
@@ -46,6 +47,7 @@ struct TestWorld {
   Atlas::MapFactory Factory() const {
     FakeLocalMapOptions o;
     o.capacity = capacity;
+    o.image_padding = image_padding;
     auto script_copy = std::shared_ptr<const FakeWorldScript>(script);
     auto tag = next_tag;
     return [o, script_copy, tag]() {

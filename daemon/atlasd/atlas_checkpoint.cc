@@ -1,5 +1,6 @@
 #include "daemon/atlasd/atlas_checkpoint.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -51,17 +52,18 @@ const char* ToString(ResumeOutcome o) {
 
 AtlasSnapshot CheckpointBuilder::Make(const Atlas& atlas) {
   AtlasSnapshot b;
-  b.metadata[kImageKey] = atlas.Serialize();
+  b.metadata[kImageKey] = atlas.SerializeWithoutFrameMaps();
   b.metadata[kImageVersionKey] = std::to_string(Atlas::kImageVersion);
   b.metadata[kStepsKey] = std::to_string(atlas.StepCount());
   const AtlasGraph& g = atlas.Graph();
-  std::vector<bool> send(static_cast<size_t>(g.FrameCount()), false);
-  for (FrameId f = frames_sent_; f < g.FrameCount(); ++f) send[static_cast<size_t>(f)] = true;
-  for (const Hypothesis& h : atlas.Hypotheses())
-    if (h.frame >= 0 && h.frame < g.FrameCount()) send[static_cast<size_t>(h.frame)] = true;
-  for (FrameId f = 0; f < g.FrameCount(); ++f)
-    if (send[static_cast<size_t>(f)]) b.frames.push_back({f, g.Frame(f).map->Serialize(), 0});
-  frames_sent_ = g.FrameCount();
+  maps_sent_.resize(static_cast<size_t>(g.FrameCount()), 0);
+  for (FrameId f = 0; f < g.FrameCount(); ++f) {
+    const MapFrame& frame = g.Frame(f);
+    uint64_t& sent = maps_sent_[static_cast<size_t>(f)];
+    if (sent == frame.map_revision) continue;
+    b.frames.push_back({f, frame.map->Serialize(), 0});
+    sent = frame.map_revision;
+  }
   const std::vector<AtlasEdge>& edges = g.Edges();
   edges_sent_.resize(edges.size());
   for (size_t i = 0; i < edges.size(); ++i) {
@@ -74,7 +76,51 @@ AtlasSnapshot CheckpointBuilder::Make(const Atlas& atlas) {
   return b;
 }
 
-ResumeResult ResumeFromStore(AtlasStore* store, Atlas* atlas) {
+void CheckpointBuilder::AssumeSaved(const Atlas& atlas) {
+  const AtlasGraph& g = atlas.Graph();
+  maps_sent_.resize(static_cast<size_t>(g.FrameCount()));
+  for (FrameId f = 0; f < g.FrameCount(); ++f)
+    maps_sent_[static_cast<size_t>(f)] = g.Frame(f).map_revision;
+  edges_sent_.clear();
+  for (const AtlasEdge& e : g.Edges()) edges_sent_.push_back(ToStored(e));
+}
+
+std::string LoadSavedAtlas(const StoredAtlas& saved, Atlas* atlas, bool* maps_from_rows) {
+  const auto image = saved.metadata.find(kImageKey);
+  if (image == saved.metadata.end()) return "it holds no atlas image";
+  // The rows are ordered by frame id (AtlasStore::Load).
+  int from_rows = 0;
+  const Atlas::FrameMapImages rows = [&saved, &from_rows](FrameId f) -> const std::string* {
+    const auto row = std::lower_bound(saved.frames.begin(), saved.frames.end(), f,
+                                      [](const StoredFrame& r, FrameId id) { return r.id < id; });
+    if (row == saved.frames.end() || row->id != f) return nullptr;
+    ++from_rows;
+    return &row->blob;
+  };
+  const ImageLoadResult r = atlas->DeserializeWithFrameMaps(image->second, rows);
+  if (maps_from_rows != nullptr)
+    *maps_from_rows = r.ok() && from_rows == atlas->Graph().FrameCount();
+  const std::string frame = "frame " + std::to_string(r.frame);
+  switch (r.status) {
+    case ImageLoadStatus::kLoaded:
+      return "";
+    case ImageLoadStatus::kMalformed:
+      return "its atlas image (" + std::to_string(image->second.size()) +
+             " bytes) does not decode with this configuration";
+    case ImageLoadStatus::kFrameMapMissing:
+      return "its atlas image keeps the map of " + frame +
+             " in the frames table, which has no row for it";
+    case ImageLoadStatus::kFrameMapMalformed: {
+      const std::string* blob = rows(r.frame);
+      return "the map of " + frame + " (its row in the frames table, " +
+             std::to_string(blob != nullptr ? blob->size() : 0) +
+             " bytes) does not decode with this configuration";
+    }
+  }
+  return "its atlas image does not load";
+}
+
+ResumeResult ResumeFromStore(AtlasStore* store, Atlas* atlas, CheckpointBuilder* checkpoints) {
   ResumeResult r;
   StoredAtlas saved;
   std::string error;
@@ -103,9 +149,11 @@ ResumeResult ResumeFromStore(AtlasStore* store, Atlas* atlas) {
     why = "its atlas image is version " + std::to_string(v) +
           ", written by a newer atlasd (this one reads version " +
           std::to_string(Atlas::kImageVersion) + ")";
-  } else if (!atlas->Deserialize(image->second)) {
-    why = "its atlas image (" + std::to_string(image->second.size()) +
-          " bytes) does not decode with this configuration";
+  } else {
+    bool maps_from_rows = false;
+    why = LoadSavedAtlas(saved, atlas, &maps_from_rows);
+    // An older image embeds its maps; its rows may be behind it: the next batch writes them all.
+    if (why.empty() && maps_from_rows && checkpoints != nullptr) checkpoints->AssumeSaved(*atlas);
   }
   if (!why.empty()) {
     const StoreOpenResult moved = store->RefuseAndStartEmpty(newer, why);

@@ -52,12 +52,11 @@ int ExportSavedAtlas(const DaemonOptions& options, const std::string& dir) {
     std::fprintf(stderr, "atlasd: --export-atlas: %s\n", error.c_str());
     return 1;
   }
-  const auto image = saved.metadata.find("atlas_image");
-  if (image == saved.metadata.end() || !atlas->Deserialize(image->second)) {
+  if (const std::string why = LoadSavedAtlas(saved, atlas.get()); !why.empty()) {
     std::fprintf(stderr,
-                 "atlasd: --export-atlas: %s holds no atlas this atlasd can read (start atlasd "
-                 "once to have it checked)\n",
-                 store.path().c_str());
+                 "atlasd: --export-atlas: %s holds no atlas this atlasd can read: %s (start "
+                 "atlasd once to have it checked)\n",
+                 store.path().c_str(), why.c_str());
     return 1;
   }
   if (std::string e = WriteAtlasFiles(*atlas, dir); !e.empty()) {

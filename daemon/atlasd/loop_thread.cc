@@ -228,7 +228,7 @@ bool LoopThread::OpenStore() {
     LogToStderr(LogPriority::kWarning, "the atlas will NOT be saved (the reason is above)");
     return false;
   }
-  const ResumeResult resumed = ResumeFromStore(&store_, atlas_.get());
+  const ResumeResult resumed = ResumeFromStore(&store_, atlas_.get(), &checkpoints_);
   std::fprintf(stderr, "atlasd: %s\n", resumed.message.c_str());
   if (resumed.outcome == ResumeOutcome::kFailed) return false;
   if (resumed.outcome == ResumeOutcome::kResumed) checkpoint_step_ = atlas_->StepCount();

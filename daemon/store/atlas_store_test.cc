@@ -8,9 +8,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <random>
 #include <thread>
 
@@ -726,6 +728,36 @@ TEST_F(StoreDir, WriterKeepsAFailedBatchAndCountsTheError) {
   EXPECT_THAT(s.last_error, HasSubstr("not open"));
   writer.Stop();  // does not wait out the retry interval
   EXPECT_EQ(writer.Submit(Batch(2)), SubmitResult::kStopped);
+}
+
+// A batch that failed is never left out while a later one is saved, not even when the writer
+// stops: the later batch's rows could depend on it (a frame row written once, an image that
+// needs it). Batch 2 cannot be saved (an edge with NaN, which SQLite stores as NULL).
+TEST_F(StoreDir, WriterNeverSavesABatchWithoutTheOnesBefore) {
+  AtlasStore store;
+  ASSERT_TRUE(store.Open(dir_.string()).ok());
+  {
+    AtlasStoreWriter writer(&store, 4, std::chrono::hours(1));
+    writer.Start();
+    writer.Submit(Batch(1));
+    ASSERT_TRUE(writer.Flush(std::chrono::seconds(10)));
+    AtlasSnapshot bad = Batch(2);
+    bad.edges[0].x = std::numeric_limits<double>::quiet_NaN();
+    writer.Submit(std::move(bad));
+    for (int i = 0; i < 500 && writer.Stats().errors == 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    ASSERT_EQ(writer.Stats().errors, 1u);
+    writer.Submit(Batch(3));
+    // Stopping: batch 2 fails again, then with batch 3 merged into it; both are dropped.
+    writer.Stop();
+    EXPECT_EQ(writer.Stats().errors, 3u);
+    EXPECT_EQ(writer.Stats().saved, 1u);
+  }
+  StoredAtlas a;
+  std::string error;
+  ASSERT_TRUE(store.Load(&a, &error)) << error;
+  ExpectConsistentPrefix(a, 1);
+  EXPECT_EQ(a.metadata["last"], "1");
 }
 
 TEST(AtlasSnapshot, MergeLaterReplacesByKey) {

@@ -75,13 +75,17 @@ void AtlasStoreWriter::Run() {
     } else {
       ++stats_.errors;
       stats_.last_error = error;
-      if (!stopping_) {
-        // Keep the changes: they go ahead of whatever came since, and are retried.
+      // Keep the changes: they go ahead of whatever came since (a later batch saved without
+      // them could leave a row behind the image it goes with), and are retried; when stopping,
+      // once more merged with the next batch, or dropped when none is left (the store keeps
+      // the last batch it saved).
+      if (!stopping_ || !queue_.empty()) {
         if (!queue_.empty()) {
           batch.MergeLater(std::move(queue_.front()));
           queue_.pop_front();
         }
         queue_.push_front(std::move(batch));
+        if (stopping_) continue;
         idle_.notify_all();
         wake_.wait_for(lock, retry_interval_, [&] { return stopping_; });
         continue;

@@ -9,8 +9,10 @@
 //   that no change is lost and memory stays bounded by the atlas itself; each merge is counted.
 // - Batches are written in submission order, one transaction each (AtlasStore::Save).
 // - A batch that fails to save is kept (merged ahead of the next) and retried after
-//   retry_interval; failures are counted with the last error text.
-// - Stop() writes what is queued (one attempt each) and joins; the destructor calls it.
+//   retry_interval; failures are counted with the last error text. No batch is saved without
+//   the ones submitted before it: the store holds a prefix of the batches.
+// - Stop() writes what is queued and joins; the destructor calls it. A batch that fails then is
+//   merged into the next and tried once more with it; the last one to fail is dropped.
 // - The writer owns the store between Start() and Stop(): nobody else may use it meanwhile.
 
 #include <chrono>
