@@ -93,23 +93,28 @@ int MostFeatures(const Atlas& a) {
 }
 
 TEST(Reload, RebuiltAtlasKeepsGraphMapsAndHypotheses) {
-  const DaemonOptions running;
-  const std::unique_ptr<Atlas> atlas = MappedAtlas(running);
-  ASSERT_GE(MostFeatures(*atlas), 2);
-  DaemonOptions loaded = running;
-  loaded.atlas.map_capacity = running.atlas.map_capacity + 10;
-  loaded.noise.odometry.wheel_sigma_per_m *= 2.0;
-  const AtlasRebuild r = RebuildAtlas(*atlas, PlanReload(running, loaded).with_atlas);
-  ASSERT_NE(r.atlas, nullptr) << r.refused;
-  EXPECT_TRUE(r.refused.empty());
-  EXPECT_EQ(r.settings.local_map.capacity, loaded.atlas.map_capacity);
-  EXPECT_EQ(r.atlas->StepCount(), atlas->StepCount());
-  EXPECT_EQ(r.atlas->Hypotheses().size(), atlas->Hypotheses().size());
-  EXPECT_TRUE(r.atlas->Serialize() == atlas->Serialize());
+  for (const LocalMapKind kind : {LocalMapKind::kGrid, LocalMapKind::kLines}) {
+    DaemonOptions running;
+    running.localmap.kind = kind;
+    const std::unique_ptr<Atlas> atlas = MappedAtlas(running);
+    ASSERT_GE(MostFeatures(*atlas), 2);
+    DaemonOptions loaded = running;
+    loaded.atlas.map_capacity = running.atlas.map_capacity + 10;
+    loaded.noise.odometry.wheel_sigma_per_m *= 2.0;
+    const AtlasRebuild r = RebuildAtlas(*atlas, PlanReload(running, loaded).with_atlas);
+    ASSERT_NE(r.atlas, nullptr) << r.refused;
+    EXPECT_TRUE(r.refused.empty());
+    EXPECT_EQ(r.settings.local_map.capacity, loaded.atlas.map_capacity);
+    EXPECT_EQ(r.atlas->StepCount(), atlas->StepCount());
+    EXPECT_EQ(r.atlas->Hypotheses().size(), atlas->Hypotheses().size());
+    EXPECT_TRUE(r.atlas->Serialize() == atlas->Serialize());
+  }
 }
 
+// Line maps hold at most atlas.map_capacity lines (a grid frame's capacity is its own scans).
 TEST(Reload, RebuildIsRefusedWhenTheAtlasDoesNotFit) {
-  const DaemonOptions running;
+  DaemonOptions running;
+  running.localmap.kind = LocalMapKind::kLines;
   const std::unique_ptr<Atlas> atlas = MappedAtlas(running);
   const int features = MostFeatures(*atlas);
   ASSERT_GE(features, 2);
