@@ -120,7 +120,7 @@ with open(frag, "w") as f:
 atlas-replay --quiet --out DIR mit-csail.clf.gz      # five runs, whole process, median
 ```
 
-Wall time per run: %s s; median %.2f s for %.0f s of data: **%.0fx real time** (target 500x).
+Wall time per run: %s s; median %.2f s for %.0f s of data: **%.0fx real time** (target 1000x).
 The whole process is timed, reading the gzip log included; the machine's 1-minute load average
 was %.1f at the end (on 2 cores), so on a busy machine the figure is low.
 """ % (", ".join("%.2f" % w for w in walls), median, data, data / median, os.getloadavg()[0]))
