@@ -17,9 +17,8 @@
 // - CheckpointBuilder::Make() runs on the loop thread between steps; it only reads the atlas
 //   and copies bytes; it never touches SQLite. Its cost is O(frames + edges) comparisons plus
 //   the image without maps plus the maps that changed (those of the frames with a mature
-//   hypothesis since the last batch, and new frames), not the whole atlas: on the intel log
-//   with grid frames 0.12 ms median, at most 4.5 ms, where the whole image (9.0 MB) took 10 and
-//   up to 34 ms (docs/atlasd.md, "Persistence", has the command). The loop calls it at
+//   hypothesis since the last batch, and new frames), not the whole atlas
+//   (atlas_checkpoint_benchmark.cc; docs/atlasd.md, "Persistence"). The loop calls it at
 //   most once per state.save_period_s and hands the batch to AtlasStoreWriter::Submit(), whose
 //   merges keep the newest row of each frame. Every batch must reach the store, in order (a
 //   batch that is never saved leaves the rows behind the next image); when the writer stops,
