@@ -12,9 +12,10 @@
 # medians, largest max, ms of CPU).
 #
 # Usage: scripts/eval-tuning.sh [OUT]      (default OUT: /tmp/atlas-eval-tuning)
-# Environment: LOGS (default "intel freiburg-079"), SEEDS (default "1 2 3"), ODOMETRY_NOISE
-# (default | realistic), CONFIG (default <repo>/config/atlasd.toml), JOBS (default 2), ATLAS_BIN
-# and ATLAS_DATA as for scripts/eval-corrected.sh.
+# Environment: LOGS (default "intel freiburg-079"; aces is read with its 50 m no-return value),
+# SEEDS (default "1 2 3"), ODOMETRY_NOISE (default | realistic), CONFIG (default
+# <repo>/config/atlasd.toml), JOBS (default 2), ATLAS_BIN and ATLAS_DATA as for
+# scripts/eval-corrected.sh.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/script-usage.sh"
 script_usage "${BASH_SOURCE[0]}" out "$@"
@@ -31,12 +32,13 @@ BIN=$(release_bin atlas-replay atlas-eval atlas-carmen)
 mkdir -p "$OUT"
 
 one_run() {
-  local name=$1 seed=$2 dir=$OUT/$1/seed-$2 log=$DATA/$1-corrected.log.gz
+  local name=$1 seed=$2 dir=$OUT/$1/seed-$2 log=$DATA/$1-corrected.log.gz range=()
+  [[ $name == aces ]] && range=(--log-max-range 50)  # aces clamps its ranges at 50 m
   mkdir -p "$dir"
   "$BIN/atlas-replay" --quiet --corrected --seed "$seed" --odometry-noise "$ODOMETRY_NOISE" \
-    --config "$CONFIG" --out "$dir" "$log" >"$dir/replay.txt"
+    "${range[@]}" --config "$CONFIG" --out "$dir" "$log" >"$dir/replay.txt"
   "$BIN/atlas-carmen" --corrected --dump-odometry --seed "$seed" \
-    --odometry-noise "$ODOMETRY_NOISE" --out "$dir/odometry.tsv" "$log"
+    --odometry-noise "$ODOMETRY_NOISE" "${range[@]}" --out "$dir/odometry.tsv" "$log"
   "$ROOT/scripts/relations-from-reference.py" "$dir/reference.tsv" "$dir/all.relations" \
     --travel 1.0
   "$ROOT/scripts/relations-from-reference.py" "$dir/reference.tsv" "$dir/returns.relations"
