@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -55,18 +56,26 @@ bool WriteOutput(const std::string& path, const std::string& text, bool append =
   return ok;
 }
 
-// The last odometry sample of the CARMEN log at `path` (plain, as --dump-carmen writes it).
-std::optional<OdometrySample> LastOdometry(const std::string& path, std::string* error) {
-  carmen::CarmenReadResult r = carmen::ReadCarmenLog(path, carmen::CarmenLogOptions{});
-  if (!r.ok()) {
-    *error = r.error;
+// Where the run in the CARMEN log at `path` (`size` bytes) ends: its last ODOM line, read from
+// the file's end (the lines --dump-carmen writes are at most a few kB), or an error message.
+constexpr std::streamoff kTailBytes = 1 << 16;
+std::optional<OdometrySample> LastOdometry(const std::string& path, uintmax_t size,
+                                           std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  const std::streamoff from =
+      std::max<std::streamoff>(0, static_cast<std::streamoff>(size) - kTailBytes);
+  std::string tail(static_cast<size_t>(static_cast<std::streamoff>(size) - from), '\0');
+  if (!in.seekg(from) || !in.read(tail.data(), static_cast<std::streamsize>(tail.size()))) {
+    *error = "cannot read " + path;
     return std::nullopt;
   }
-  for (auto e = r.log.events.rbegin(); e != r.log.events.rend(); ++e) {
-    if (const auto* o = std::get_if<OdometrySample>(&e->event)) return *o;
-  }
-  *error = path + ": no odometry to go on from (use --append only with a file --dump-carmen wrote)";
-  return std::nullopt;
+  // A read from inside the file begins inside a line: that line is not used.
+  if (from > 0) tail.erase(0, std::min(tail.size(), tail.find('\n') + 1));
+  const std::optional<OdometrySample> end = LastOdometryIn(tail);
+  if (!end)
+    *error = path + ": no ODOM line in its last " + std::to_string(kTailBytes / 1024) +
+             " kB to go on from (use --append only with a file --dump-carmen wrote)";
+  return end;
 }
 
 // --dump-carmen: `events` as CARMEN lines into `output` (stdout when empty), after what
@@ -78,7 +87,7 @@ int DumpCarmen(std::vector<carmen::CarmenEvent> events, const std::string& path,
   const uintmax_t size = std::filesystem::file_size(output, no_file);
   if (append && !no_file && size > 0) {
     std::string error;
-    const std::optional<OdometrySample> end = LastOdometry(output, &error);
+    const std::optional<OdometrySample> end = LastOdometry(output, size, &error);
     if (!end) {
       std::fprintf(stderr, "atlas-carmen: %s\n", error.c_str());
       return 1;

@@ -69,4 +69,22 @@ CarmenLinesResult CarmenLines(const std::vector<carmen::CarmenEvent>& events,
   return r;
 }
 
+std::optional<OdometrySample> LastOdometryIn(std::string_view lines) {
+  size_t end = lines.size();
+  while (end > 0) {
+    const size_t start = lines.rfind('\n', end - 1);
+    const size_t from = start == std::string_view::npos ? 0 : start + 1;
+    const std::string_view line = lines.substr(from, end - from);
+    end = from == 0 ? 0 : from - 1;
+    if (!line.starts_with("ODOM ")) continue;
+    carmen::CarmenLogBuilder builder(carmen::CarmenLogOptions{}, "");
+    if (!builder.AddLine(1, line)) continue;
+    const carmen::CarmenLog log = builder.Finish();
+    if (!log.events.empty()) {
+      if (const auto* o = std::get_if<OdometrySample>(&log.events.front().event)) return *o;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace atlas::eval

@@ -15,7 +15,9 @@
 //   odometry around them, are counted and left out.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/common/sensor_types.h"
@@ -35,5 +37,9 @@ struct CarmenLinesResult {
   int64_t scans_not_flaser = 0;        // angles a FLASER line cannot state
 };
 CarmenLinesResult CarmenLines(const std::vector<carmen::CarmenEvent>& events, const char* hostname);
+
+// The odometry of the last ODOM line of `lines` (whole CARMEN lines, such as the end of a log
+// CarmenLines wrote) that the reader takes, or none: where a run continues.
+std::optional<OdometrySample> LastOdometryIn(std::string_view lines);
 
 }  // namespace atlas::eval

@@ -147,5 +147,21 @@ TEST(CarmenLines, TwoLogsReadAsOneRun) {
   EXPECT_NEAR(Between(odometry[2].pose, odometry[3].pose).y, was.y, 1e-3);
 }
 
+// Where a run continues: the last ODOM line the reader takes, whatever follows it.
+TEST(LastOdometryIn, FindsTheLastOdometryLine) {
+  const std::vector<carmen::CarmenEvent> events = {Odometry(1.0, {0.0, 0.0, 0.0}), Scan(1.0, 181),
+                                                   Odometry(2.0, {3.0, 1.0, 0.5}), Scan(2.0, 181)};
+  const std::string text = CarmenLines(events, "atlas-carmen").text;
+  const std::optional<OdometrySample> end = LastOdometryIn(text);
+  ASSERT_TRUE(end.has_value());
+  EXPECT_EQ(end->stamp, FromSeconds(2.0));
+  EXPECT_NEAR(end->pose.x, 3.0, 1e-4);
+  EXPECT_NEAR(end->pose.theta, 0.5, 1e-4);
+  // A malformed last ODOM line is passed over; no ODOM line at all is none.
+  EXPECT_EQ(LastOdometryIn(text + "ODOM 1 2\n")->stamp, FromSeconds(2.0));
+  EXPECT_FALSE(LastOdometryIn(CarmenLines({Scan(1.0, 181)}, "atlas-carmen").text).has_value());
+  EXPECT_FALSE(LastOdometryIn("").has_value());
+}
+
 }  // namespace
 }  // namespace atlas::eval
