@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -118,6 +119,35 @@ const Pose2* ReferenceAt(const std::vector<TruthSample>& reference, Time stamp) 
   return &it->pose;
 }
 
+// ReplayOptions::restart_after_scans: where the run is, the edges already looked at.
+struct RestartWatch {
+  int edges_seen = 0;
+};
+
+// After `scans` scans: the restart when it is due, then the first edge that joins the new part
+// (frames >= restart_frame) to the old frames (ReplaySummary's restart fields).
+void RestartOrWatchRejoin(const ReplayOptions& options, int64_t scans, Atlas* atlas,
+                          ReplaySummary* sum, RestartWatch* watch) {
+  if (options.restart_after_scans == 0) return;
+  if (scans == options.restart_after_scans) {
+    const bool read = atlas->Deserialize(atlas->Serialize());
+    assert(read);
+    (void)read;
+    sum->restart_frame = static_cast<int>(atlas->ResumeInNewFrame());
+    watch->edges_seen = atlas->Graph().EdgeCount();
+    return;
+  }
+  if (sum->restart_frame < 0 || sum->rejoined_after_scans >= 0) return;
+  const AtlasGraph& graph = atlas->Graph();
+  for (; watch->edges_seen < graph.EdgeCount(); ++watch->edges_seen) {
+    const AtlasEdge& e = graph.Edge(watch->edges_seen);
+    if ((e.a < sum->restart_frame) != (e.b < sum->restart_frame)) {
+      sum->rejoined_after_scans = scans - options.restart_after_scans;
+      return;
+    }
+  }
+}
+
 }  // namespace
 
 int64_t ThreadCpuNs() {
@@ -150,6 +180,7 @@ std::string ReplayOptions::Validate() const {
   if (std::string e = loop.Validate(); !e.empty()) return "step loop: " + e;
   if (std::string e = closures.Validate(); !e.empty()) return "closure check: " + e;
   if (max_scans < 0) return "max_scans must be >= 0";
+  if (restart_after_scans < 0) return "restart_after_scans must be >= 0";
   if (!(laser_max_range >= 0.0) || !std::isfinite(laser_max_range))
     return "laser_max_range must be >= 0 (0: each scan's own maximum)";
   return "";
@@ -198,6 +229,7 @@ ReplayResult RunReplay(const std::vector<SensorEvent>& events, const ReplayOptio
   step_ns.reserve(static_cast<size_t>(total_scans));
   step_cpu_ns.reserve(static_cast<size_t>(total_scans));
   Time first_scan{}, last_scan{};
+  RestartWatch restart;
   sum.rss_kb_before_steps = CurrentRssKb();
   for (const SensorEvent& e : events) {
     // Scans only: stop after the last one (the odometry after it moves nothing).
@@ -236,6 +268,7 @@ ReplayResult RunReplay(const std::vector<SensorEvent>& events, const ReplayOptio
     step_ns.push_back(ns);
     if (scan != nullptr && progress && progress_every > 0 && sum.scans % progress_every == 0)
       progress(sum.scans, total_scans);
+    if (scan != nullptr) RestartOrWatchRejoin(options, sum.scans, atlas.get(), &sum, &restart);
   }
   sum.rss_kb_after_steps = CurrentRssKb();
   sum.step_budget_ms = std::chrono::duration<double, std::milli>(options.loop.step_budget).count();
@@ -474,6 +507,9 @@ std::string SummaryJson(const ReplaySummary& s) {
   Append(t, "\"step_cpu_ns_median\": %.0f, \"step_cpu_ns_max\": %.0f, ", s.step_cpu_ns_median,
          s.step_cpu_ns_max);
   Append(t, "\"atlas_image_bytes\": %lld, ", static_cast<long long>(s.atlas_image_bytes));
+  if (s.restart_frame >= 0)
+    Append(t, "\"restart_frame\": %d, \"rejoined_after_scans\": %lld, ", s.restart_frame,
+           static_cast<long long>(s.rejoined_after_scans));
   Append(t, "\"max_rss_kb\": %lld, \"rss_kb_before_steps\": %lld, \"rss_kb_after_steps\": %lld",
          static_cast<long long>(s.max_rss_kb), static_cast<long long>(s.rss_kb_before_steps),
          static_cast<long long>(s.rss_kb_after_steps));

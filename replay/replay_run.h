@@ -84,6 +84,11 @@ struct ReplaySummary {
   int64_t max_rss_kb = 0, rss_kb_before_steps = 0, rss_kb_after_steps = 0;
   // The size of the atlas's byte image (Atlas::Serialize: graph, maps, hypotheses) at the end.
   int64_t atlas_image_bytes = 0;
+  // With restart_after_scans: the frame the robot restarted in (-1: no restart), and the scans
+  // stepped after the restart until a map-matching edge joined the new part to the old frames
+  // (-1: never).
+  int restart_frame = -1;
+  int64_t rejoined_after_scans = -1;
   // With a reference: closures (closure_check.h); -1 when there is no reference.
   int reference_rows = 0;
   int closures_checked = -1, false_closures_chi2 = -1, false_closures_axis = -1;
@@ -108,6 +113,10 @@ struct ReplayOptions {
   MapperSettings mapper;
   StepLoopOptions loop;
   int64_t max_scans = 0;  // 0: all
+  // A restart after this many scans (0: none), as atlasd's resume does it: the atlas's image is
+  // read back (Atlas::Deserialize) and the robot starts in a new, unconnected frame
+  // (Atlas::ResumeInNewFrame), which map-matching without a prior may join to the old ones.
+  int64_t restart_after_scans = 0;
   // A range setting applied to every scan before the loop (LimitLaserRange), metres; 0: each
   // scan's own maximum (the scanner's, as the log states it).
   double laser_max_range = 0.0;

@@ -35,6 +35,7 @@ pass "atlas-view's number options"
 
 R=$ATLAS_REPLAY
 refused "$R" --max-scans integer '[1, 9223372036854775807]' 0
+refused "$R" --restart-after-scans integer '[1, 9223372036854775807]' 0
 refused "$R" --laser-max-range number '[0.01, 1000000]' 0
 refused "$R" --map-capacity integer '[1, 10000]' 10001
 refused "$R" --max-hypotheses integer '[1, 1000]' 0

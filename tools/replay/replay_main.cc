@@ -118,6 +118,11 @@ int Main(int argc, char** argv) {
                "--corrected does (not with --corrected)");
   cli::AddInteger(app, "--max-scans", "N", 1, std::numeric_limits<int64_t>::max(),
                   &options.max_scans, "step only the first N scans (default: all)");
+  cli::AddInteger(app, "--restart-after-scans", "N", 1, std::numeric_limits<int64_t>::max(),
+                  &options.restart_after_scans,
+                  "restart after N scans as atlasd resumes a saved atlas: the robot goes on\n"
+                  "in a new frame, unconnected, until map-matching without a prior joins\n"
+                  "it to the old frames (summary.json: restart_frame, rejoined_after_scans)");
   cli::AddText(app, "--config", "FILE", &config_path,
                "atlasd's configuration file: the mapper ([atlas], [noise.*]) and the\n"
                "step loop ([loop]) are taken from it, so that the replay maps as\n"

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -239,6 +240,49 @@ TEST_F(ReplayMitCsail, HypothesesFileListsEveryStepsLiveHypothesesWithTheDominan
   EXPECT_GT(last_of.size(), 2u);
   std::filesystem::remove_all(dir);
   std::filesystem::remove_all(plain);
+}
+
+// --restart-after-scans: the atlas is read back from its image and the robot goes on in a new
+// frame that no edge joins to the old ones until map-matching without a prior does; the summary
+// says where the restart was and whether (after how many scans) the parts were joined.
+TEST_F(ReplayMitCsail, RestartGoesOnInAnUnconnectedFrameAndCountsTheRejoin) {
+  ReplayOptions options;
+  options.max_scans = 900;
+  options.restart_after_scans = 400;
+  const std::string dir = TempDir();
+  ASSERT_FALSE(dir.empty());
+  const ReplayResult r = RunReplay(read_.log.events, options, dir);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const int restart = r.summary.restart_frame;
+  const auto traj = Rows(ReadAll(dir + "/trajectory.tsv"));
+  ASSERT_EQ(traj.size(), 900u);
+  int before = 0;
+  for (size_t i = 0; i < traj.size(); ++i) {
+    const int frame = std::stoi(traj[i][1]);
+    if (i < 400) {
+      EXPECT_LT(frame, restart) << "row " << i;
+      before = std::max(before, frame + 1);
+    } else {
+      EXPECT_GE(frame, restart) << "row " << i;
+    }
+  }
+  EXPECT_EQ(restart, before);  // the new frame follows the saved ones
+  bool crossing = false;
+  for (const auto& e : Rows(ReadAll(dir + "/graph.tsv")))
+    crossing |= (std::stoi(e[0]) < restart) != (std::stoi(e[1]) < restart);
+  EXPECT_EQ(crossing, r.summary.rejoined_after_scans >= 0);
+  if (r.summary.rejoined_after_scans < 0) {
+    // Not joined: global.tsv places only the frames connected to frame 0.
+    EXPECT_EQ(Rows(ReadAll(dir + "/global.tsv")).size(), 400u);
+  } else {
+    EXPECT_LE(r.summary.rejoined_after_scans, 500);
+  }
+  const std::string summary = ReadAll(dir + "/summary.json");
+  EXPECT_NE(summary.find("\"restart_frame\": " + std::to_string(restart)), std::string::npos);
+  std::filesystem::remove_all(dir);
+
+  options.restart_after_scans = -1;
+  EXPECT_NE(options.Validate().find("restart_after_scans"), std::string::npos);
 }
 
 TEST(Replay, UnwritableOutputIsAnErrorNotACrash) {
